@@ -1,0 +1,271 @@
+"""The ``foilbearing`` command: a thin layer over the library.
+
+Every subcommand that computes something takes ``--json`` and then prints its
+headline results as one JSON object on stdout, keys named with their units.
+Bad input ends with a one-line error on stderr and exit code 2, never a
+traceback; a solver failure with exit code 3.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from foilbearing.case import Case, default_case_path, load_case
+from foilbearing.errors import InputError, SolverError
+from foilbearing.units import parse_quantity
+
+__all__ = ["main"]
+
+REPO_EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "data"
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit code."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 0
+    try:
+        return int(args.func(args) or 0)
+    except InputError as exc:
+        print(f"foilbearing: error: {exc}", file=sys.stderr)
+        return 2
+    except SolverError as exc:
+        print(f"foilbearing: solver failed: {exc}", file=sys.stderr)
+        return 3
+    except KeyboardInterrupt:
+        print("foilbearing: interrupted", file=sys.stderr)
+        return 130
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="foilbearing",
+        description="Gas foil bearings with piezoelectric preload control (C-GFB).",
+    )
+    sub = p.add_subparsers(title="subcommands", metavar="COMMAND")
+
+    case_p = sub.add_parser("case", help="show a bearing case and its derived quantities")
+    case_sub = case_p.add_subparsers(title="case commands", metavar="ACTION")
+    show = case_sub.add_parser("show", help="print the case: inputs, k_b, k_assy, base preloads, Λ")
+    _add_case_arg(show)
+    show.add_argument("--json", action="store_true", help="print one JSON object")
+    show.set_defaults(func=_cmd_case_show)
+
+    st = sub.add_parser("structure", help="structure models: k_b, k_assy, preloads; Figs. 7-8")
+    _add_case_arg(st)
+    st.add_argument("--voltage", default="0,50,100,150V", help="voltages, e.g. 0,50,100,150V")
+    st.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
+    st.add_argument("--json", action="store_true", help="print one JSON object")
+    st.set_defaults(func=_cmd_structure)
+
+    ident = sub.add_parser("identify", help="identify PZT parameters from measured stack data")
+    ident.add_argument("no_load", type=Path, nargs="?", help="no-load CSV (voltage_V, stackN_um)")
+    ident.add_argument(
+        "stiffness",
+        type=Path,
+        nargs="?",
+        help="stiffness CSV (stack, voltage_V, load_N, displacement_um)",
+    )
+    ident.add_argument(
+        "--contact-area",
+        default="3.54e-4 m**2",
+        help="stinger-foil contact area (default 3.54e-4 m**2)",
+    )
+    ident.add_argument(
+        "--update",
+        metavar="CASE.toml",
+        type=Path,
+        help="write the identified D33 and K_p into this case file",
+    )
+    ident.add_argument("--plot", metavar="DIR", type=Path, help="write Figs. 5b, 6b-c (PNG) to DIR")
+    ident.add_argument("--json", action="store_true", help="print one JSON object")
+    ident.set_defaults(func=_cmd_identify)
+
+    study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
+    _add_case_arg(study)
+    study.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")
+    study.add_argument("--json", action="store_true", help="print one JSON object")
+    study.set_defaults(func=_cmd_study)
+    return p
+
+
+def _add_case_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "case",
+        nargs="?",
+        type=Path,
+        default=None,
+        help="case file (TOML); default: the paper's C-GFB",
+    )
+
+
+def _load(path: Path | None) -> Case:
+    return load_case(default_case_path() if path is None else path)
+
+
+def parse_list(text: str, kind: str, field: str) -> list[float]:
+    """Parse "0,50,100,150V" or "10000rpm,50000rpm" into SI floats.
+
+    A unit written on the last item applies to bare numbers before it.
+    """
+    items = [s.strip() for s in text.split(",") if s.strip()]
+    if not items:
+        raise InputError(f"{field} = {text!r}: expected one or more values")
+    last = items[-1]
+    unit = last.lstrip("+-0123456789.eE ")
+    out = []
+    for item in items:
+        bare = item.lstrip("+-").replace(".", "", 1).replace("e", "", 1).replace("E", "", 1)
+        value = (
+            f"{item} {unit}" if unit and bare.replace("-", "").replace("+", "").isdigit() else item
+        )
+        out.append(parse_quantity(value, kind, field=field))
+    return out
+
+
+def _emit(obj: dict[str, Any]) -> None:
+    print(json.dumps(obj, indent=2, default=_json_default))
+
+
+def _json_default(x: Any) -> Any:
+    if hasattr(x, "tolist"):
+        return x.tolist()
+    if isinstance(x, Path):
+        return str(x)
+    raise TypeError(f"not JSON serialisable: {type(x).__name__}")
+
+
+def _cmd_case_show(args: argparse.Namespace) -> int:
+    from foilbearing.summary import case_summary, format_summary
+
+    case = _load(args.case)
+    summary = case_summary(case)
+    if args.json:
+        _emit(summary)
+    else:
+        print(f"Case: {case.title or case.source}")
+        print(format_summary(summary))
+    return 0
+
+
+def structure_summary(case: Case, voltages: Sequence[float]) -> dict[str, Any]:
+    """k_b, k_assy and, per voltage, stack stroke and base preload (unit-named keys)."""
+    from foilbearing.structure import base_preload, stack_displacement
+
+    out: dict[str, Any] = {}
+    if case.foil is not None:
+        out["k_b_N_per_m3"] = case.foil.bump_stiffness
+    act = case.actuators
+    if act is not None:
+        out["k_p_N_per_m3"] = act.k_p
+        out["k_assy_N_per_m3"] = case.assembly_stiffness()
+        out["voltages_V"] = list(voltages)
+        out["stack_stroke_um"] = [
+            float(stack_displacement(v, act.d33_quadratic, act.d33_linear)) * 1e6 for v in voltages
+        ]
+        out["base_preload_um"] = [
+            float(
+                base_preload(
+                    v,
+                    act.d33_quadratic,
+                    act.d33_linear,
+                    act.k_p,
+                    act.holder_spring_stiffness,
+                    act.holder_pre_extension,
+                )
+            )
+            * 1e6
+            for v in voltages
+        ]
+    return out
+
+
+def _cmd_structure(args: argparse.Namespace) -> int:
+    case = _load(args.case)
+    voltages = parse_list(args.voltage, "voltage", "--voltage")
+    if case.actuators is not None:
+        for v in voltages:
+            if not 0.0 <= v <= case.actuators.max_voltage:
+                raise InputError(
+                    f"--voltage {v:g} V: allowed 0 to {case.actuators.max_voltage:g} V (max_voltage)"
+                )
+    out = structure_summary(case, voltages)
+    if args.plot is not None:
+        out["figures"] = [str(p) for p in write_structure_figures(case, args.plot)]
+    if args.json:
+        _emit(out)
+    else:
+        for key, value in out.items():
+            print(f"  {key:<20} {value}")
+    return 0
+
+
+def write_structure_figures(case: Case, folder: Path) -> list[Path]:
+    """Figs. 7 and 8 as PNG files in ``folder``; returns their paths."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots.structure import plot_preloads, plot_stiffness_function
+
+    paths: list[Path] = []
+    if case.actuators is not None and case.foil is not None:
+        paths.append(
+            save_figure(plot_stiffness_function(case), folder / "fig07_stiffness_function.png")
+        )
+        paths.append(save_figure(plot_preloads(case), folder / "fig08_preloads.png"))
+    return paths
+
+
+def _cmd_identify(args: argparse.Namespace) -> int:
+    from foilbearing import identification as ident
+
+    no_load = args.no_load or REPO_EXAMPLES / "stack_no_load.csv"
+    stiffness = args.stiffness or REPO_EXAMPLES / "stack_stiffness.csv"
+    area = parse_quantity(args.contact_area, "area", field="--contact-area")
+    if area <= 0.0:
+        raise InputError(f"--contact-area {args.contact_area!r}: must be > 0")
+    result = ident.identify(no_load, stiffness, area)
+    out = dict(result.headline())
+    if args.plot is not None:
+        out["figures"] = [str(p) for p in write_identification_figures(result, args.plot)]
+    if args.update is not None:
+        ident.update_case_file(args.update, result)
+        out["updated_case"] = str(args.update)
+    if args.json:
+        _emit(out)
+    else:
+        for key, value in out.items():
+            print(f"  {key:<28} {value}")
+    return 0
+
+
+def write_identification_figures(result: Any, folder: Path) -> list[Path]:
+    """Figs. 5b and 6b-c as PNG files in ``folder``."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots.identification import plot_no_load, plot_stiffness
+
+    return [
+        save_figure(
+            plot_no_load(result.no_load_data, result.no_load_fit),
+            folder / "fig05b_stack_displacement.png",
+        ),
+        save_figure(
+            plot_stiffness(result.stiffness_data, result.stiffness_fit),
+            folder / "fig06_stack_stiffness.png",
+        ),
+    ]
+
+
+def _cmd_study(args: argparse.Namespace) -> int:
+    from foilbearing.study import run_study
+
+    case = _load(args.case)
+    summary = run_study(case, args.out, progress=not args.json)
+    if args.json:
+        _emit(summary)
+    return 0

@@ -1,0 +1,1 @@
+"""Figures. Imported lazily: physics modules never import matplotlib; each function returns its Figure."""

@@ -1,0 +1,91 @@
+"""Headline numbers of a case: what ``foilbearing case show`` prints.
+
+Keys carry their units (``k_assy_N_per_m3``), so scripts can use the JSON.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from foilbearing.case import Case
+from foilbearing.structure import walowit_anno_bump_stiffness
+
+__all__ = ["case_summary", "format_summary"]
+
+RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
+
+
+def case_summary(case: Case) -> dict[str, Any]:
+    """Inputs and derived quantities of a case, in engineering units with unit-named keys."""
+    b, g, op = case.bearing, case.gas, case.operation
+    out: dict[str, Any] = {
+        "title": case.title,
+        "source": case.source,
+        "radius_mm": b.radius * 1e3,
+        "length_mm": b.length * 1e3,
+        "clearance_um": b.clearance * 1e6,
+        "viscosity_Pa_s": g.viscosity,
+        "ambient_pressure_Pa": g.ambient_pressure,
+        "load_N": op.load,
+        "speed_rpm": op.speed / RPM,
+        "bearing_number": case.bearing_number(),
+        "rotor_mass_kg": case.rotor.mass,
+        "imbalance_g_mm": case.rotor.imbalance * 1e6,
+        "imbalance_radius_um": case.rotor.imbalance_radius * 1e6,
+        "grid": {"n_theta": case.grid.n_theta, "n_z": case.grid.n_z},
+        "bearing_type": _bearing_type(case),
+    }
+    if case.foil is not None:
+        out["k_b_N_per_m3"] = case.foil.bump_stiffness
+        out["loss_factor"] = case.foil.loss_factor
+        bump = case.foil.bump
+        if bump is not None:
+            out["k_b_formula"] = bump.formula
+            out["k_b_walowit_anno_N_per_m3"] = walowit_anno_bump_stiffness(
+                bump.thickness,
+                bump.pitch,
+                bump.half_length,
+                bump.youngs_modulus,
+                bump.poisson_ratio,
+            )
+    act = case.actuators
+    if act is not None:
+        out["actuator_angles_deg"] = [math.degrees(a) for a in act.angles]
+        out["stinger_arc_deg"] = math.degrees(act.stinger_arc)
+        out["voltages_V"] = list(act.voltages)
+        out["k_p_N_per_m3"] = act.k_p
+        out["k_sp_N_per_m3"] = act.holder_spring_stiffness
+        out["k_assy_N_per_m3"] = case.assembly_stiffness()
+        out["stack_stroke_um"] = [x * 1e6 for x in act.stack_strokes()]
+        out["base_preload_um"] = [x * 1e6 for x in act.base_preloads()]
+        out["smoothness_per_rad"] = act.smoothness
+    if case.shims is not None:
+        out["shim_angles_deg"] = [math.degrees(a) for a in case.shims.angles]
+        out["shim_arc_deg"] = math.degrees(case.shims.arc)
+        out["shim_thickness_um"] = [x * 1e6 for x in case.shims.thicknesses]
+    return out
+
+
+def _bearing_type(case: Case) -> str:
+    if case.foil is None:
+        return "rigid gas journal bearing"
+    if case.actuators is not None:
+        return "C-GFB (PZT-controlled gas foil bearing)"
+    if case.shims is not None:
+        return "shimmed gas foil bearing"
+    return "gas foil bearing"
+
+
+def format_summary(summary: dict[str, Any]) -> str:
+    """A readable multi-line rendering of :func:`case_summary`."""
+    lines = []
+    for key, value in summary.items():
+        if isinstance(value, float):
+            text = f"{value:.6g}"
+        elif isinstance(value, list):
+            text = ", ".join(f"{v:.4g}" if isinstance(v, float) else str(v) for v in value)
+        else:
+            text = str(value)
+        lines.append(f"  {key:<28} {text}")
+    return "\n".join(lines)
