@@ -251,11 +251,11 @@ def write_identification_figures(result: Any, folder: Path) -> list[Path]:
 
     return [
         save_figure(
-            plot_no_load(result.no_load_data, result.no_load_fit),
+            plot_no_load(result.no_load_data, result.no_load),
             folder / "fig05b_stack_displacement.png",
         ),
         save_figure(
-            plot_stiffness(result.stiffness_data, result.stiffness_fit),
+            plot_stiffness(result.stiffness_data, result.stiffness),
             folder / "fig06_stack_stiffness.png",
         ),
     ]
