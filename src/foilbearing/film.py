@@ -1,0 +1,114 @@
+"""Film thickness of a case: journal position, preload shape and foil compliance on the grid.
+
+MODEL.md section 2-3: ``h(θ) = C + e_X cos θ + e_Y sin θ − r_p(θ) + w(θ)`` with
+the foil deflection ``w = max(p_A, 0)/k(θ)``. Here the parts that do not
+depend on the pressure are put on the Reynolds grid; the Reynolds solvers add
+``w`` through the compliance ``c(θ) = p_a/(C k(θ))``.
+
+The reading of the paper used throughout (MODEL.md section 3): the film uses
+r_p(θ) from the *base* preload, and the foil deflects by ``p_A/k(θ)`` with
+``k = k_assy`` under the stingers, so the actuator's compliance is counted
+exactly once; the reported piezoelectric preload is
+``δ_PZT,n = δ_base,n − p_A(θ_n)/(k_p + 4k_sp)`` (Eq. 3b). The shimmed GFB has
+the same r_p and ``k = k_b`` everywhere (rigid shims).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from foilbearing.case import Case
+from foilbearing.reynolds import Grid
+from foilbearing.structure import preload_shape, stiffness_function
+
+__all__ = ["FilmModel", "film_model"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class FilmModel:
+    """What the Reynolds solvers need of a case, on a grid (dimensionless unless stated).
+
+    Attributes
+    ----------
+    grid
+        The finite-volume grid (half bearing).
+    preload
+        r_p(θ_i)/C at the cell centres, shape (n_theta,).
+    compliance
+        c(θ_i) = p_a/(C k(θ_i)), shape (n_theta,); zeros for a rigid bearing.
+    stiffness
+        k(θ_i) in N/m³, shape (n_theta,), or None for a rigid bearing.
+    preload_angles
+        Angles (rad) of the actuators or shims, empty if none.
+    base_preloads
+        Base preload (actuators) or shim thickness at each angle, m.
+    actuator_stiffness
+        k_p + 4k_sp in N/m³ for a C-GFB, None otherwise (shims are rigid).
+    """
+
+    grid: Grid
+    preload: FloatArray
+    compliance: FloatArray
+    stiffness: FloatArray | None
+    preload_angles: tuple[float, ...]
+    base_preloads: tuple[float, ...]
+    actuator_stiffness: float | None
+
+    def h_rigid(self, eps_x: float, eps_y: float) -> FloatArray:
+        """Film thickness without foil deflection, H_r = 1 + ε_X cos θ + ε_Y sin θ − r_p/C.
+
+        Returns
+        -------
+        Array of shape (n_theta, n_z) (uniform in z: the journal is aligned).
+        """
+        th = self.grid.theta
+        h = 1.0 + eps_x * np.cos(th) + eps_y * np.sin(th) - self.preload
+        return np.repeat(h[:, None], self.grid.n_z, axis=1)
+
+    def at_angles(self, field: FloatArray, angles: tuple[float, ...]) -> FloatArray:
+        """Periodic linear interpolation of a (n_theta,) cell field at ``angles`` (rad)."""
+        th = self.grid.theta
+        x = np.concatenate([th - 2 * np.pi, th, th + 2 * np.pi])
+        y = np.concatenate([field, field, field])
+        return np.interp(np.mod(angles, 2 * np.pi), x, y)
+
+
+def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -> FilmModel:
+    """Build the film model of a case on its grid (or on ``n_theta`` × ``n_z``)."""
+    grid = Grid(
+        n_theta=n_theta or case.grid.n_theta,
+        n_z=n_z or case.grid.n_z,
+        half_length=case.bearing.length / (2.0 * case.bearing.radius),
+    )
+    theta = grid.theta
+    c = case.bearing.clearance
+    angles: tuple[float, ...] = ()
+    deltas: tuple[float, ...] = ()
+    k_act = None
+    if case.actuators is not None:
+        angles = case.actuators.angles
+        deltas = tuple(float(d) for d in case.actuators.base_preloads())
+        k_act = case.actuators.stiffness
+    elif case.shims is not None:
+        angles, deltas = case.shims.angles, case.shims.thicknesses
+    preload = preload_shape(theta, angles, deltas) / c if angles else np.zeros(grid.n_theta)
+    stiffness = None
+    compliance = np.zeros(grid.n_theta)
+    if case.foil is not None:
+        k_b = case.foil.bump_stiffness
+        if case.actuators is not None:
+            act = case.actuators
+            k_assy = case.assembly_stiffness()
+            assert k_assy is not None
+            stiffness = stiffness_function(
+                theta, k_b, k_assy, act.angles, act.stinger_arc, act.smoothness
+            )
+        else:
+            stiffness = np.full(grid.n_theta, k_b)
+        compliance = case.gas.ambient_pressure / (c * stiffness)
+    return FilmModel(grid, preload, compliance, stiffness, angles, deltas, k_act)

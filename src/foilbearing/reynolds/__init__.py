@@ -1,0 +1,28 @@
+"""Finite-volume solvers of the compressible Reynolds equation (Eq. (4) of the paper).
+
+Array-in/array-out numerics: a :class:`Grid`, fields of shape
+``(n_theta, n_z)`` on the half bearing (mid-plane symmetry), dimensionless
+``P = p/p_a``, ``H = h/C`` and bearing number ``Λ = 6 μ ω R²/(p_a C²)``.
+"""
+
+from foilbearing.reynolds.grid import Grid
+from foilbearing.reynolds.steady import (
+    NewtonOptions,
+    SteadyFilm,
+    Workspace,
+    coupled_system,
+    film_force,
+    film_thickness,
+    solve_steady,
+)
+
+__all__ = [
+    "Grid",
+    "NewtonOptions",
+    "SteadyFilm",
+    "Workspace",
+    "coupled_system",
+    "film_force",
+    "film_thickness",
+    "solve_steady",
+]

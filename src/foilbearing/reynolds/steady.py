@@ -1,0 +1,536 @@
+"""Steady compressible Reynolds equation with a compliant foil: Newton solver.
+
+Solves the steady form of Eq. (4) of the paper (MODEL.md §4)::
+
+    ∂/∂θ(P H³ ∂P/∂θ − Λ P H) + ∂/∂Z(P H³ ∂P/∂Z) = 0,
+
+P = 1 at the bearing end, zero flux at the mid-plane, periodic in θ, on a
+:class:`~foilbearing.reynolds.grid.Grid`, with the film (MODEL.md §2-3)::
+
+    H[i, j] = h_rigid[i, j] + c_i · max(p̄_i, 0),     p̄_i = axial_mean(P − 1)[i],
+
+``c_i = p_a/(C k(θ_i))`` the dimensionless foil compliance. Sub-ambient mean
+pressure does not pull the foil towards the journal: bumps carry no tension,
+so ``max(p̄, 0)`` (``H = h_rigid`` wherever ``p̄_i <= 0``).
+
+The functions take arrays, not domain objects; all quantities are
+dimensionless (P = p/p_a, H = h/C, forces in units of p_a R²).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import ArrayLike, NDArray
+from scipy.sparse.linalg import splu
+
+from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.grid import Grid
+
+__all__ = [
+    "NewtonOptions",
+    "SteadyFilm",
+    "Workspace",
+    "coupled_system",
+    "film_force",
+    "film_thickness",
+    "solve_steady",
+]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class NewtonOptions:
+    """Settings of the damped Newton solver (safe defaults).
+
+    Parameters
+    ----------
+    tol : float
+        Convergence threshold on ``max |R[i, j]|/(Δθ ΔZ)``, the max-norm of
+        the cell-averaged residual of Eq. (4) (dimensionless; the terms of the
+        equation are of order Λ·P·H and P H³ ∂²P).
+    max_iter : int
+        Newton iterations allowed per solve (per continuation step).
+    armijo : float
+        Sufficient-decrease constant c of the line search on ``½‖R‖²``.
+    backtrack : float
+        Step reduction factor of the line search, in (0, 1).
+    max_backtracks : int
+        Line-search reductions before the step is declared stalled.
+    max_drop : float
+        Largest relative decrease of P in one step, in (0, 1): keeps P > 0.
+    continuation : bool
+        Fall back to continuation in Λ when plain Newton fails.
+    max_continuation_steps : int
+        Λ steps allowed in the fallback (the step adapts: halved on failure).
+    """
+
+    tol: float = 1e-10
+    max_iter: int = 40
+    armijo: float = 1e-4
+    backtrack: float = 0.5
+    max_backtracks: int = 20
+    max_drop: float = 0.5
+    continuation: bool = True
+    max_continuation_steps: int = 40
+
+    def __post_init__(self) -> None:
+        if not self.tol > 0.0:
+            raise ValueError(f"NewtonOptions.tol must be > 0, got {self.tol!r}")
+        if self.max_iter < 1:
+            raise ValueError(f"NewtonOptions.max_iter must be >= 1, got {self.max_iter!r}")
+        if not 0.0 < self.armijo < 0.5:
+            raise ValueError(f"NewtonOptions.armijo must be in (0, 0.5), got {self.armijo!r}")
+        if not 0.0 < self.backtrack < 1.0:
+            raise ValueError(f"NewtonOptions.backtrack must be in (0, 1), got {self.backtrack!r}")
+        if self.max_backtracks < 0:
+            raise ValueError(
+                f"NewtonOptions.max_backtracks must be >= 0, got {self.max_backtracks!r}"
+            )
+        if not 0.0 < self.max_drop < 1.0:
+            raise ValueError(f"NewtonOptions.max_drop must be in (0, 1), got {self.max_drop!r}")
+        if self.max_continuation_steps < 1:
+            raise ValueError(
+                "NewtonOptions.max_continuation_steps must be >= 1, "
+                f"got {self.max_continuation_steps!r}"
+            )
+
+
+@dataclass(frozen=True)
+class SteadyFilm:
+    """Steady film solution.
+
+    Attributes
+    ----------
+    P : ndarray, shape (n_theta, n_z)
+        Pressure ``p/p_a`` at the cell centres (half bearing, ``Z >= 0``).
+    H : ndarray, shape (n_theta, n_z)
+        Film thickness ``h/C`` including the foil deflection.
+    p_mean : ndarray, shape (n_theta,)
+        Axially averaged gauge pressure ``p_A/p_a = axial_mean(P − 1)``.
+    iterations : int
+        Newton iterations, summed over continuation steps.
+    residual : float
+        Final ``max |R|/(Δθ ΔZ)``.
+    converged : bool
+    message : str
+        What happened; on failure, what did not converge and what to try.
+    continuation_steps : int
+        Λ steps used by the continuation fallback (0: plain Newton sufficed).
+    """
+
+    P: FloatArray
+    H: FloatArray
+    p_mean: FloatArray
+    iterations: int
+    residual: float
+    converged: bool
+    message: str
+    continuation_steps: int = 0
+
+
+@dataclass
+class Workspace:
+    """Sparsity patterns and buffers of one grid, reused across solves.
+
+    Create once per grid (``Workspace(grid)``) and pass to
+    :func:`coupled_system` / :func:`solve_steady`. Not thread-safe: one
+    workspace per concurrent solve.
+    """
+
+    grid: Grid
+    indptr: NDArray[np.int64] = field(init=False, repr=False)
+    indices: NDArray[np.int64] = field(init=False, repr=False)
+    c_indptr: NDArray[np.int64] = field(init=False, repr=False)
+    c_indices: NDArray[np.int64] = field(init=False, repr=False)
+    res: FloatArray = field(init=False, repr=False)
+    h: FloatArray = field(init=False, repr=False)
+    s: FloatArray = field(init=False, repr=False)
+    jp: FloatArray = field(init=False, repr=False)
+    jh: FloatArray = field(init=False, repr=False)
+    jc: FloatArray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        g = self.grid
+        self.indptr, self.indices, _ = kern.stencil_pattern(g.n_theta, g.n_z)
+        self.c_indptr, self.c_indices = kern.coupled_pattern(g.n_theta, g.n_z)
+        self.res = np.empty(g.shape)
+        self.h = np.empty(g.shape)
+        self.s = np.empty(g.n_theta)
+        self.jp = np.empty(self.indices.size)
+        self.jh = np.empty(self.indices.size)
+        self.jc = np.empty(self.c_indices.size)
+
+
+# ---------------------------------------------------------------------------
+# Film and system assembly
+# ---------------------------------------------------------------------------
+
+
+def film_thickness(
+    grid: Grid, h_rigid: FloatArray, compliance: FloatArray, P: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Film with foil deflection, ``H = h_rigid + c · max(p̄, 0)``.
+
+    Parameters
+    ----------
+    grid : Grid
+    h_rigid : ndarray, shape (n_theta, n_z)
+    compliance : ndarray, shape (n_theta,)
+        ``c_i = p_a/(C k(θ_i))``, dimensionless.
+    P : ndarray, shape (n_theta, n_z)
+
+    Returns
+    -------
+    H : ndarray, shape (n_theta, n_z)
+    p_mean : ndarray, shape (n_theta,)
+        ``axial_mean(P − 1)``.
+    """
+    p_mean = grid.axial_mean(P) - 1.0
+    return h_rigid + (compliance * np.maximum(p_mean, 0.0))[:, None], p_mean
+
+
+def _film(ws: Workspace, P: FloatArray, h_rigid: FloatArray, comp: FloatArray) -> None:
+    """Fill ``ws.h`` and ``ws.s = dH_i/dP_ik`` without allocating fields."""
+    p_mean = P.mean(axis=1) - 1.0
+    active = p_mean > 0.0
+    np.multiply(comp, np.where(active, p_mean, 0.0), out=ws.s)
+    np.add(h_rigid, ws.s[:, None], out=ws.h)
+    np.multiply(comp, active, out=ws.s)
+    ws.s /= ws.grid.n_z
+
+
+def _assemble(
+    ws: Workspace,
+    P: FloatArray,
+    h_rigid: FloatArray,
+    comp: FloatArray,
+    lam: float,
+    coupled: bool,
+) -> FloatArray:
+    """Fill residual and Jacobian buffers; return the data of ``J_PP``."""
+    g = ws.grid
+    _film(ws, P, h_rigid, comp)
+    kern.residual(P, ws.h, lam, g.d_theta, g.d_z, ws.res)
+    kern.jacobian_P(P, ws.h, lam, g.d_theta, g.d_z, ws.jp)
+    if not coupled:
+        return ws.jp
+    kern.jacobian_H(P, ws.h, lam, g.d_theta, g.d_z, ws.jh)
+    kern.coupled_jacobian(ws.jp, ws.jh, ws.s, g.n_z, ws.jc)
+    return ws.jc
+
+
+def coupled_system(
+    P: ArrayLike,
+    grid: Grid,
+    h_rigid: ArrayLike,
+    compliance: ArrayLike,
+    lam: float,
+    workspace: Workspace | None = None,
+) -> tuple[FloatArray, sp.csr_matrix, sp.csr_matrix]:
+    """Residual and Jacobians of the foil-coupled discrete Reynolds equation.
+
+    For a bordered Newton on ``(P, ε_X, ε_Y)``: ``dR/dε_X = J_PH @ ∂H/∂ε_X``
+    with ``∂H/∂ε_X = cos θ_i`` broadcast over ``j`` (flattened in C order).
+
+    Parameters
+    ----------
+    P : array_like, shape (n_theta, n_z) or (n_theta*n_z,)
+        Pressure ``p/p_a`` (> 0).
+    grid : Grid
+    h_rigid : array_like, shape (n_theta, n_z)
+        Film without foil deflection (journal, preload, housing), ``h/C``.
+    compliance : array_like, shape (n_theta,)
+        Foil compliance ``c_i = p_a/(C k(θ_i))``.
+    lam : float
+        Bearing number Λ.
+    workspace : Workspace, optional
+        Buffers of this grid; created if omitted.
+
+    Returns
+    -------
+    R : ndarray, shape (n_theta*n_z,)
+        Cell-integrated residual (see :mod:`foilbearing.reynolds._kernels`).
+    J_PP : scipy.sparse.csr_matrix, shape (n, n)
+        ``dR/dP + dR/dH · dH/dP`` (total derivative at fixed ``h_rigid``).
+    J_PH : scipy.sparse.csr_matrix, shape (n, n)
+        ``dR/dH`` (partial, at fixed P), 5-point pattern.
+
+    The returned arrays are copies; the workspace may be reused at once.
+    """
+    ws = workspace if workspace is not None else Workspace(grid)
+    p = _as_field(grid, P, "P")
+    h_r, comp = _check_film_inputs(grid, h_rigid, compliance)
+    n = grid.size
+    _film(ws, p, h_r, comp)
+    if ws.h.min() <= 0.0:
+        raise ValueError(
+            f"the film is closed (min H = {ws.h.min():.3g}) for this P and h_rigid: "
+            "the pressure does not open the compliant foil enough"
+        )
+    kern.residual(p, ws.h, lam, grid.d_theta, grid.d_z, ws.res)
+    kern.jacobian_P(p, ws.h, lam, grid.d_theta, grid.d_z, ws.jp)
+    kern.jacobian_H(p, ws.h, lam, grid.d_theta, grid.d_z, ws.jh)
+    j_ph = sp.csr_matrix((ws.jh.copy(), ws.indices, ws.indptr), shape=(n, n))
+    if np.any(comp != 0.0):
+        kern.coupled_jacobian(ws.jp, ws.jh, ws.s, grid.n_z, ws.jc)
+        j_pp = sp.csr_matrix((ws.jc.copy(), ws.c_indices, ws.c_indptr), shape=(n, n))
+    else:
+        j_pp = sp.csr_matrix((ws.jp.copy(), ws.indices, ws.indptr), shape=(n, n))
+    return ws.res.ravel().copy(), j_pp, j_ph
+
+
+def film_force(grid: Grid, P: ArrayLike) -> tuple[float, float]:
+    """Film force on the journal, ``(F_X, F_Y)/(p_a R²)``, full bearing length.
+
+    ``F_X = ∫∫ (P − 1) cos θ dθ dZ``, ``F_Y`` with ``sin θ`` (MODEL.md §2): a
+    pressure peak near θ = 180° pushes the journal towards −X.
+    """
+    p = _as_field(grid, P, "P")
+    w_x, w_y = grid.force_weights()
+    gauge = p - 1.0
+    return float(np.sum(w_x * gauge)), float(np.sum(w_y * gauge))
+
+
+# ---------------------------------------------------------------------------
+# Newton solver
+# ---------------------------------------------------------------------------
+
+
+def _as_field(grid: Grid, a: ArrayLike, name: str) -> FloatArray:
+    arr = np.asarray(a, dtype=np.float64)
+    if arr.shape == (grid.size,):
+        arr = arr.reshape(grid.shape)
+    if arr.shape != grid.shape:
+        raise ValueError(f"{name} must have shape {grid.shape} (n_theta, n_z), got {arr.shape}")
+    return np.ascontiguousarray(arr)
+
+
+def _check_film_inputs(
+    grid: Grid, h_rigid: ArrayLike, compliance: ArrayLike
+) -> tuple[FloatArray, FloatArray]:
+    h = np.asarray(h_rigid, dtype=np.float64)
+    if h.shape == (grid.n_theta,):
+        h = np.repeat(h[:, None], grid.n_z, axis=1)
+    h = _as_field(grid, h, "h_rigid")
+    c = np.asarray(compliance, dtype=np.float64)
+    if c.ndim == 0:
+        c = np.full(grid.n_theta, float(c))
+    if c.shape != (grid.n_theta,):
+        raise ValueError(f"compliance must have shape ({grid.n_theta},), got {c.shape}")
+    if not np.all(np.isfinite(c)) or c.min() < 0.0:
+        raise ValueError("compliance must be finite and >= 0 (c = p_a/(C k) with k > 0)")
+    # Where the foil is compliant the journal may reach into the undeformed foil
+    # (h_rigid <= 0): the film pressure opens it by c·p̄. A rigid surface may not.
+    rigid_h = np.where(c[:, None] > 0.0, np.inf, h)
+    if not np.all(np.isfinite(h)) or rigid_h.min() <= 0.0:
+        bad = np.where(np.isfinite(h), rigid_h, -np.inf)
+        i, j = np.unravel_index(int(np.argmin(bad)), h.shape)
+        raise ValueError(
+            f"h_rigid must be finite, and > 0 where the surface is rigid (film touches or "
+            f"crosses the journal): h_rigid[{i}, {j}] = {h[i, j]!r} at "
+            f"θ = {np.degrees(grid.theta[i]):.1f}°; reduce the eccentricity or the preload"
+        )
+    return h, np.ascontiguousarray(c)
+
+
+def _opening_start(h_rigid: FloatArray, comp: FloatArray, floor: float = 0.05) -> FloatArray:
+    """Initial P = 1, raised where the journal reaches into a compliant foil so that H >= floor."""
+    h_min = h_rigid.min(axis=1)
+    lift = np.where(
+        (h_min < floor) & (comp > 0.0), (floor - h_min) / np.where(comp > 0, comp, 1.0), 0.0
+    )
+    return np.repeat((1.0 + lift)[:, None], h_rigid.shape[1], axis=1)
+
+
+@dataclass
+class _Outcome:
+    P: FloatArray
+    iterations: int
+    residual: float
+    converged: bool
+    reason: str
+
+
+def _newton(
+    ws: Workspace,
+    P: FloatArray,
+    h_rigid: FloatArray,
+    comp: FloatArray,
+    lam: float,
+    opts: NewtonOptions,
+) -> _Outcome:
+    """Damped Newton with positivity-preserving step limit and Armijo backtracking."""
+    g = ws.grid
+    n = g.size
+    scale = 1.0 / (g.d_theta * g.d_z)
+    coupled = bool(np.any(comp != 0.0))
+    indptr, indices = (ws.c_indptr, ws.c_indices) if coupled else (ws.indptr, ws.indices)
+    P = P.copy()
+    trial = np.empty_like(P)
+    data = _assemble(ws, P, h_rigid, comp, lam, coupled)
+    res = float(np.max(np.abs(ws.res))) * scale
+    merit = float(np.sum(ws.res**2))
+    for it in range(opts.max_iter):
+        if not np.isfinite(res):
+            return _Outcome(P, it, res, False, "residual is not finite")
+        if res <= opts.tol:
+            return _Outcome(P, it, res, True, "converged")
+        # CSR arrays read as CSC are J^T: factor J^T and solve with trans="T",
+        # which avoids a CSR→CSC conversion per iteration.
+        jt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
+        try:
+            # Minimum degree on J^T + J suits the structurally symmetric
+            # pattern: about half the fill of COLAMD on the foil-coupled blocks.
+            lu = splu(jt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+        except RuntimeError as exc:  # exactly singular Jacobian
+            return _Outcome(P, it, res, False, f"singular Jacobian ({exc})")
+        step = -lu.solve(ws.res.ravel(), trans="T").reshape(g.shape)
+        if not np.all(np.isfinite(step)):
+            return _Outcome(P, it, res, False, "Newton step is not finite")
+        # Step limit: no cell loses more than max_drop of its pressure.
+        ratio = float(np.min(step / P))
+        alpha = min(1.0, opts.max_drop / -ratio) if ratio < 0.0 else 1.0
+        for _ in range(opts.max_backtracks + 1):
+            np.add(P, alpha * step, out=trial)
+            data = _assemble(ws, trial, h_rigid, comp, lam, coupled)
+            new_merit = float(np.sum(ws.res**2))
+            # A trial that closes the film (possible only over a compliant foil) is refused.
+            if ws.h.min() > 0.0 and new_merit <= (1.0 - 2.0 * opts.armijo * alpha) * merit:
+                break
+            alpha *= opts.backtrack
+        else:
+            # The residual no longer decreases: accept as converged only when
+            # it is already at the round-off floor of the residual.
+            _assemble(ws, P, h_rigid, comp, lam, coupled)
+            if res <= 100.0 * opts.tol:
+                return _Outcome(P, it + 1, res, True, "converged (at the round-off floor)")
+            return _Outcome(P, it + 1, res, False, "line search stalled")
+        P, trial = trial, P
+        merit = new_merit
+        res = float(np.max(np.abs(ws.res))) * scale
+    if res <= opts.tol:
+        return _Outcome(P, opts.max_iter, res, True, "converged")
+    return _Outcome(P, opts.max_iter, res, False, f"no convergence in {opts.max_iter} iterations")
+
+
+def solve_steady(
+    grid: Grid,
+    h_rigid: ArrayLike,
+    compliance: ArrayLike,
+    lam: float,
+    p0: ArrayLike | None = None,
+    *,
+    options: NewtonOptions | None = None,
+    workspace: Workspace | None = None,
+) -> SteadyFilm:
+    """Solve the steady foil-coupled Reynolds equation (Eq. (4), ∂/∂τ = 0).
+
+    Newton's method on all ``n_theta*n_z`` pressures with the exact coupled
+    Jacobian (film and foil included), sparse LU (SuperLU), a step limit that
+    keeps P positive and an Armijo backtracking line search on ``½‖R‖²``. If
+    plain Newton from ``p0`` fails, the solve restarts from P = 1 (the exact
+    solution at Λ = 0) and continues in Λ with adaptive steps; this is
+    reported in ``message`` and ``continuation_steps``.
+
+    Parameters
+    ----------
+    grid : Grid
+    h_rigid : array_like, shape (n_theta, n_z) or (n_theta,)
+        Film thickness ``h/C`` without foil deflection (journal position,
+        preload and housing), > 0 everywhere.
+    compliance : array_like, shape (n_theta,) or scalar
+        Foil compliance ``c_i = p_a/(C k(θ_i))`` (0: rigid bearing). The film
+        is ``H = h_rigid + c_i max(p̄_i, 0)``: sub-ambient mean pressure does
+        not pull the foil (bumps carry no tension).
+    lam : float
+        Bearing number ``Λ = 6 μ ω R²/(p_a C²)``.
+    p0 : array_like, shape (n_theta, n_z), optional
+        Initial pressure (> 0); default P = 1.
+    options : NewtonOptions, optional
+    workspace : Workspace, optional
+        Reused buffers of this grid (saves the pattern set-up).
+
+    Returns
+    -------
+    SteadyFilm
+        Never NaN silently: on failure ``converged`` is False and ``message``
+        says what did not converge and what to try.
+    """
+    opts = options if options is not None else NewtonOptions()
+    if not np.isfinite(lam):
+        raise ValueError(f"lam (bearing number) must be finite, got {lam!r}")
+    h_r, comp = _check_film_inputs(grid, h_rigid, compliance)
+    ws = workspace if workspace is not None else Workspace(grid)
+    if ws.grid != grid:
+        raise ValueError("workspace was created for another grid")
+    if p0 is None:
+        start = _opening_start(h_r, comp)
+    else:
+        start = _as_field(grid, p0, "p0")
+        if not np.all(np.isfinite(start)) or start.min() <= 0.0:
+            raise ValueError("p0 must be finite and > 0 everywhere")
+
+    out = _newton(ws, start, h_r, comp, lam, opts)
+    total = out.iterations
+    steps = 0
+    message = out.reason
+    if not out.converged and opts.continuation and lam != 0.0 and h_r.min() > 0.0:
+        first_reason = out.reason
+        out, n_it, steps, detail = _continuation(ws, h_r, comp, lam, opts)
+        total += n_it
+        if out.converged:
+            message = (
+                f"plain Newton failed ({first_reason}); converged by continuation "
+                f"in Λ ({steps} steps)"
+            )
+        else:
+            message = f"plain Newton failed ({first_reason}); continuation in Λ failed: {detail}"
+    if not out.converged:
+        message += (
+            f". Not converged: max |R|/(ΔθΔZ) = {out.residual:.3e} > tol = {opts.tol:.1e} "
+            f"at Λ = {lam:g}, min h_rigid = {h_r.min():.3g}, grid {grid.n_theta}×{grid.n_z}. "
+            "Try a better p0 (e.g. the solution at a nearby Λ or eccentricity), a finer "
+            "grid, more max_iter / max_continuation_steps, or check that the film "
+            "stays positive."
+        )
+    P = out.P
+    H, p_mean = film_thickness(grid, h_r, comp, P)
+    return SteadyFilm(
+        P=P,
+        H=H,
+        p_mean=p_mean,
+        iterations=total,
+        residual=out.residual,
+        converged=out.converged,
+        message=message,
+        continuation_steps=steps,
+    )
+
+
+def _continuation(
+    ws: Workspace, h_r: FloatArray, comp: FloatArray, lam: float, opts: NewtonOptions
+) -> tuple[_Outcome, int, int, str]:
+    """Adaptive continuation from Λ = 0 (P = 1 exact) to ``lam``."""
+    done = 0.0
+    P = np.ones(ws.grid.shape)
+    delta = lam / 4.0
+    total = 0
+    last = _Outcome(P, 0, np.inf, False, "no step taken")
+    for k in range(opts.max_continuation_steps):
+        target = lam if abs(done + delta) >= abs(lam) else done + delta
+        last = _newton(ws, P, h_r, comp, target, opts)
+        total += last.iterations
+        if last.converged:
+            done, P = target, last.P
+            if done == lam:
+                return last, total, k + 1, "converged"
+            delta *= 2.0
+        else:
+            delta *= 0.25
+            if abs(delta) < 1e-6 * abs(lam):
+                return last, total, k + 1, f"stuck at Λ = {done:g} ({last.reason})"
+    return last, total, opts.max_continuation_steps, f"reached Λ = {done:g} only ({last.reason})"

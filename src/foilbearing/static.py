@@ -1,0 +1,547 @@
+"""Static analysis: the journal equilibrium under load, or the film at a given position.
+
+Newton on the whole discrete system: the pressures P of the foil-coupled
+Reynolds equation (paper Eq. 4, steady) and the journal position (ε_X, ε_Y),
+with the force balance ``F + W = 0`` (MODEL.md section 2, load W along +X) as
+the two extra equations. Each iteration factorises the coupled Jacobian once
+and eliminates (ε_X, ε_Y) by a 2 × 2 Schur complement. The same residual and
+Jacobian (``reynolds.coupled_system``) serve the dynamic coefficients and
+the orbit, so static, linear and nonlinear results agree by construction.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.sparse.linalg import splu
+
+from foilbearing.case import Case
+from foilbearing.errors import InputError
+from foilbearing.film import FilmModel, film_model
+from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
+
+__all__ = ["EquilibriumOptions", "StaticResult", "film_at_position", "solve_equilibrium"]
+
+FloatArray = NDArray[np.float64]
+RPM = math.pi / 30.0
+
+
+@dataclass(frozen=True)
+class EquilibriumOptions:
+    """Settings of the equilibrium Newton solver (safe defaults).
+
+    Attributes
+    ----------
+    force_tol
+        Converged when |F + W|/|W| is below this (and the Reynolds residual below ``newton.tol``).
+    max_iter
+        Newton iterations on (P, ε).
+    max_step
+        Largest change of ε_X or ε_Y in one iteration (units of C).
+    min_film
+        Smallest film H = h/C a trial step may produce; steps are shortened to keep it.
+    newton
+        Options of the pressure solve used for the starting point.
+    """
+
+    force_tol: float = 1e-8
+    max_iter: int = 60
+    max_step: float = 0.1
+    min_film: float = 0.01
+    newton: NewtonOptions = field(default_factory=NewtonOptions)
+
+
+@dataclass(frozen=True)
+class StaticResult:
+    """One static operating point. SI units unless stated; arrays on the half-bearing grid.
+
+    Attributes
+    ----------
+    speed
+        Rotor speed, rad/s.
+    bearing_number
+        Λ = 6 μ ω R²/(p_a C²).
+    eps_x, eps_y
+        Journal position in units of C (X along the load).
+    P, H
+        Pressure p/p_a and film h/C, shape (n_theta, n_z), z from the mid-plane.
+    force
+        Film force (F_X, F_Y) on the journal, N.
+    actuator_pressure
+        Axially averaged gauge pressure p_A at each actuator/shim angle, Pa.
+    preload
+        Piezoelectric preload δ_PZT at each actuator (Eq. 3b), m; for shims the
+        shim thickness (rigid).
+    drag_torque
+        Viscous torque on the journal, N·m; ``power_loss = drag_torque · speed``, W.
+    converged, message, iterations, residual, force_residual
+        Solver outcome: Reynolds residual max|R|/(ΔθΔZ) and |F + W|/|W|.
+    """
+
+    case: Case
+    model: FilmModel
+    speed: float
+    bearing_number: float
+    eps_x: float
+    eps_y: float
+    P: FloatArray
+    H: FloatArray
+    force: tuple[float, float]
+    actuator_pressure: FloatArray
+    preload: FloatArray
+    drag_torque: float
+    iterations: int
+    residual: float
+    force_residual: float
+    converged: bool
+    message: str
+    equilibrium: bool
+
+    @property
+    def eccentricity(self) -> float:
+        """ε₀ = √(ε_X² + ε_Y²)."""
+        return math.hypot(self.eps_x, self.eps_y)
+
+    @property
+    def attitude_angle(self) -> float:
+        """φ₀ = atan(ε_Y/ε_X), rad, measured from the load direction (+X)."""
+        return math.atan2(self.eps_y, self.eps_x)
+
+    @property
+    def min_film(self) -> float:
+        """Minimum film thickness, m."""
+        return float(self.H.min()) * self.case.bearing.clearance
+
+    @property
+    def min_film_angle(self) -> float:
+        """Angle θ of the minimum film thickness, rad."""
+        i = int(np.argmin(self.H.min(axis=1)))
+        return float(self.model.grid.theta[i])
+
+    @property
+    def power_loss(self) -> float:
+        """Viscous power loss in the film, W."""
+        return self.drag_torque * self.speed
+
+    def headline(self) -> dict[str, Any]:
+        """Headline numbers with unit-named keys (the CLI's ``--json``)."""
+        return {
+            "speed_rpm": self.speed / RPM,
+            "voltages_V": (
+                list(self.case.actuators.voltages) if self.case.actuators is not None else []
+            ),
+            "bearing": _bearing_kind(self.case),
+            "bearing_number": self.bearing_number,
+            "eccentricity": self.eccentricity,
+            "eps_X": self.eps_x,
+            "eps_Y": self.eps_y,
+            "attitude_deg": math.degrees(self.attitude_angle),
+            "min_film_um": self.min_film * 1e6,
+            "min_film_angle_deg": math.degrees(self.min_film_angle),
+            "force_N": list(self.force),
+            "preload_um": [x * 1e6 for x in self.preload],
+            "actuator_pressure_kPa": [x / 1e3 for x in self.actuator_pressure],
+            "drag_torque_Nm": self.drag_torque,
+            "power_loss_W": self.power_loss,
+            "iterations": self.iterations,
+            "reynolds_residual": self.residual,
+            "force_residual": self.force_residual,
+            "converged": self.converged,
+            "message": self.message,
+        }
+
+    def to_dataset(self) -> Any:
+        """The fields and headline numbers as an xarray Dataset (coordinates and units)."""
+        import xarray as xr
+
+        g = self.model.grid
+        r = self.case.bearing.radius
+        pa = self.case.gas.ambient_pressure
+        coords = {
+            "theta": ("theta", np.degrees(g.theta), {"units": "deg", "long_name": "θ from −X"}),
+            "z": ("z", g.z * r * 1e3, {"units": "mm", "long_name": "z from the mid-plane"}),
+        }
+        ds = xr.Dataset(
+            {
+                "pressure": (("theta", "z"), self.P * pa / 1e3, {"units": "kPa", "long_name": "p"}),
+                "gauge_pressure_mean": (
+                    "theta",
+                    (self.P.mean(axis=1) - 1.0) * pa / 1e3,
+                    {"units": "kPa", "long_name": "axially averaged gauge pressure p_A"},
+                ),
+                "film_thickness": (
+                    ("theta", "z"),
+                    self.H * self.case.bearing.clearance * 1e6,
+                    {"units": "um", "long_name": "h"},
+                ),
+                "preload_shape": (
+                    "theta",
+                    self.model.preload * self.case.bearing.clearance * 1e6,
+                    {"units": "um", "long_name": "r_p (base preload shape)"},
+                ),
+            },
+            coords=coords,
+        )
+        for key, value in self.headline().items():
+            ds.attrs[key] = _attr(value)
+        return ds
+
+
+def _attr(value: Any) -> Any:
+    if isinstance(value, bool):
+        return int(value)
+    if isinstance(value, list):
+        return np.asarray(value, dtype=float) if value else np.zeros(0)
+    return value
+
+
+def _bearing_kind(case: Case) -> str:
+    if case.actuators is not None:
+        return "C-GFB"
+    if case.shims is not None:
+        return "shimmed GFB"
+    return "GFB" if case.foil is not None else "rigid"
+
+
+def _check_speed(case: Case, speed: float | None) -> float:
+    omega = case.operation.speed if speed is None else speed
+    if not (math.isfinite(omega) and omega > 0.0):
+        raise InputError(f"speed = {omega!r} rad/s: expected a speed > 0 (e.g. '50000 rpm')")
+    return omega
+
+
+def film_at_position(
+    case: Case,
+    eps_x: float,
+    eps_y: float,
+    *,
+    speed: float | None = None,
+    model: FilmModel | None = None,
+    options: EquilibriumOptions | None = None,
+) -> StaticResult:
+    """The film and its force at a prescribed journal position (no equilibrium search).
+
+    Parameters
+    ----------
+    case
+        Bearing case.
+    eps_x, eps_y
+        Journal position in units of C.
+    speed
+        Rotor speed, rad/s (default: the case's operating speed).
+    """
+    opts = options or EquilibriumOptions()
+    omega = _check_speed(case, speed)
+    model = model or film_model(case)
+    h_r = model.h_rigid(eps_x, eps_y)
+    if h_r.min() <= 0.0 and not np.any(model.compliance > 0):
+        raise InputError(
+            f"journal position ({eps_x:g}, {eps_y:g}) closes the film (min h/C = {h_r.min():.3g}) "
+            "of a rigid bearing: choose a smaller eccentricity"
+        )
+    lam = case.bearing_number(omega)
+    sol = solve_steady(model.grid, h_r, model.compliance, lam, options=opts.newton)
+    return _result(
+        case,
+        model,
+        omega,
+        lam,
+        eps_x,
+        eps_y,
+        sol.P,
+        sol.H,
+        sol.iterations,
+        sol.residual,
+        math.nan,
+        sol.converged,
+        sol.message,
+        equilibrium=False,
+    )
+
+
+def solve_equilibrium(
+    case: Case,
+    *,
+    speed: float | None = None,
+    model: FilmModel | None = None,
+    start: tuple[float, float, FloatArray | None] | None = None,
+    options: EquilibriumOptions | None = None,
+) -> StaticResult:
+    """Journal equilibrium: the position where film force plus load is zero.
+
+    Newton from ``start`` (or the centre); if that fails, continuation in the
+    load from a tenth of it, each step starting from the last equilibrium.
+
+    Parameters
+    ----------
+    case
+        Bearing case (load along +X from ``case.operation.load``).
+    speed
+        Rotor speed, rad/s (default: the case's operating speed).
+    model
+        Film model of the case (built from the case if omitted).
+    start
+        (ε_X, ε_Y, P) to start from, e.g. the equilibrium at a nearby speed;
+        P may be None.
+    options
+        Solver settings.
+
+    Returns
+    -------
+    StaticResult with ``converged`` False and a message saying what did not
+    converge and what to try, if no equilibrium was found; never NaN.
+    """
+    opts = options or EquilibriumOptions()
+    omega = _check_speed(case, speed)
+    model = model or film_model(case)
+    lam = case.bearing_number(omega)
+    pa, r = case.gas.ambient_pressure, case.bearing.radius
+    load = case.operation.load / (pa * r * r)  # dimensionless load along +X
+    system = _Equilibrium(model, lam, opts)
+    eps0 = np.zeros(2) if start is None else np.array(start[:2], dtype=float)
+    p0 = None if start is None else start[2]
+    out = system.solve(load, eps0, p0)
+    iterations = out.iterations
+    note = ""
+    if not out.converged and load > 0.0:
+        # Load continuation from the centre: a light load is found from ε = 0,
+        # and each step starts from the previous equilibrium.
+        first_reason = out.message
+        done, frac = 0.0, 0.1
+        eps, P = np.zeros(2), None
+        steps = 0
+        while done < 1.0 and steps < 40:
+            target = min(1.0, done + frac)
+            trial = system.solve(target * load, eps, P)
+            iterations += trial.iterations
+            steps += 1
+            if trial.converged:
+                done, eps, P, out = target, trial.eps, trial.P, trial
+                frac *= 1.5
+            else:
+                frac *= 0.3
+                out = trial
+                if frac < 1e-3:
+                    break
+        note = f"direct Newton failed ({first_reason}); load continuation in {steps} steps: "
+        if done < 1.0:
+            out = replace(out, converged=False)
+            note += f"stopped at {100 * done:.1f} % of the load; "
+    if out.converged:
+        message = note + f"converged in {iterations} Newton iterations"
+    else:
+        message = (
+            f"equilibrium not found: {note}{out.message}; |F + W|/|W| = {out.force_res:.2e}, "
+            f"Reynolds residual {out.residual:.2e}, at ε = ({out.eps[0]:.4f}, {out.eps[1]:.4f}), "
+            f"Λ = {lam:.4g}. Try: a start from a nearby converged point, a finer grid, or check "
+            "that the bearing can carry the load at this speed (the film may be closing)."
+        )
+    Pf = out.P.reshape(model.grid.shape)
+    H = (
+        model.h_rigid(*out.eps)
+        + (model.compliance * np.maximum(Pf.mean(axis=1) - 1.0, 0.0))[:, None]
+    )
+    return _result(
+        case,
+        model,
+        omega,
+        lam,
+        float(out.eps[0]),
+        float(out.eps[1]),
+        Pf,
+        H,
+        iterations,
+        out.residual,
+        out.force_res,
+        out.converged,
+        message,
+        True,
+    )
+
+
+@dataclass(frozen=True)
+class _Outcome:
+    P: FloatArray
+    eps: FloatArray
+    converged: bool
+    iterations: int
+    residual: float
+    force_res: float
+    message: str
+
+
+class _Equilibrium:
+    """The bordered system (P, ε_X, ε_Y) of one film model at one speed."""
+
+    def __init__(self, model: FilmModel, lam: float, opts: EquilibriumOptions) -> None:
+        g = model.grid
+        self.model, self.lam, self.opts = model, lam, opts
+        self.ws = Workspace(g)
+        self.cos_t = np.repeat(np.cos(g.theta)[:, None], g.n_z, axis=1).ravel()
+        self.sin_t = np.repeat(np.sin(g.theta)[:, None], g.n_z, axis=1).ravel()
+        w_x, w_y = g.force_weights()
+        self.w_x, self.w_y = w_x.ravel(), w_y.ravel()
+        self.scale = 1.0 / (g.d_theta * g.d_z)
+
+    def _evaluate(self, P: FloatArray, eps: FloatArray, load: float) -> tuple[Any, ...]:
+        m = self.model
+        R, j_pp, j_ph = coupled_system(P, m.grid, m.h_rigid(*eps), m.compliance, self.lam, self.ws)
+        G = np.array([self.w_x @ (P - 1.0) + load, self.w_y @ (P - 1.0)])
+        return R, j_pp, j_ph, G
+
+    def _film_min(self, P: FloatArray, eps: FloatArray) -> float:
+        m = self.model
+        p_mean = P.reshape(m.grid.shape).mean(axis=1) - 1.0
+        h = m.h_rigid(*eps)[:, 0] + m.compliance * np.maximum(p_mean, 0.0)
+        return float(h.min())
+
+    def solve(self, load: float, eps: FloatArray, P0: FloatArray | None) -> _Outcome:
+        """Damped Newton on (P, ε) for a dimensionless load along +X."""
+        m, opts = self.model, self.opts
+        g = m.grid
+        eps = np.asarray(eps, dtype=float).copy()
+        first = solve_steady(
+            g, m.h_rigid(*eps), m.compliance, self.lam, P0, options=opts.newton, workspace=self.ws
+        )
+        P = first.P.ravel().copy()
+        load_ref = max(abs(load), 1e-12)
+        if not first.converged:
+            return _Outcome(
+                P,
+                eps,
+                False,
+                first.iterations,
+                first.residual,
+                np.inf,
+                "pressure solve at the starting position failed: " + first.message,
+            )
+        iterations = first.iterations
+        R, j_pp, j_ph, G = self._evaluate(P, eps, load)
+        merit = _merit(R * self.scale, G / load_ref)
+        for it in range(opts.max_iter):
+            res = float(np.max(np.abs(R))) * self.scale
+            force_res = float(np.hypot(*G)) / load_ref
+            if res <= opts.newton.tol and force_res <= opts.force_tol:
+                return _Outcome(P, eps, True, iterations + it, res, force_res, "converged")
+            try:
+                lu = splu(j_pp.tocsc())
+            except RuntimeError:
+                return _Outcome(P, eps, False, iterations + it, res, force_res, "singular Jacobian")
+            # Schur complement: dP = a - Y dε with J a = -R, J Y = dR/dε; then the force rows.
+            a = -lu.solve(R)
+            y = lu.solve(np.column_stack([j_ph @ self.cos_t, j_ph @ self.sin_t]))
+            schur = np.array(
+                [[self.w_x @ y[:, 0], self.w_x @ y[:, 1]], [self.w_y @ y[:, 0], self.w_y @ y[:, 1]]]
+            )
+            d_eps = np.linalg.solve(schur, G + np.array([self.w_x @ a, self.w_y @ a]))
+            d_p = a - y @ d_eps
+            # Step control: limit the journal move, keep P > 0 and the film open, backtrack.
+            step = min(1.0, opts.max_step / max(float(np.max(np.abs(d_eps))), 1e-300))
+            neg = d_p < 0
+            if np.any(neg):
+                step = min(step, 0.9 * float(np.min(-P[neg] / d_p[neg])))
+            for _ in range(30):
+                P_t, eps_t = P + step * d_p, eps + step * d_eps
+                if self._film_min(P_t, eps_t) > opts.min_film:
+                    R_t, jpp_t, jph_t, G_t = self._evaluate(P_t, eps_t, load)
+                    m_t = _merit(R_t * self.scale, G_t / load_ref)
+                    if m_t < (1.0 - 1e-4 * step) * merit or step < 1e-3:
+                        break
+                step *= 0.5
+            else:
+                return _Outcome(
+                    P,
+                    eps,
+                    False,
+                    iterations + it + 1,
+                    res,
+                    force_res,
+                    f"line search failed (the film would close below h/C = {opts.min_film}, "
+                    "or the residual did not decrease)",
+                )
+            P, eps, R, j_pp, j_ph, G, merit = P_t, eps_t, R_t, jpp_t, jph_t, G_t, m_t
+        res = float(np.max(np.abs(R))) * self.scale
+        force_res = float(np.hypot(*G)) / load_ref
+        return _Outcome(
+            P,
+            eps,
+            False,
+            iterations + opts.max_iter,
+            res,
+            force_res,
+            f"no convergence in {opts.max_iter} iterations",
+        )
+
+
+def _merit(r: FloatArray, g: FloatArray) -> float:
+    return float(r @ r + g @ g)
+
+
+def _result(
+    case: Case,
+    model: FilmModel,
+    omega: float,
+    lam: float,
+    eps_x: float,
+    eps_y: float,
+    P: FloatArray,
+    H: FloatArray,
+    iterations: int,
+    residual: float,
+    force_residual: float,
+    converged: bool,
+    message: str,
+    equilibrium: bool,
+) -> StaticResult:
+    g = model.grid
+    pa, r = case.gas.ambient_pressure, case.bearing.radius
+    fx, fy = film_force(g, P)
+    p_mean = P.mean(axis=1) - 1.0
+    angles = model.preload_angles
+    p_act = model.at_angles(p_mean, angles) * pa if angles else np.zeros(0)
+    base = np.asarray(model.base_preloads, dtype=float)
+    if model.actuator_stiffness is not None:
+        # Eq. (3b); sub-ambient pressure does not pull the foil, so it does not pull the stinger.
+        preload = base - np.maximum(p_act, 0.0) / model.actuator_stiffness
+    else:
+        preload = base
+    torque = _drag_torque(case, g, P, H, omega)
+    return StaticResult(
+        case=case,
+        model=model,
+        speed=omega,
+        bearing_number=lam,
+        eps_x=eps_x,
+        eps_y=eps_y,
+        P=P,
+        H=H,
+        force=(fx * pa * r * r, fy * pa * r * r),
+        actuator_pressure=p_act,
+        preload=preload,
+        drag_torque=torque,
+        iterations=iterations,
+        residual=residual,
+        force_residual=force_residual,
+        converged=converged,
+        message=message,
+        equilibrium=equilibrium,
+    )
+
+
+def _drag_torque(case: Case, g: Any, P: FloatArray, H: FloatArray, omega: float) -> float:
+    """Viscous torque on the journal, N·m (beyond the paper).
+
+    Shear on the journal surface from the Couette-Poiseuille profile,
+    τ = μ ω R/h + (h/(2R)) ∂p/∂θ, integrated over the full surface:
+    T = R³ ∫∫ [μ ω R/(C H) + (C H p_a/(2R)) ∂P/∂θ] dθ dZ. For a concentric rigid
+    journal this is Petroff's 2π μ ω R³ L / C.
+    """
+    mu, pa = case.gas.viscosity, case.gas.ambient_pressure
+    r, c = case.bearing.radius, case.bearing.clearance
+    dp = (np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)) / (2.0 * g.d_theta)
+    integrand = mu * omega * r / (c * H) + c * H * pa / (2.0 * r) * dp
+    return float(2.0 * r**3 * integrand.sum() * g.d_theta * g.d_z)

@@ -1,0 +1,179 @@
+"""The static part of the paper's study: speed × voltage sweeps of C-GFB and shimmed GFB (Figs. 9-12).
+
+Each sweep walks the speeds in order and starts every equilibrium from the one
+before (continuation), so the whole map costs a few Newton iterations a point.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from foilbearing.case import Case
+from foilbearing.film import film_model
+from foilbearing.static import StaticResult, solve_equilibrium
+
+__all__ = ["PAPER_SPEEDS_RPM", "PAPER_VOLTAGES", "static_sweep"]
+
+RPM = math.pi / 30.0
+PAPER_SPEEDS_RPM = tuple(float(s) for s in range(10_000, 90_001, 10_000))
+PAPER_VOLTAGES = (0.0, 50.0, 100.0, 150.0)
+
+
+def static_sweep(
+    case: Case,
+    speeds: Sequence[float],
+    voltages: Sequence[float],
+    *,
+    bearings: Sequence[str] = ("C-GFB", "shimmed"),
+    progress: Callable[[str], None] | None = None,
+) -> Any:
+    """Equilibria over speeds (rad/s) × voltages (V) for the C-GFB and its shimmed twin.
+
+    Parameters
+    ----------
+    case
+        A case with ``[actuators]``.
+    speeds
+        Rotor speeds, rad/s, swept in increasing order.
+    voltages
+        Actuator voltages (the same on every actuator), V.
+    bearings
+        Which of "C-GFB" and "shimmed" to compute.
+    progress
+        Called with a short line after each (bearing, voltage) row.
+
+    Returns
+    -------
+    xarray.Dataset with dimensions ``bearing``, ``voltage``, ``speed``,
+    ``actuator`` and ``theta``: eccentricity, attitude angle, minimum film,
+    actuator pressure and piezoelectric preload per actuator, film force,
+    drag torque, and the mid-plane pressure and film thickness around the
+    bearing; ``converged`` flags each point.
+    """
+    import xarray as xr
+
+    if case.actuators is None:
+        raise ValueError("the static sweep compares a C-GFB with shims: the case needs [actuators]")
+    speeds = sorted(speeds)
+    n_act = len(case.actuators.angles)
+    model_theta = film_model(case).grid.theta
+    shape = (len(bearings), len(voltages), len(speeds))
+    scalars = {
+        k: np.full(shape, np.nan)
+        for k in (
+            "eccentricity",
+            "attitude",
+            "eps_x",
+            "eps_y",
+            "min_film",
+            "min_film_angle",
+            "force_x",
+            "force_y",
+            "drag_torque",
+            "power_loss",
+            "iterations",
+        )
+    }
+    converged = np.zeros(shape, dtype=bool)
+    per_act = {k: np.full((*shape, n_act), np.nan) for k in ("actuator_pressure", "preload")}
+    fields = {k: np.full((*shape, model_theta.size), np.nan) for k in ("pressure", "film")}
+    for b, kind in enumerate(bearings):
+        for v, volt in enumerate(voltages):
+            base = case.with_voltages(float(volt))
+            bearing = base.shimmed() if kind == "shimmed" else base
+            model = film_model(bearing)
+            start = None
+            for s, omega in enumerate(speeds):
+                res = solve_equilibrium(bearing, speed=omega, model=model, start=start)
+                if not res.converged:
+                    start = None
+                    continue
+                start = (res.eps_x, res.eps_y, res.P)
+                _store(res, (b, v, s), scalars, per_act, fields)
+                converged[b, v, s] = True
+            if progress is not None:
+                ok = int(converged[b, v].sum())
+                progress(f"{kind} at {volt:g} V: {ok}/{len(speeds)} speeds converged")
+    coords = {
+        "bearing": list(bearings),
+        "voltage": ("voltage", np.asarray(voltages, float), {"units": "V"}),
+        "speed": ("speed", np.asarray(speeds) / RPM / 1e3, {"units": "krpm"}),
+        "actuator": ("actuator", np.degrees(case.actuators.angles), {"units": "deg"}),
+        "theta": ("theta", np.degrees(model_theta), {"units": "deg"}),
+    }
+    dims = ("bearing", "voltage", "speed")
+    units = {
+        "eccentricity": ("", 1.0),
+        "attitude": ("deg", 180 / math.pi),
+        "eps_x": ("", 1.0),
+        "eps_y": ("", 1.0),
+        "min_film": ("um", 1e6),
+        "min_film_angle": ("deg", 180 / math.pi),
+        "force_x": ("N", 1.0),
+        "force_y": ("N", 1.0),
+        "drag_torque": ("N m", 1.0),
+        "power_loss": ("W", 1.0),
+        "iterations": ("", 1.0),
+    }
+    data: dict[str, Any] = {
+        k: (dims, scalars[k] * units[k][1], {"units": units[k][0]}) for k in scalars
+    }
+    data["converged"] = (dims, converged)
+    data["actuator_pressure"] = (
+        (*dims, "actuator"),
+        per_act["actuator_pressure"] / 1e3,
+        {"units": "kPa", "long_name": "axially averaged gauge pressure p_A at the actuator"},
+    )
+    data["preload"] = (
+        (*dims, "actuator"),
+        per_act["preload"] * 1e6,
+        {"units": "um", "long_name": "piezoelectric preload (Eq. 3b); shim thickness for shims"},
+    )
+    data["midplane_pressure"] = (
+        (*dims, "theta"),
+        fields["pressure"] / 1e3,
+        {"units": "kPa", "long_name": "absolute pressure in the cell row next to the mid-plane"},
+    )
+    data["midplane_film"] = ((*dims, "theta"), fields["film"] * 1e6, {"units": "um"})
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(
+        viscosity_Pa_s=case.gas.viscosity,
+        clearance_um=case.bearing.clearance * 1e6,
+        load_N=case.operation.load,
+        n_theta=case.grid.n_theta,
+        n_z=case.grid.n_z,
+    )
+    return ds
+
+
+def _store(
+    res: StaticResult,
+    idx: tuple[int, int, int],
+    scalars: dict[str, np.ndarray],
+    per_act: dict[str, np.ndarray],
+    fields: dict[str, np.ndarray],
+) -> None:
+    pa, c = res.case.gas.ambient_pressure, res.case.bearing.clearance
+    values = {
+        "eccentricity": res.eccentricity,
+        "attitude": res.attitude_angle,
+        "eps_x": res.eps_x,
+        "eps_y": res.eps_y,
+        "min_film": res.min_film,
+        "min_film_angle": res.min_film_angle,
+        "force_x": res.force[0],
+        "force_y": res.force[1],
+        "drag_torque": res.drag_torque,
+        "power_loss": res.power_loss,
+        "iterations": res.iterations,
+    }
+    for k, val in values.items():
+        scalars[k][idx] = val
+    per_act["actuator_pressure"][idx] = res.actuator_pressure
+    per_act["preload"][idx] = res.preload
+    fields["pressure"][idx] = res.P[:, 0] * pa
+    fields["film"][idx] = res.H[:, 0] * c

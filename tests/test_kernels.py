@@ -1,0 +1,149 @@
+"""Compiled Reynolds kernels against their NumPy twins and finite differences."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from foilbearing.reynolds import _kernels as kern
+
+N_THETA, N_Z = 10, 4
+D_THETA = 2.0 * np.pi / N_THETA
+D_Z = 0.3
+LAMBDAS = [0.0, 0.1, 1.0, 3.0, 10.0, -2.0]
+
+
+def _fields(seed: int, low_h: float = 0.3) -> tuple[np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    P = rng.uniform(0.5, 2.0, (N_THETA, N_Z))
+    H = rng.uniform(low_h, 1.5, (N_THETA, N_Z))
+    return P, H
+
+
+def _dense(data: np.ndarray) -> np.ndarray:
+    indptr, indices, _ = kern.stencil_pattern(N_THETA, N_Z)
+    n = N_THETA * N_Z
+    return sp.csr_matrix((data, indices, indptr), shape=(n, n)).toarray()
+
+
+def _residual(P: np.ndarray, H: np.ndarray, lam: float) -> np.ndarray:
+    out = np.empty_like(P)
+    kern.residual(P, H, lam, D_THETA, D_Z, out)
+    return out.ravel()
+
+
+def _fd_jacobian(P: np.ndarray, H: np.ndarray, lam: float, wrt_h: bool) -> np.ndarray:
+    """Central finite differences of the residual, column by column."""
+    n = P.size
+    jac = np.empty((n, n))
+    for k in range(n):
+        x = H if wrt_h else P
+        step = 1e-6 * max(1.0, abs(x.flat[k]))
+        xp, xm = x.copy(), x.copy()
+        xp.flat[k] += step
+        xm.flat[k] -= step
+        if wrt_h:
+            jac[:, k] = (_residual(P, xp, lam) - _residual(P, xm, lam)) / (2 * step)
+        else:
+            jac[:, k] = (_residual(xp, H, lam) - _residual(xm, H, lam)) / (2 * step)
+    return jac
+
+
+def test_bernoulli_matches_definition_and_identities() -> None:
+    x = np.array([-800.0, -50.0, -3.0, -0.0101, -0.0099, -1e-5, 0.0, 1e-5, 0.0099, 0.0101, 3.0])
+    b = np.array([kern.bernoulli(v) for v in x])
+    db = np.array([kern.bernoulli_deriv(v) for v in x])
+    np.testing.assert_allclose(b, kern.bernoulli_py(x), rtol=1e-14, atol=0)
+    np.testing.assert_allclose(db, kern.bernoulli_deriv_py(x), rtol=1e-14, atol=1e-300)
+    nz = x != 0
+    np.testing.assert_allclose(b[nz], x[nz] / np.expm1(x[nz]), rtol=1e-13)
+    assert kern.bernoulli(0.0) == 1.0
+    # B(−x) = B(x) + x, and no overflow for large |x|
+    for v in (0.003, 0.7, 40.0, 900.0):
+        assert kern.bernoulli(-v) == pytest.approx(kern.bernoulli(v) + v, rel=1e-14)
+    assert kern.bernoulli(900.0) == 0.0
+    # derivative against a central difference, on both sides of the series switch
+    for v in (-4.0, -0.0101, -0.0099, 0.0099, 0.0101, 0.5, 4.0):
+        h = 1e-6
+        fd = (kern.bernoulli(v + h) - kern.bernoulli(v - h)) / (2 * h)
+        assert kern.bernoulli_deriv(v) == pytest.approx(fd, rel=1e-8, abs=1e-10)
+
+
+def test_stencil_pattern_slots_point_at_neighbour_columns() -> None:
+    indptr, indices, slots = kern.stencil_pattern(N_THETA, N_Z)
+    assert np.all(np.diff(indices[indptr[0] : indptr[1]]) > 0)
+    for i in range(N_THETA):
+        for j in range(N_Z):
+            row = i * N_Z + j
+            expect = [
+                ((i - 1) % N_THETA) * N_Z + j,
+                row - 1 if j > 0 else -1,
+                row,
+                row + 1 if j < N_Z - 1 else -1,
+                ((i + 1) % N_THETA) * N_Z + j,
+            ]
+            for d, col in enumerate(expect):
+                slot = slots[i, j, d]
+                if col < 0:
+                    assert slot == -1
+                else:
+                    assert indptr[row] <= slot < indptr[row + 1]
+                    assert indices[slot] == col
+            row_cols = indices[indptr[row] : indptr[row + 1]]
+            assert np.all(np.diff(row_cols) > 0), "columns sorted within each row"
+
+
+@pytest.mark.parametrize("lam", LAMBDAS)
+def test_residual_kernel_equals_twin(lam: float) -> None:
+    P, H = _fields(1)
+    a, b = np.empty_like(P), np.empty_like(P)
+    kern.residual(P, H, lam, D_THETA, D_Z, a)
+    kern.residual_py(P, H, lam, D_THETA, D_Z, b)
+    np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
+
+
+@pytest.mark.parametrize("lam", LAMBDAS)
+@pytest.mark.parametrize("which", ["P", "H"])
+def test_jacobian_kernels_equal_twins(lam: float, which: str) -> None:
+    P, H = _fields(2)
+    nnz = kern.stencil_pattern(N_THETA, N_Z)[1].size
+    a, b = np.empty(nnz), np.empty(nnz)
+    kernel, twin = (
+        (kern.jacobian_P, kern.jacobian_P_py)
+        if which == "P"
+        else (kern.jacobian_H, kern.jacobian_H_py)
+    )
+    kernel(P, H, lam, D_THETA, D_Z, a)
+    twin(P, H, lam, D_THETA, D_Z, b)
+    np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
+
+
+@pytest.mark.parametrize("lam", LAMBDAS)
+@pytest.mark.parametrize("which", ["P", "H"])
+def test_jacobians_equal_finite_differences(lam: float, which: str) -> None:
+    # thin films make the grid Péclet number large (up to ~300 for Λ = 10), so the
+    # large-|x| branches of B and B' are exercised too
+    P, H = _fields(3, low_h=0.15)
+    nnz = kern.stencil_pattern(N_THETA, N_Z)[1].size
+    data = np.empty(nnz)
+    (kern.jacobian_P if which == "P" else kern.jacobian_H)(P, H, lam, D_THETA, D_Z, data)
+    exact = _dense(data)
+    fd = _fd_jacobian(P, H, lam, wrt_h=(which == "H"))
+    err = np.abs(exact - fd).max() / np.abs(exact).max()
+    assert err < 1e-6, f"d R/d{which} differs from finite differences by {err:.2e} at Λ={lam}"
+
+
+def test_coupled_jacobian_kernel_equals_sparse_product() -> None:
+    P, H = _fields(4)
+    nnz = kern.stencil_pattern(N_THETA, N_Z)[1].size
+    jp, jh = np.empty(nnz), np.empty(nnz)
+    kern.jacobian_P(P, H, 1.5, D_THETA, D_Z, jp)
+    kern.jacobian_H(P, H, 1.5, D_THETA, D_Z, jh)
+    s = np.random.default_rng(5).uniform(0.0, 0.05, N_THETA)
+    s[[0, 3]] = 0.0  # inactive foil (p̄ <= 0) at some angles, including the wrap
+    _, c_indices = kern.coupled_pattern(N_THETA, N_Z)
+    a, b = np.empty(c_indices.size), np.empty(c_indices.size)
+    kern.coupled_jacobian(jp, jh, s, N_Z, a)
+    kern.coupled_jacobian_py(jp, jh, s, N_Z, b)
+    np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
