@@ -71,9 +71,49 @@ def run_study(case: Case, out: Path, *, progress: bool = True) -> dict[str, Any]
     results["structure"] = structure_summary(case, [0.0, 50.0, 100.0, 150.0])
     results["structure"]["figures"] = [str(p) for p in write_structure_figures(case, out)]
 
+    sweep = None
+    if case.actuators is not None:
+        sweep = _static_stage(case, out, results, stage)
+
+    from foilbearing.paper import markdown_table, static_comparison
+
+    rows = static_comparison(case, results["structure"], sweep)
+    table = markdown_table(rows)
+    results["paper_comparison"] = [r.__dict__ for r in rows]
+    write_text(
+        out / "paper_comparison.md",
+        "# Our numbers beside the paper's\n\n"
+        f"Case: {case.title}. Viscosity {case.gas.viscosity:g} Pa·s (assumed: the paper does "
+        f"not give it); grid {case.grid.n_theta} × {case.grid.n_z} (θ × half length).\n\n"
+        + table
+        + "\n",
+    )
+    if progress:
+        print(table)
+
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
     stage(f"done: results in {out}/")
     return results
+
+
+def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) -> Any:
+    """Figs. 9-12: C-GFB and shimmed GFB, 10-90 krpm, 0/50/100/150 V."""
+    import math
+
+    from foilbearing.cli import sweep_points, write_static_figures
+    from foilbearing.io import write_with
+    from foilbearing.study_static import PAPER_SPEEDS_RPM, PAPER_VOLTAGES, static_sweep
+
+    stage("static analysis: C-GFB and shimmed GFB, 10-90 krpm x 0/50/100/150 V (Figs. 9-12)")
+    speeds = [s * math.pi / 30.0 for s in PAPER_SPEEDS_RPM]
+    ds = static_sweep(case, speeds, PAPER_VOLTAGES, progress=lambda line: stage("  " + line))
+    write_with(out / "static_sweep.nc", lambda tmp: ds.to_netcdf(tmp))
+    results["static"] = {
+        "points": sweep_points(ds),
+        "figures": [str(p) for p in write_static_figures(ds, out)],
+        "netcdf": str(out / "static_sweep.nc"),
+    }
+    return ds
 
 
 def _plain(x: Any) -> Any:

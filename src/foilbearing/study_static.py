@@ -102,7 +102,7 @@ def static_sweep(
         "bearing": list(bearings),
         "voltage": ("voltage", np.asarray(voltages, float), {"units": "V"}),
         "speed": ("speed", np.asarray(speeds) / RPM / 1e3, {"units": "krpm"}),
-        "actuator": ("actuator", np.degrees(case.actuators.angles), {"units": "deg"}),
+        "actuator": ("actuator", np.round(np.degrees(case.actuators.angles), 9), {"units": "deg"}),
         "theta": ("theta", np.degrees(model_theta), {"units": "deg"}),
     }
     dims = ("bearing", "voltage", "speed")

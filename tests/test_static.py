@@ -1,0 +1,184 @@
+"""Static analysis: equilibrium, limits, and the paper's static results (Figs. 9-12).
+
+Paper numbers and trends are from MODEL.md section 6. The viscosity (1.85e-5 Pa s) is our
+choice (the paper does not give it) and the grid is the default 96 x 12, so published values
+are checked with stated tolerances rather than digits.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from foilbearing.case import Foil, default_case
+from foilbearing.errors import InputError
+from foilbearing.film import film_model
+from foilbearing.static import film_at_position, solve_equilibrium
+from foilbearing.study_static import static_sweep
+
+RPM = math.pi / 30.0
+
+
+@pytest.fixture(scope="module")
+def sweep():
+    """C-GFB and shimmed GFB at 0/50/150 V and 10/50/90 krpm (continuation in speed)."""
+    return static_sweep(
+        default_case(), [10e3 * RPM, 50e3 * RPM, 90e3 * RPM], [0.0, 50.0, 100.0, 150.0]
+    )
+
+
+def test_equilibrium_balances_the_load() -> None:
+    case = default_case().with_voltages(150.0)
+    res = solve_equilibrium(case, speed=50e3 * RPM)
+    assert res.converged, res.message
+    fx, fy = res.force
+    w = case.operation.load
+    assert math.hypot(fx + w, fy) / w < 1e-6
+    assert np.all(np.isfinite(res.P)) and res.H.min() > 0
+
+
+def test_equilibrium_is_independent_of_the_start() -> None:
+    case = default_case().with_voltages(100.0)
+    a = solve_equilibrium(case, speed=30e3 * RPM)
+    b = solve_equilibrium(case, speed=30e3 * RPM, start=(0.3, -0.2, None))
+    assert a.converged and b.converged
+    assert abs(a.eps_x - b.eps_x) < 1e-7 and abs(a.eps_y - b.eps_y) < 1e-7
+
+
+def test_journal_sinks_along_the_load_at_low_speed() -> None:
+    # As the speed falls the bearing number vanishes, the film needs a near-closed wedge
+    # and the line of centres turns towards the load: ε -> 1 (into the foil), φ -> 0.
+    case = default_case()
+    att = []
+    for rpm in (1e3, 3e3, 10e3):
+        res = solve_equilibrium(case, speed=rpm * RPM)
+        assert res.converged, res.message
+        att.append(math.degrees(res.attitude_angle))
+    assert att[0] < att[1] < att[2]
+    assert att[0] < 15.0
+
+
+def test_concentric_rigid_journal_without_preload() -> None:
+    case = replace(default_case(), foil=None, actuators=None)
+    res = film_at_position(case, 0.0, 0.0, speed=50e3 * RPM)
+    np.testing.assert_allclose(res.P, 1.0, atol=1e-12)
+    assert abs(res.force[0]) < 1e-9 and abs(res.force[1]) < 1e-9
+    # Petroff's torque for the concentric journal: T = 2π μ ω R³ L / C, exactly on any grid.
+    b, mu, omega = case.bearing, case.gas.viscosity, 50e3 * RPM
+    petroff = 2 * math.pi * mu * omega * b.radius**3 * b.length / b.clearance
+    assert res.drag_torque == pytest.approx(petroff, rel=1e-12)
+
+
+def test_stiff_foil_tends_to_rigid_bearing() -> None:
+    base = default_case()
+    rigid = replace(base, foil=None, actuators=None)
+    stiff = replace(base, foil=Foil(bump_stiffness=1e16, loss_factor=0.1), actuators=None)
+    soft = replace(base, foil=Foil(bump_stiffness=1e9, loss_factor=0.1), actuators=None)
+    r, s, f = (solve_equilibrium(c, speed=40e3 * RPM) for c in (rigid, stiff, soft))
+    assert r.converged and s.converged and f.converged
+    assert abs(r.eps_x - s.eps_x) < 1e-5 and abs(r.eps_y - s.eps_y) < 1e-5
+    # A soft foil lets the journal sink further into the bearing.
+    assert f.eccentricity > r.eccentricity
+
+
+def test_reported_preload_is_eq3b() -> None:
+    case = default_case().with_voltages(150.0)
+    res = solve_equilibrium(case, speed=90e3 * RPM)
+    model = film_model(case)
+    assert case.actuators is not None and model.actuator_stiffness is not None
+    base = case.actuators.base_preloads()
+    expected = base - np.maximum(res.actuator_pressure, 0.0) / model.actuator_stiffness
+    np.testing.assert_allclose(res.preload, expected, rtol=1e-12)
+    # Where p_A <= 0 (the foil is not pulled) the preload is the base preload.
+    low = film_at_position(case, 0.0, 0.0, speed=3e3 * RPM)
+    for p_a, pre, b in zip(low.actuator_pressure, low.preload, base, strict=True):
+        if p_a <= 0.0:
+            assert pre == b
+
+
+def test_paper_preloads_at_150V_90krpm() -> None:
+    # Paper Fig. 11: 65.36 / 54.06 / 64.62 um at 60/180/300 deg. Tolerance 15 % (issue): our
+    # viscosity is assumed and the paper's grid and foil details are not given.
+    res = solve_equilibrium(default_case().with_voltages(150.0), speed=90e3 * RPM)
+    np.testing.assert_allclose(res.preload * 1e6, [65.36, 54.06, 64.62], rtol=0.15)
+    # Abstract: reductions up to ~11 % at 60/300 deg, far more (26 %) at the loaded 180 deg.
+    reduction = 1.0 - res.preload / 72.92e-6
+    assert reduction[1] > reduction[0] and reduction[1] > reduction[2]
+
+
+def test_fig9_peaks_at_actuators_grow_with_voltage_and_cgfb_below_shims(sweep) -> None:
+    at50 = sweep.sel(speed=50.0)
+    p180 = at50.actuator_pressure.sel(actuator=180.0)
+    # Pressure at the loaded actuator rises with voltage, for both bearings.
+    assert np.all(np.diff(p180.sel(bearing="C-GFB").values) > 0)
+    assert np.all(np.diff(p180.sel(bearing="shimmed").values) > 0)
+    # The compliant actuators give lower peaks and a thicker minimum film than rigid shims,
+    # most at 180 deg (compare the 150 V case).
+    hi = at50.sel(voltage=150.0)
+    cg, sh = hi.sel(bearing="C-GFB"), hi.sel(bearing="shimmed")
+    assert float(cg.midplane_pressure.max()) < float(sh.midplane_pressure.max())
+    assert float(cg.min_film) > float(sh.min_film)
+    gap = (sh.actuator_pressure - cg.actuator_pressure).values
+    assert np.argmax(gap) == 1  # the 180 deg actuator
+
+
+def test_fig10_local_pressure_trends(sweep) -> None:
+    cg = sweep.sel(bearing="C-GFB", voltage=150.0)
+    for angle in (60.0, 300.0):
+        p = cg.actuator_pressure.sel(actuator=angle).values
+        assert np.all(np.diff(p) > 0)  # rises with speed
+    # At the loaded 180 deg the pressure first falls then rises with speed (paper Fig. 10).
+    p180 = cg.actuator_pressure.sel(actuator=180.0).values
+    assert p180[1] < p180[0] and p180[2] > p180[1]
+    # C-GFB below the shimmed GFB at every speed for 100 and 150 V.
+    for volt in (100.0, 150.0):
+        sel = sweep.sel(voltage=volt, actuator=180.0).actuator_pressure
+        assert np.all(sel.sel(bearing="C-GFB").values < sel.sel(bearing="shimmed").values)
+
+
+def test_fig11_preload_falls_under_pressure(sweep) -> None:
+    pre = sweep.sel(bearing="C-GFB", voltage=150.0).preload
+    assert np.all(pre.values < 72.95)  # never above the base preload
+    assert np.all(pre.sel(actuator=180.0).values < pre.sel(actuator=60.0).values)
+
+
+def test_fig12_eccentricity_trends(sweep) -> None:
+    for bearing in ("C-GFB", "shimmed"):
+        for volt in sweep.voltage.values:
+            ecc = sweep.eccentricity.sel(bearing=bearing, voltage=volt).values
+            assert np.all(np.diff(ecc) < 0)  # falls with speed
+    # The C-GFB sits more eccentric than the shimmed GFB (its preload at 180 deg is lower).
+    # We find this at 150 V at every speed; at 50 and 100 V the two differ by under 2 % and
+    # the order changes with speed (reported beside the paper's figure in the study).
+    e = sweep.eccentricity.sel(voltage=150.0)
+    assert np.all(e.sel(bearing="C-GFB").values > e.sel(bearing="shimmed").values)
+
+
+def test_equilibrium_grid_convergence() -> None:
+    # Eccentricity on three grids refined by 2: the differences shrink at about second order.
+    case = default_case().with_voltages(100.0)
+    ecc = []
+    for n_theta, n_z in ((48, 6), (96, 12), (192, 24)):
+        res = solve_equilibrium(case, speed=50e3 * RPM, model=film_model(case, n_theta, n_z))
+        assert res.converged
+        ecc.append(res.eccentricity)
+    d1, d2 = abs(ecc[1] - ecc[0]), abs(ecc[2] - ecc[1])
+    order = math.log2(d1 / d2)
+    assert 1.5 < order < 2.6, (ecc, order)
+    assert d2 / ecc[2] < 5e-3  # the default grid is within 0.5 % of the finest
+
+
+def test_bad_inputs() -> None:
+    case = default_case()
+    with pytest.raises(InputError, match="speed"):
+        solve_equilibrium(case, speed=0.0)
+    heavy = replace(case, operation=replace(case.operation, load=300.0))
+    res = solve_equilibrium(heavy, speed=1e3 * RPM)
+    assert not res.converged
+    assert "Try" in res.message and np.isfinite(res.eccentricity)
+    rigid = replace(case, foil=None, actuators=None)
+    with pytest.raises(InputError, match="closes the film"):
+        film_at_position(rigid, 1.2, 0.0)
