@@ -31,3 +31,5 @@ def test_study_writes_figures_results_and_comparison(tmp_path: Path, capsys) -> 
     assert "k_assy (N/m³)" in rows
     assert (tmp_path / "paper_comparison.md").read_text().count("|") > 50
     assert json.loads((tmp_path / "summary.json").read_text())["structure"]["k_b_N_per_m3"] > 0
+    onsets = [e["onset_speed_rpm"] for e in summary["stability"]["C-GFB"]]
+    assert all(o is not None and o > 5000 for o in onsets)

@@ -119,6 +119,37 @@ def _parser() -> argparse.ArgumentParser:
     stat.add_argument("--json", action="store_true", help="print one JSON object")
     stat.set_defaults(func=_cmd_static)
 
+    coef = sub.add_parser("coefficients", help="dynamic stiffness and damping vs frequency")
+    _add_case_arg(coef)
+    coef.add_argument("--speed", default=None, help="rotor speed, e.g. 50000rpm")
+    coef.add_argument("--voltage", default=None, help="actuator voltage, e.g. 150V")
+    coef.add_argument("--shimmed", action="store_true", help="the shimmed GFB twin")
+    coef.add_argument(
+        "--frequency",
+        default=None,
+        help="excitation frequencies in Hz, e.g. 100,500,1000Hz "
+        "(default: 20 ratios 0.1-2.0 of the rotor speed)",
+    )
+    coef.add_argument("--out", type=Path, help="write the coefficients to FILE.nc")
+    coef.add_argument("--plot", metavar="DIR", type=Path, help="write the figure (PNG) to DIR")
+    coef.add_argument("--json", action="store_true", help="print one JSON object")
+    coef.set_defaults(func=_cmd_coefficients)
+
+    stab = sub.add_parser("stability", help="linear stability: onset speed and whirl frequency")
+    _add_case_arg(stab)
+    stab.add_argument("--voltage", default="0,50,100,150V", help="voltages, e.g. 0,50,100,150V")
+    stab.add_argument("--shimmed", action="store_true", help="the shimmed GFB twins")
+    stab.add_argument(
+        "--speed-range",
+        default="5000rpm:150000rpm:5000rpm",
+        help="scan START:STOP:STEP (default 5000rpm:150000rpm:5000rpm)",
+    )
+    stab.add_argument(
+        "--plot", metavar="DIR", type=Path, help="write the stability map (PNG) to DIR"
+    )
+    stab.add_argument("--json", action="store_true", help="print one JSON object")
+    stab.set_defaults(func=_cmd_stability)
+
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
     _add_case_arg(study)
     study.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")
@@ -444,6 +475,113 @@ def write_static_figures(ds: Any, folder: Path) -> list[Path]:
         save_figure(sp.plot_preload(ds), folder / "fig11_preload.png"),
         save_figure(sp.plot_eccentricity(ds), folder / "fig12_eccentricity.png"),
     ]
+
+
+def _cmd_coefficients(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.io import save_figure, write_with
+    from foilbearing.static import solve_equilibrium
+
+    case = _load(args.case)
+    if args.speed is not None:
+        (speed,) = parse_list(args.speed, "speed", "--speed")
+        case = case.with_speed(speed)
+    if args.voltage is not None:
+        (volt,) = parse_list(args.voltage, "voltage", "--voltage")
+        case = case.with_voltages(volt)
+    if args.shimmed:
+        case = case.shimmed()
+    if args.frequency is None:
+        freqs = np.linspace(0.1, 2.0, 20) * case.operation.speed
+    else:
+        freqs = 2 * np.pi * np.array(parse_list(args.frequency, "frequency", "--frequency"))
+    static = solve_equilibrium(case)
+    if not static.converged:
+        raise SolverError(static.message)
+    fc = force_coefficients(static, freqs)
+    out = fc.headline()
+    if args.out is not None:
+        write_with(args.out, lambda tmp: fc.to_dataset().to_netcdf(tmp))
+    if args.plot is not None:
+        from foilbearing.plots.dynamics import plot_coefficients
+
+        out["figures"] = [str(save_figure(plot_coefficients(fc), args.plot / "coefficients.png"))]
+    if args.json:
+        _emit(out)
+    else:
+        print(f"  speed {out['speed_rpm']:.0f} rpm, eccentricity {out['eccentricity']:.4f}")
+        print(
+            "  f (Hz)      K_XX      K_XY      K_YX      K_YY (MN/m)"
+            "     C_XX      C_XY      C_YX      C_YY (kN s/m)"
+        )
+        for f, k, c in zip(out["frequency_Hz"], fc.K, fc.C, strict=True):
+            ks = " ".join(f"{x / 1e6:9.4f}" for x in k.ravel())
+            cs = " ".join(f"{x / 1e3:9.4f}" for x in c.ravel())
+            print(f"  {f:7.1f} {ks}   {cs}")
+    return 0
+
+
+def _speed_range(text: str) -> list[float]:
+    parts = text.split(":")
+    if len(parts) != 3:
+        raise InputError(
+            f"--speed-range {text!r}: expected START:STOP:STEP, e.g. 5000rpm:150000rpm:5000rpm"
+        )
+    start, stop, step = (parse_quantity(p, "speed", field="--speed-range") for p in parts)
+    if not 0 < start < stop or step <= 0 or (stop - start) / step > 1000:
+        raise InputError(
+            f"--speed-range {text!r}: need 0 < START < STOP and 0 < STEP, at most 1000 steps"
+        )
+    n = round((stop - start) / step) + 1
+    return [start + k * step for k in range(n)]
+
+
+def _cmd_stability(args: argparse.Namespace) -> int:
+    from foilbearing.io import save_figure
+    from foilbearing.stability import onset_speed, stability_map
+
+    case = _load(args.case)
+    speeds = _speed_range(args.speed_range)
+    voltages = parse_list(args.voltage, "voltage", "--voltage")
+    if case.actuators is None:
+        raise InputError("the stability study over voltages needs a case with [actuators]")
+    progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
+    entries, onsets = [], []
+    for volt in voltages:
+        c = case.with_voltages(volt)
+        if args.shimmed:
+            c = c.shimmed()
+        res = onset_speed(c, speeds)
+        entry = {"voltage_V": volt, "bearing": "shimmed" if args.shimmed else "C-GFB"}
+        entry.update(res.headline())
+        entries.append(entry)
+        onsets.append(res.onset_speed / (3.141592653589793 / 30.0) if res.onset_speed else None)
+        if progress is not None:
+            progress(f"{volt:g} V: {res.message}")
+    out: dict[str, Any] = {"rotor_mass_kg": case.rotor.mass, "voltages": entries}
+    if args.plot is not None:
+        from foilbearing.plots.dynamics import plot_stability_map
+
+        ds = stability_map(case, speeds, voltages, shimmed=args.shimmed, progress=progress)
+        name = "stability_map_shimmed.png" if args.shimmed else "stability_map.png"
+        out["figures"] = [str(save_figure(plot_stability_map(ds, onsets), args.plot / name))]
+    if args.json:
+        _emit(out)
+    else:
+        for e in entries:
+            onset = e["onset_speed_rpm"]
+            text = (
+                "stable over the scan"
+                if onset is None
+                else (
+                    f"onset {onset:8.0f} rpm, whirl {e['whirl_frequency_Hz']:.1f} Hz "
+                    f"(ratio {e['whirl_ratio']:.3f})"
+                )
+            )
+            print(f"  {e['bearing']} {e['voltage_V']:6.1f} V: {text}")
+    return 0
 
 
 def _cmd_study(args: argparse.Namespace) -> int:

@@ -75,9 +75,15 @@ def run_study(case: Case, out: Path, *, progress: bool = True) -> dict[str, Any]
     if case.actuators is not None:
         sweep = _static_stage(case, out, results, stage)
 
-    from foilbearing.paper import markdown_table, static_comparison
+    onsets = None
+    if case.actuators is not None:
+        onsets = _stability_stage(case, out, results, stage)
+
+    from foilbearing.paper import markdown_table, stability_comparison, static_comparison
 
     rows = static_comparison(case, results["structure"], sweep)
+    if onsets is not None:
+        rows += stability_comparison(onsets)
     table = markdown_table(rows)
     results["paper_comparison"] = [r.__dict__ for r in rows]
     write_text(
@@ -114,6 +120,47 @@ def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) ->
         "netcdf": str(out / "static_sweep.nc"),
     }
     return ds
+
+
+def _stability_stage(
+    case: Case, out: Path, results: dict[str, Any], stage: Any
+) -> dict[str, dict[float, Any]]:
+    """Coefficients at 50 krpm and 150 V; onset speeds per voltage; the stability map."""
+    import math
+
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.io import save_figure
+    from foilbearing.plots.dynamics import plot_coefficients, plot_stability_map
+    from foilbearing.stability import onset_speed, stability_map
+    from foilbearing.static import solve_equilibrium
+    from foilbearing.study_static import PAPER_VOLTAGES
+
+    rpm = math.pi / 30.0
+    stage("dynamic coefficients at 50 krpm, 150 V")
+    st = solve_equilibrium(case.with_voltages(150.0), speed=50e3 * rpm)
+    fc = force_coefficients(st, [f * st.speed for f in (0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0)])
+    fig = save_figure(plot_coefficients(fc), out / "coefficients_50krpm_150V.png")
+    results["coefficients"] = fc.headline() | {"figures": [str(fig)]}
+    stage("linear stability: onset speed per voltage, C-GFB and shimmed GFB")
+    scan = [s * rpm for s in range(5_000, 150_001, 2_500)]
+    onsets: dict[str, dict[float, Any]] = {"C-GFB": {}, "shimmed": {}}
+    for volt in PAPER_VOLTAGES:
+        c = case.with_voltages(volt)
+        onsets["C-GFB"][volt] = onset_speed(c, scan)
+        onsets["shimmed"][volt] = onset_speed(c.shimmed(), scan)
+        stage(f"  {volt:g} V: C-GFB {onsets['C-GFB'][volt].message}")
+    ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
+    points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
+    fig = save_figure(
+        plot_stability_map(ds, [None if o is None else o / rpm for o in points]),
+        out / "stability_map.png",
+    )
+    results["stability"] = {
+        "C-GFB": [{"voltage_V": v} | r.headline() for v, r in onsets["C-GFB"].items()],
+        "shimmed": [{"voltage_V": v} | r.headline() for v, r in onsets["shimmed"].items()],
+        "figures": [str(fig)],
+    }
+    return onsets
 
 
 def _plain(x: Any) -> Any:

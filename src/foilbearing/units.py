@@ -32,6 +32,7 @@ SI_UNITS: dict[str, str] = {
     "mass": "kg",
     "mass_length": "kg*m",
     "speed": "rad/s",
+    "frequency": "Hz",
     "angular_acceleration": "rad/s**2",
     "voltage": "V",
     "time": "s",
@@ -99,6 +100,15 @@ def parse_quantity(value: object, kind: str, *, field: str, source: str | None =
         raise InputError(
             f"{field} = {value!r}: expected a number or a quantity string", source=source
         )
+    if (
+        kind == "speed"
+        and isinstance(value, str)
+        and ("hz" in value.lower() or "hertz" in value.lower())
+    ):
+        # pint's radian is dimensionless, so "1 Hz" would silently become 1 rad/s.
+        raise InputError(
+            f"{field} = {value!r}: give a rotor speed in rpm or rad/s, not Hz", source=source
+        )
     if not math.isfinite(result):
         raise InputError(f"{field} = {value!r}: must be finite", source=source)
     return result
@@ -115,6 +125,7 @@ def _example(kind: str) -> str:
         "mass": "0.897 kg",
         "mass_length": "8.5 g*mm",
         "speed": "90000 rpm",
+        "frequency": "120 Hz",
         "angular_acceleration": "500 rad/s**2",
         "voltage": "150 V",
         "time": "6.0 s",

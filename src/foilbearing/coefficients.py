@@ -1,0 +1,180 @@
+"""Dynamic force coefficients: stiffness and damping against excitation frequency.
+
+Perturbation of the static solution (MODEL.md section 4): a small harmonic
+journal motion at ω_e = ν ω gives ``K_ij + j ω_e C_ij = −∂F_i/∂e_j``, from the
+complex pressure response of :mod:`foilbearing.reynolds.perturbed`. The foil
+enters as a complex stiffness per unit area: the bump ``k_b(1 + jγ)`` in series
+with the purely elastic actuator under each stinger,
+
+    1/k'(θ) = 1/(k_b (1 + jγ)) + φ(θ)/(k_p + 4k_sp),
+
+where φ(θ) = (k_p + 4k_sp)(1/k(θ) − 1/k_b) is the stinger fraction of the
+smoothed stiffness function (1 under a stinger, 0 away from it), so that with
+γ = 0 the compliance is the static 1/k(θ) of Eq. (8). The shimmed GFB has
+φ = 0 (rigid shims). Where the steady foil is not engaged (p̄ ≤ 0) it does not
+respond (bumps carry no tension), as in the static model.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from foilbearing.errors import InputError
+from foilbearing.film import FilmModel
+from foilbearing.reynolds import Workspace
+from foilbearing.reynolds.perturbed import pressure_response
+from foilbearing.static import StaticResult
+
+__all__ = ["ForceCoefficients", "dynamic_compliance", "force_coefficients"]
+
+FloatArray = NDArray[np.float64]
+RPM = math.pi / 30.0
+
+
+@dataclass(frozen=True)
+class ForceCoefficients:
+    """Linearised film force coefficients about one static point.
+
+    Attributes
+    ----------
+    static
+        The equilibrium (or prescribed position) they linearise about.
+    frequencies
+        Excitation frequencies ω_e, rad/s, shape (n_f,).
+    K
+        Stiffness, N/m, shape (n_f, 2, 2), indices [X, Y] × [X, Y].
+    C
+        Damping, N·s/m, shape (n_f, 2, 2).
+    """
+
+    static: StaticResult
+    frequencies: FloatArray
+    K: FloatArray
+    C: FloatArray
+
+    @property
+    def impedance(self) -> NDArray[np.complex128]:
+        """K + jω_e C, N/m, shape (n_f, 2, 2)."""
+        return self.K + 1j * self.frequencies[:, None, None] * self.C
+
+    def headline(self) -> dict[str, Any]:
+        """Unit-named keys for ``--json``; one entry per frequency."""
+        return {
+            "speed_rpm": self.static.speed / RPM,
+            "frequency_Hz": (self.frequencies / (2 * math.pi)).tolist(),
+            "frequency_ratio": (self.frequencies / self.static.speed).tolist(),
+            "K_N_per_m": self.K.tolist(),
+            "C_Ns_per_m": self.C.tolist(),
+            "eccentricity": self.static.eccentricity,
+            "attitude_deg": math.degrees(self.static.attitude_angle),
+        }
+
+    def to_dataset(self) -> Any:
+        """xarray Dataset with dims (frequency, i, j)."""
+        import xarray as xr
+
+        coords = {
+            "frequency": ("frequency", self.frequencies / (2 * math.pi), {"units": "Hz"}),
+            "i": ["X", "Y"],
+            "j": ["X", "Y"],
+        }
+        ds = xr.Dataset(
+            {
+                "stiffness": (("frequency", "i", "j"), self.K, {"units": "N/m"}),
+                "damping": (("frequency", "i", "j"), self.C, {"units": "N s/m"}),
+            },
+            coords=coords,
+        )
+        ds.attrs.update(
+            speed_rpm=self.static.speed / RPM,
+            eccentricity=self.static.eccentricity,
+            attitude_deg=math.degrees(self.static.attitude_angle),
+        )
+        return ds
+
+
+def dynamic_compliance(static: StaticResult, loss_factor: float | None = None) -> NDArray:
+    """Complex foil compliance c_i = p_a/(C k'(θ_i)) where the steady foil is engaged, else 0."""
+    case, model = static.case, static.model
+    if case.foil is None:
+        if loss_factor:
+            raise InputError("foil damping (loss factor) asked for a case without [foil]")
+        return np.zeros(model.grid.n_theta, dtype=complex)
+    gamma = case.foil.loss_factor if loss_factor is None else loss_factor
+    if gamma < 0:
+        raise InputError(f"loss factor = {gamma!r}: must be >= 0")
+    k_b = case.foil.bump_stiffness
+    inv_k: Any = 1.0 / (k_b * (1.0 + 1j * gamma))
+    if model.actuator_stiffness is not None and model.stiffness is not None:
+        stinger = model.actuator_stiffness * (1.0 / model.stiffness - 1.0 / k_b)
+        inv_k = inv_k + stinger / model.actuator_stiffness
+    compliance = case.gas.ambient_pressure / case.bearing.clearance * inv_k
+    engaged = static.P.mean(axis=1) - 1.0 > 0.0
+    return np.where(engaged, compliance, 0.0).astype(complex)
+
+
+def force_coefficients(
+    static: StaticResult,
+    frequencies: Any,
+    *,
+    loss_factor: float | None = None,
+    workspace: Workspace | None = None,
+) -> ForceCoefficients:
+    """Stiffness and damping of the film (with the foil) at excitation frequencies ω_e.
+
+    Parameters
+    ----------
+    static
+        Static result to linearise about (equilibrium or prescribed position).
+    frequencies
+        Excitation frequencies ω_e in rad/s (> 0), scalar or array.
+    loss_factor
+        Override of the bump's loss factor γ (default: the case's).
+
+    Returns
+    -------
+    ForceCoefficients with K in N/m and C in N·s/m.
+    """
+    omega_e = np.atleast_1d(np.asarray(frequencies, dtype=float))
+    if omega_e.size == 0 or not np.all(np.isfinite(omega_e)) or np.any(omega_e <= 0):
+        raise InputError(
+            f"excitation frequency {omega_e.tolist()!r} rad/s: every frequency must be > 0"
+        )
+    if not static.converged:
+        raise InputError(f"the static point did not converge ({static.message})")
+    case, model = static.case, static.model
+    compliance = dynamic_compliance(static, loss_factor)
+    dh = _journal_columns(model)
+    w_x, w_y = (w.ravel() for w in model.grid.force_weights())
+    scale = -case.gas.ambient_pressure * case.bearing.radius**2 / case.bearing.clearance
+    ws = workspace if workspace is not None else Workspace(model.grid)
+    K = np.empty((omega_e.size, 2, 2))
+    C = np.empty((omega_e.size, 2, 2))
+    for n, w_e in enumerate(omega_e):
+        dp = pressure_response(
+            model.grid,
+            static.P,
+            static.H,
+            static.bearing_number,
+            w_e / static.speed,
+            compliance,
+            dh,
+            ws,
+        )
+        z = scale * np.array([[w_x @ dp[:, 0], w_x @ dp[:, 1]], [w_y @ dp[:, 0], w_y @ dp[:, 1]]])
+        K[n] = z.real
+        C[n] = z.imag / w_e
+    return ForceCoefficients(static, omega_e, K, C)
+
+
+def _journal_columns(model: FilmModel) -> FloatArray:
+    """∂H/∂ε_X = cos θ and ∂H/∂ε_Y = sin θ on every cell, shape (n, 2)."""
+    g = model.grid
+    cos_t = np.repeat(np.cos(g.theta)[:, None], g.n_z, axis=1).ravel()
+    sin_t = np.repeat(np.sin(g.theta)[:, None], g.n_z, axis=1).ravel()
+    return np.column_stack([cos_t, sin_t])

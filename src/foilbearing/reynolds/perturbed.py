@@ -1,0 +1,118 @@
+"""First-order (complex) perturbation of the Reynolds equation about a steady film.
+
+The semi-discrete unsteady Reynolds equation (Eq. (4) of the paper) on the
+finite-volume grid reads, cell by cell (τ = ωt, ``A = Δθ ΔZ``)::
+
+    2Λ A d(P H)/dτ = R(P, H),
+
+with ``R`` the steady residual of :mod:`foilbearing.reynolds._kernels`. For a
+small harmonic perturbation ``P = P₀ + ΔP e^{jντ}``, ``H = H₀ + ΔH e^{jντ}``
+(ν = ω_e/ω the excitation frequency ratio) this gives::
+
+    (J_P − 2jνΛA diag(H₀)) ΔP + (J_H − 2jνΛA diag(P₀)) ΔH = 0,
+
+with ``J_P = ∂R/∂P`` and ``J_H = ∂R/∂H`` the same Jacobians the static Newton
+uses. The film perturbation is the journal's part plus the foil's,
+``ΔH = ΔH_journal + S ΔP``, where ``S`` maps the pressures of a θ-row to the
+deflection of the foil there: ``S[(i,j),(i,k)] = c_i/n_z`` with the complex
+dynamic compliance ``c_i`` (zero where the foil is not engaged). At ν = 0 and
+real ``c`` this is exactly the linearisation of the static system, so static
+and dynamic results agree by construction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.sparse.linalg import splu
+
+from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.grid import Grid
+from foilbearing.reynolds.steady import Workspace
+
+__all__ = ["foil_operator", "pressure_response", "reynolds_jacobians"]
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+
+def reynolds_jacobians(
+    grid: Grid, P: FloatArray, H: FloatArray, lam: float, workspace: Workspace | None = None
+) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """``J_P = ∂R/∂P`` and ``J_H = ∂R/∂H`` at fixed film, CSR on the 5-point pattern.
+
+    Parameters
+    ----------
+    grid
+        The finite-volume grid.
+    P, H
+        Pressure p/p_a and full film h/C (foil deflection included), shape (n_theta, n_z).
+    lam
+        Bearing number Λ.
+    """
+    ws = workspace if workspace is not None else Workspace(grid)
+    p = np.ascontiguousarray(P, dtype=np.float64)
+    h = np.ascontiguousarray(H, dtype=np.float64)
+    n = grid.size
+    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.jp)
+    kern.jacobian_H(p, h, lam, grid.d_theta, grid.d_z, ws.jh)
+    j_p = sp.csr_matrix((ws.jp.copy(), ws.indices, ws.indptr), shape=(n, n))
+    j_h = sp.csr_matrix((ws.jh.copy(), ws.indices, ws.indptr), shape=(n, n))
+    return j_p, j_h
+
+
+def foil_operator(grid: Grid, compliance: ComplexArray | FloatArray) -> sp.csr_matrix:
+    """``S``: the film change of each cell per unit pressure change in its θ-row.
+
+    ``ΔH[i, j] = c_i · mean_k ΔP[i, k]``: the foil responds to the axially
+    averaged pressure (MODEL.md section 3). ``compliance`` is (n_theta,),
+    zero where the foil is not engaged (p̄ <= 0).
+    """
+    block = np.ones((grid.n_z, grid.n_z)) / grid.n_z
+    return sp.kron(sp.diags(np.asarray(compliance)), block, format="csr")
+
+
+def pressure_response(
+    grid: Grid,
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    nu: float,
+    compliance: ComplexArray | FloatArray,
+    dh_journal: FloatArray,
+    workspace: Workspace | None = None,
+) -> ComplexArray:
+    """Complex pressure perturbations ΔP for given journal film perturbations.
+
+    Parameters
+    ----------
+    grid
+        The finite-volume grid.
+    P, H
+        Steady pressure and film (foil deflection included), (n_theta, n_z).
+    lam
+        Bearing number Λ.
+    nu
+        Frequency ratio ν = ω_e/ω (≥ 0).
+    compliance
+        Complex dynamic foil compliance c_i = p_a/(C k'(θ_i)), (n_theta,), zero
+        where the foil is not engaged.
+    dh_journal
+        Film perturbations from the journal, shape (n_theta*n_z, m): one column
+        per perturbed coordinate (e.g. cos θ and sin θ for ε_X and ε_Y).
+
+    Returns
+    -------
+    ΔP, shape (n_theta*n_z, m), complex.
+    """
+    j_p, j_h = reynolds_jacobians(grid, P, H, lam, workspace)
+    area = grid.d_theta * grid.d_z
+    s_op = foil_operator(grid, compliance)
+    jw = 2j * nu * lam * area
+    p0 = sp.diags(np.ravel(P))
+    h0 = sp.diags(np.ravel(H))
+    j_film = j_h - jw * p0  # ∂/∂H of R − 2Λ A jν P H
+    system = (j_p - jw * h0) + j_film @ s_op
+    lu = splu(sp.csc_matrix(system))
+    return lu.solve(-(j_film @ dh_journal).astype(np.complex128))

@@ -1,0 +1,283 @@
+"""Linear stability of a rigid rotor on the bearing: whirl eigenvalues and onset speed.
+
+The rotor mass carried by the bearing, m, moves in X and Y under the film's
+linearised force: ``m s² + C(ω_e) s + K(ω_e) = 0`` (2 × 2). The coefficients
+depend on the whirl frequency they are taken at, so each eigenvalue is iterated
+to consistency, ``ω_e = Im s`` (MODEL.md section 4). The least stable whirl
+mode decides stability; its logarithmic decrement ``δ = −2π Re s / Im s``
+changes sign at the onset speed of instability, found by bracketing on a speed
+grid and refining with Brent's method.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from foilbearing.case import Case
+from foilbearing.coefficients import force_coefficients
+from foilbearing.errors import InputError
+from foilbearing.film import FilmModel, film_model
+from foilbearing.reynolds import Workspace
+from foilbearing.static import StaticResult, solve_equilibrium
+
+__all__ = ["OnsetResult", "WhirlMode", "onset_speed", "stability_map", "whirl_mode"]
+
+RPM = math.pi / 30.0
+
+
+@dataclass(frozen=True)
+class WhirlMode:
+    """The least stable whirl mode at one speed.
+
+    Attributes
+    ----------
+    speed
+        Rotor speed ω, rad/s.
+    eigenvalue
+        s = σ + jω_d, 1/s (ω_d > 0).
+    log_decrement
+        δ = −2πσ/ω_d (> 0 stable).
+    whirl_ratio
+        ω_d/ω.
+    K, C
+        Coefficients at ω_e = ω_d (N/m, N·s/m).
+    iterations
+        Frequency iterations to consistency.
+    """
+
+    speed: float
+    eigenvalue: complex
+    log_decrement: float
+    whirl_ratio: float
+    K: np.ndarray
+    C: np.ndarray
+    iterations: int
+    static: StaticResult
+
+    @property
+    def whirl_frequency(self) -> float:
+        """ω_d in rad/s."""
+        return self.eigenvalue.imag
+
+
+def _least_stable(mass: float, K: np.ndarray, C: np.ndarray, near: float) -> complex:
+    """Eigenvalue with Im > 0 of m s² + C s + K = 0 that is least stable (ties: nearest ``near``)."""
+    a = np.zeros((4, 4))
+    a[0:2, 2:4] = np.eye(2)
+    a[2:4, 0:2] = -K / mass
+    a[2:4, 2:4] = -C / mass
+    eig = np.linalg.eigvals(a)
+    cand = eig[eig.imag > 1e-9 * max(near, 1.0)]
+    if cand.size == 0:
+        # Over-damped: no oscillating mode; report the slowest real one.
+        return complex(eig[np.argmax(eig.real)])
+    return complex(cand[np.argmax(cand.real - 1e-12 * np.abs(cand.imag - near))])
+
+
+def whirl_mode(
+    static: StaticResult,
+    mass: float,
+    *,
+    workspace: Workspace | None = None,
+    tol: float = 1e-6,
+    max_iter: int = 40,
+) -> WhirlMode:
+    """Least stable whirl mode at a static point, with the coefficients at its own frequency."""
+    omega = static.speed
+    ws = workspace or Workspace(static.model.grid)
+    w_e = 0.5 * omega  # start from half-frequency whirl
+    s = complex(0.0, w_e)
+    fc = None
+    for it in range(1, max_iter + 1):
+        fc = force_coefficients(static, w_e, workspace=ws)
+        s = _least_stable(mass, fc.K[0], fc.C[0], w_e)
+        new = abs(s.imag) if s.imag > 0 else w_e
+        if abs(new - w_e) <= tol * max(w_e, 1e-12):
+            w_e = new
+            break
+        w_e = 0.5 * (w_e + new) if it > 10 else new  # damp a slow two-cycle
+    assert fc is not None
+    wd = max(s.imag, 1e-300)
+    return WhirlMode(
+        speed=omega,
+        eigenvalue=s,
+        log_decrement=-2.0 * math.pi * s.real / wd,
+        whirl_ratio=s.imag / omega,
+        K=fc.K[0],
+        C=fc.C[0],
+        iterations=it,
+        static=static,
+    )
+
+
+@dataclass(frozen=True)
+class OnsetResult:
+    """Onset speed of instability for one bearing configuration."""
+
+    onset_speed: float | None  # rad/s, None if stable over the range
+    whirl_ratio: float | None
+    whirl_frequency: float | None  # rad/s
+    speeds: np.ndarray  # rad/s, the scan
+    log_decrement: np.ndarray
+    whirl_ratios: np.ndarray
+    message: str
+
+    def headline(self) -> dict[str, Any]:
+        """Unit-named keys (``--json``)."""
+        onset = self.onset_speed
+        return {
+            "onset_speed_rpm": None if onset is None else onset / RPM,
+            "whirl_frequency_Hz": (
+                None if self.whirl_frequency is None else self.whirl_frequency / (2 * math.pi)
+            ),
+            "whirl_ratio": self.whirl_ratio,
+            "message": self.message,
+        }
+
+
+class _Scanner:
+    """Equilibria and whirl modes along increasing speed, each started from the last."""
+
+    def __init__(self, case: Case, model: FilmModel) -> None:
+        self.case, self.model = case, model
+        self.ws = Workspace(model.grid)
+        self.start: tuple[float, float, Any] | None = None
+
+    def mode(self, speed: float) -> WhirlMode:
+        st = solve_equilibrium(self.case, speed=speed, model=self.model, start=self.start)
+        if not st.converged:
+            st = solve_equilibrium(self.case, speed=speed, model=self.model)
+        if not st.converged:
+            raise InputError(
+                f"no static equilibrium at {speed / RPM:.0f} rpm ({st.message}); the linear "
+                "stability analysis needs one: narrow the speed range"
+            )
+        self.start = (st.eps_x, st.eps_y, st.P)
+        return whirl_mode(st, self.case.rotor.mass, workspace=self.ws)
+
+
+def onset_speed(
+    case: Case,
+    speeds: Sequence[float] | None = None,
+    *,
+    model: FilmModel | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> OnsetResult:
+    """Lowest speed at which the least stable whirl mode's log decrement becomes negative.
+
+    Parameters
+    ----------
+    case
+        Bearing case (rotor mass per bearing from ``[rotor]``).
+    speeds
+        Increasing scan speeds, rad/s (default 5 to 150 krpm in 5 krpm steps).
+    model
+        Film model of the case (built if omitted).
+    """
+    if speeds is None:
+        speeds = [rpm * RPM for rpm in range(5_000, 150_001, 5_000)]
+    speeds_arr = np.asarray(sorted(speeds), dtype=float)
+    if speeds_arr.size < 2 or speeds_arr[0] <= 0:
+        raise InputError("the onset search needs at least two speeds > 0")
+    scan = _Scanner(case, model or film_model(case))
+    dec, ratio = [], []
+    prev_mode = None
+    for k, w in enumerate(speeds_arr):
+        mode = scan.mode(float(w))
+        dec.append(mode.log_decrement)
+        ratio.append(mode.whirl_ratio)
+        if progress is not None:
+            progress(
+                f"{w / RPM:8.0f} rpm: log dec {mode.log_decrement:+.4f}, "
+                f"whirl ratio {mode.whirl_ratio:.3f}"
+            )
+        if mode.log_decrement < 0.0:
+            if k == 0:
+                return OnsetResult(
+                    float(w),
+                    mode.whirl_ratio,
+                    mode.whirl_frequency,
+                    speeds_arr[:1],
+                    np.array(dec),
+                    np.array(ratio),
+                    "unstable already at the lowest speed of the scan",
+                )
+            assert prev_mode is not None
+            lo_start = prev_mode.static
+            lo, hi = float(speeds_arr[k - 1]), float(w)
+
+            def f(x: float, lo_start: StaticResult = lo_start) -> float:
+                scan.start = (lo_start.eps_x, lo_start.eps_y, lo_start.P)
+                return scan.mode(x).log_decrement
+
+            onset = brentq(f, lo, hi, xtol=1e-4 * hi, rtol=1e-6)
+            scan.start = (lo_start.eps_x, lo_start.eps_y, lo_start.P)
+            at = scan.mode(onset)
+            return OnsetResult(
+                onset,
+                at.whirl_ratio,
+                at.whirl_frequency,
+                speeds_arr[: k + 1],
+                np.array(dec),
+                np.array(ratio),
+                f"onset between {lo / RPM:.0f} and {hi / RPM:.0f} rpm, refined by Brent's method",
+            )
+        prev_mode = mode
+    return OnsetResult(
+        None,
+        None,
+        None,
+        speeds_arr,
+        np.array(dec),
+        np.array(ratio),
+        f"stable up to {speeds_arr[-1] / RPM:.0f} rpm",
+    )
+
+
+def stability_map(
+    case: Case,
+    speeds: Sequence[float],
+    voltages: Sequence[float],
+    *,
+    shimmed: bool = False,
+    progress: Callable[[str], None] | None = None,
+) -> Any:
+    """Log decrement and whirl ratio over speed × voltage (xarray Dataset)."""
+    import xarray as xr
+
+    if case.actuators is None:
+        raise InputError("a stability map over voltages needs a case with [actuators]")
+    speeds = sorted(speeds)
+    dec = np.full((len(voltages), len(speeds)), np.nan)
+    ratio = np.full_like(dec, np.nan)
+    for v, volt in enumerate(voltages):
+        c = case.with_voltages(float(volt))
+        if shimmed:
+            c = c.shimmed()
+        scan = _Scanner(c, film_model(c))
+        for s, w in enumerate(speeds):
+            try:
+                mode = scan.mode(float(w))
+            except InputError:
+                scan.start = None
+                continue
+            dec[v, s], ratio[v, s] = mode.log_decrement, mode.whirl_ratio
+        if progress is not None:
+            progress(f"stability map: {volt:g} V done")
+    return xr.Dataset(
+        {
+            "log_decrement": (("voltage", "speed"), dec),
+            "whirl_ratio": (("voltage", "speed"), ratio),
+        },
+        coords={
+            "voltage": ("voltage", np.asarray(voltages, float), {"units": "V"}),
+            "speed": ("speed", np.asarray(speeds) / RPM / 1e3, {"units": "krpm"}),
+        },
+        attrs={"bearing": "shimmed" if shimmed else "C-GFB", "rotor_mass_kg": case.rotor.mass},
+    )

@@ -1,0 +1,86 @@
+"""Dynamic force coefficients: the perturbed Reynolds equation checked against independent results."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from foilbearing.case import default_case
+from foilbearing.coefficients import force_coefficients
+from foilbearing.errors import InputError
+from foilbearing.static import film_at_position, solve_equilibrium
+
+RPM = math.pi / 30.0
+
+
+def test_zero_frequency_stiffness_equals_static_derivative() -> None:
+    # Static and linear analyses share one discretisation: as ν -> 0 (γ = 0, so the foil
+    # is purely elastic) K must equal the finite-difference derivative of the static force.
+    case = default_case().with_voltages(150.0)
+    assert case.foil is not None
+    case = replace(case, foil=replace(case.foil, loss_factor=0.0))
+    st = solve_equilibrium(case, speed=50e3 * RPM)
+    k = force_coefficients(st, 1e-6 * st.speed).K[0]
+    d, c = 1e-5, case.bearing.clearance
+    k_fd = np.zeros((2, 2))
+    for j, (dx, dy) in enumerate(((d, 0.0), (0.0, d))):
+        fp = film_at_position(case, st.eps_x + dx, st.eps_y + dy, speed=st.speed).force
+        fm = film_at_position(case, st.eps_x - dx, st.eps_y - dy, speed=st.speed).force
+        k_fd[:, j] = -(np.array(fp) - np.array(fm)) / (2 * d * c)
+    np.testing.assert_allclose(k, k_fd, rtol=1e-2, atol=1e-2 * np.abs(k_fd).max())
+
+
+def test_small_eccentricity_closed_form() -> None:
+    # Rigid bearing, ε -> 0, Λ -> 0 (incompressible limit): with H = 1 + ε cos θ the first
+    # harmonic solves ∇²p = Λ ∂H/∂θ + 2Λ ∂H/∂τ exactly, p = Re[g(Z) e^{jθ}],
+    # g'' − g = jΛε + 2Λ ε', g(±Z_e) = 0, which gives (G = Z_e − tanh Z_e)
+    #   K_XY = −K_YX = 2πΛG p_a R²/C,  C_XX = C_YY = 4πΛG p_a R²/(C ω),  K_XX = K_YY = 0,
+    # and the whirl ratio K_XY/(ω C_XX) = 1/2. Tolerance 1 %: grid 64 x 16 and Λ = 0.014.
+    base = default_case()
+    rigid = replace(base, foil=None, actuators=None, grid=replace(base.grid, n_theta=64, n_z=16))
+    speed = 3000 * RPM
+    st = film_at_position(rigid, 0.01, 0.0, speed=speed)
+    lam = st.bearing_number
+    ze = rigid.bearing.length / (2 * rigid.bearing.radius)
+    g = ze - math.tanh(ze)
+    pa, r, c = rigid.gas.ambient_pressure, rigid.bearing.radius, rigid.bearing.clearance
+    k_c = pa * r**2 / c * 2 * math.pi * lam * g
+    c_d = pa * r**2 / (c * speed) * 4 * math.pi * lam * g
+    fc = force_coefficients(st, 0.1 * speed)
+    np.testing.assert_allclose(fc.K[0] / k_c, [[0, 1], [-1, 0]], atol=0.01)
+    np.testing.assert_allclose(fc.C[0] / c_d, [[1, 0], [0, 1]], atol=0.01)
+
+
+def test_concentric_symmetry() -> None:
+    # Zero eccentricity, no preload: the bearing is isotropic.
+    case = replace(default_case(), actuators=None)
+    st = film_at_position(case, 0.0, 0.0, speed=60e3 * RPM)
+    fc = force_coefficients(st, [0.3 * st.speed, 1.0 * st.speed])
+    for k, cc in zip(fc.K, fc.C, strict=True):
+        scale = np.abs(k).max()
+        assert k[0, 0] == pytest.approx(k[1, 1], abs=1e-9 * scale)
+        assert k[0, 1] == pytest.approx(-k[1, 0], abs=1e-9 * scale)
+        assert cc[0, 0] == pytest.approx(cc[1, 1], abs=1e-9 * np.abs(cc).max())
+
+
+def test_loss_factor_adds_direct_damping() -> None:
+    st = solve_equilibrium(default_case().with_voltages(100.0), speed=40e3 * RPM)
+    w = 0.5 * st.speed
+    dampings = [force_coefficients(st, w, loss_factor=g).C[0] for g in (0.0, 0.1, 0.2)]
+    for i in range(2):
+        assert dampings[0][i, i] < dampings[1][i, i] < dampings[2][i, i]
+
+
+def test_bad_inputs() -> None:
+    st = solve_equilibrium(default_case(), speed=40e3 * RPM)
+    with pytest.raises(InputError, match="frequency"):
+        force_coefficients(st, 0.0)
+    with pytest.raises(InputError, match="frequency"):
+        force_coefficients(st, [-10.0])
+    rigid = replace(default_case(), foil=None, actuators=None)
+    st_r = solve_equilibrium(rigid, speed=40e3 * RPM)
+    with pytest.raises(InputError, match="without \\[foil\\]"):
+        force_coefficients(st_r, 100.0, loss_factor=0.1)

@@ -1,0 +1,81 @@
+"""Linear stability: whirl eigenvalues with frequency-consistent coefficients and onset speeds."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from foilbearing.case import default_case
+from foilbearing.coefficients import force_coefficients
+from foilbearing.stability import onset_speed, stability_map, whirl_mode
+from foilbearing.static import solve_equilibrium
+
+RPM = math.pi / 30.0
+SCAN = [rpm * RPM for rpm in range(5_000, 60_001, 5_000)]
+
+
+def test_whirl_eigenvalue_solves_the_characteristic_equation() -> None:
+    case = default_case().with_voltages(150.0)
+    st = solve_equilibrium(case, speed=30e3 * RPM)
+    mode = whirl_mode(st, case.rotor.mass)
+    s = mode.eigenvalue
+    fc = force_coefficients(st, s.imag)  # coefficients at the mode's own frequency
+    m = case.rotor.mass
+    det = np.linalg.det(m * s**2 * np.eye(2) + fc.C[0] * s + fc.K[0])
+    scale = np.linalg.norm(fc.K[0]) ** 2
+    assert abs(det) < 1e-6 * scale
+    assert mode.whirl_ratio == s.imag / st.speed
+
+
+def test_heavier_rotor_goes_unstable_earlier() -> None:
+    # A rigid rotor on gas bearings: the threshold speed falls as the mass rises.
+    case = default_case().with_voltages(150.0)
+    onsets = []
+    for mass in (0.6, 0.897, 1.5):
+        c = replace(case, rotor=replace(case.rotor, mass=mass))
+        res = onset_speed(c, SCAN)
+        assert res.onset_speed is not None
+        onsets.append(res.onset_speed)
+    assert onsets[0] > onsets[1] > onsets[2]
+
+
+def test_foil_damping_raises_onset_speed() -> None:
+    case = default_case().with_voltages(150.0)
+    assert case.foil is not None
+    low = replace(case, foil=replace(case.foil, loss_factor=0.05))
+    high = replace(case, foil=replace(case.foil, loss_factor=0.2))
+    a, b = onset_speed(low, SCAN), onset_speed(high, SCAN)
+    assert a.onset_speed is not None and b.onset_speed is not None
+    assert b.onset_speed > a.onset_speed
+
+
+def test_onset_is_where_log_decrement_changes_sign() -> None:
+    case = default_case().with_voltages(100.0)
+    res = onset_speed(case, SCAN)
+    assert res.onset_speed is not None
+    for factor, sign in ((0.97, 1.0), (1.03, -1.0)):
+        st = solve_equilibrium(case, speed=factor * res.onset_speed)
+        assert sign * whirl_mode(st, case.rotor.mass).log_decrement > 0
+
+
+def test_preload_voltage_delays_onset() -> None:
+    # Higher preload (100 -> 150 V) stiffens the film and delays the onset; the shimmed
+    # GFB (rigid preload) is more stable than the C-GFB at the same base preload.
+    case = default_case()
+    o100 = onset_speed(case.with_voltages(100.0), SCAN).onset_speed
+    o150 = onset_speed(case.with_voltages(150.0), SCAN).onset_speed
+    shim = onset_speed(case.with_voltages(150.0).shimmed(), SCAN).onset_speed
+    assert o100 is not None and o150 is not None and shim is not None
+    assert o150 > o100
+    assert shim > o150
+
+
+def test_stability_map_dataset() -> None:
+    ds = stability_map(default_case(), [10e3 * RPM, 40e3 * RPM], [0.0, 150.0])
+    assert ds.log_decrement.shape == (2, 2)
+    assert np.all(np.isfinite(ds.log_decrement))
+    # Both bearings are stable at 10 krpm and unstable at 40 krpm.
+    assert np.all(ds.log_decrement.sel(speed=10.0) > 0)
+    assert np.all(ds.log_decrement.sel(speed=40.0) < 0)
