@@ -4,8 +4,9 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+ROSS_VENV := .venv-ross
 
-.PHONY: run test lint bench clean
+.PHONY: run test test-ross lint bench clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -19,6 +20,11 @@ run: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
+# The ROSS export needs ROSS >= 3.0, hence Python >= 3.13: a second venv (scripts/setup_ross_env.sh).
+test-ross:
+	bash scripts/setup_ross_env.sh
+	$(ROSS_VENV)/bin/python -m pytest -q tests/test_ross.py
+
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks scripts
 	$(BIN)/ruff format --check src tests benchmarks scripts
@@ -28,4 +34,4 @@ bench: $(STAMP)
 	for f in benchmarks/bench_*.py; do $(BIN)/python $$f || exit 1; done
 
 clean:
-	rm -rf $(VENV) out .pytest_cache .mypy_cache
+	rm -rf $(VENV) $(ROSS_VENV) out .pytest_cache .mypy_cache

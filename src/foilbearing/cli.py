@@ -150,6 +150,10 @@ def _parser() -> argparse.ArgumentParser:
     stab.add_argument("--json", action="store_true", help="print one JSON object")
     stab.set_defaults(func=_cmd_stability)
 
+    from foilbearing.cli_orbit import register as register_orbit
+
+    register_orbit(sub)
+
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
     _add_case_arg(study)
     study.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")

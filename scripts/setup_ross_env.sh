@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Create .venv-ross (Python 3.13) with foilbearing[ross,dev] installed, for tests/test_ross.py.
+#
+# ROSS >= 3.0 (ross-rotordynamics) needs Python >= 3.13, newer than the main venv's.
+# Idempotent: a stamp file records the install; it is redone when pyproject.toml is newer.
+# Python 3.13 is looked for, in order, in: $PYTHON313, `pyenv prefix 3.13*`,
+# /root/.pyenv/versions/3.13.*/bin/python3.13, and python3.13 on PATH.
+#
+# Usage: bash scripts/setup_ross_env.sh        (from anywhere; works in the repository root)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+VENV=.venv-ross
+STAMP="$VENV/.installed"
+
+say() { printf 'setup_ross_env: %s\n' "$*"; }
+
+# The installed version, read from the package metadata: importing ross prints CoolProp noise.
+ross_version() {
+    "$VENV/bin/python" -c 'from importlib.metadata import version as v; print("ross-rotordynamics", v("ross-rotordynamics"))'
+}
+
+is_py313() {
+    [ -n "${1:-}" ] && [ -x "$1" ] &&
+        "$1" -c 'import sys; sys.exit(0 if sys.version_info >= (3, 13) else 1)' 2>/dev/null
+}
+
+find_python() {
+    local cand
+    if is_py313 "${PYTHON313:-}"; then
+        echo "$PYTHON313"
+        return 0
+    fi
+    if command -v pyenv >/dev/null 2>&1; then
+        for v in $(pyenv versions --bare 2>/dev/null | grep -E '^3\.13(\.[0-9]+)?$' | sort -rV); do
+            cand="$(pyenv prefix "$v" 2>/dev/null)/bin/python3.13"
+            if is_py313 "$cand"; then
+                echo "$cand"
+                return 0
+            fi
+        done
+    fi
+    for cand in /root/.pyenv/versions/3.13*/bin/python3.13 "${HOME:-/root}"/.pyenv/versions/3.13*/bin/python3.13; do
+        if is_py313 "$cand"; then
+            echo "$cand"
+            return 0
+        fi
+    done
+    cand="$(command -v python3.13 2>/dev/null || true)"
+    if is_py313 "$cand"; then
+        echo "$cand"
+        return 0
+    fi
+    return 1
+}
+
+if [ -f "$STAMP" ] && [ "$STAMP" -nt pyproject.toml ] && is_py313 "$VENV/bin/python"; then
+    say "$VENV is up to date ($(ross_version))"
+    exit 0
+fi
+
+if ! is_py313 "$VENV/bin/python"; then
+    if ! PY="$(find_python)"; then
+        say "no Python 3.13 found (ROSS >= 3.0 needs Python >= 3.13)." >&2
+        say "looked in \$PYTHON313, pyenv, ~/.pyenv/versions/3.13*, and python3.13 on PATH;" >&2
+        say "install one (e.g. 'pyenv install 3.13') or set PYTHON313=/path/to/python3.13." >&2
+        exit 1
+    fi
+    rm -rf "$VENV"
+    say "creating $VENV with $PY ($("$PY" --version))"
+    "$PY" -m venv "$VENV"
+fi
+
+say "installing -e '.[ross,dev]' into $VENV (first time: a few minutes)"
+"$VENV/bin/python" -m pip install --quiet --upgrade pip
+"$VENV/bin/python" -m pip install --quiet -e '.[ross,dev]'
+touch "$STAMP"
+say "done: $(ross_version) in $VENV"

@@ -1,0 +1,221 @@
+"""``foilbearing orbit``: a speed-up run with voltage programs or the closed-loop controller.
+
+Registered on the main parser by :func:`register`. The run's specification (case
+file, programs, settings) is stored in the NetCDF output so that
+``--resume FILE.nc`` continues a stopped run from its checkpoint.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from foilbearing.errors import InputError
+
+__all__ = ["register", "run_spec_from_args"]
+
+RPM = math.pi / 30.0
+
+
+def register(sub: Any) -> None:
+    """Add the ``orbit`` subcommand to the main parser's subparsers."""
+    p = sub.add_parser("orbit", help="nonlinear orbit during a speed-up (Figs. 13-15)")
+    p.add_argument(
+        "case",
+        nargs="?",
+        type=Path,
+        default=None,
+        help="case file (TOML); default: the paper's C-GFB",
+    )
+    p.add_argument(
+        "--speed-ramp",
+        default="3000rpm:90000rpm:500rad/s**2",
+        help="START:STOP:ACCELERATION (default the paper's 3000rpm:90000rpm:500rad/s**2)",
+    )
+    p.add_argument(
+        "--speed",
+        default=None,
+        help="constant speed instead of a ramp, e.g. 20000rpm (with --duration)",
+    )
+    p.add_argument("--duration", default="1 s", help="duration at constant --speed (default 1 s)")
+    p.add_argument(
+        "--voltage-ramp",
+        default=None,
+        metavar="T0:T1:V",
+        help="ramp all actuators from their case voltage to V between T0 and T1, "
+        "e.g. 6.0s:6.5s:150V (the paper's control)",
+    )
+    p.add_argument(
+        "--controller",
+        default=None,
+        metavar="K=V,...",
+        help="closed loop: threshold=2um,target=150V,slew=1000V/s,window=0.1s",
+    )
+    p.add_argument("--stop-time", default=None, help="end the run at this simulated time, e.g. 5s")
+    p.add_argument("--steps-per-rev", type=int, default=16, help="time steps per revolution")
+    p.add_argument("--sample-rate", default="10000Hz", help="output sampling rate (default 10 kHz)")
+    p.add_argument("--out", type=Path, help="write the time series (NetCDF); checkpoints too")
+    p.add_argument("--resume", type=Path, metavar="FILE.nc", help="continue a stopped run")
+    p.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=_cmd_orbit)
+
+
+def run_spec_from_args(args: argparse.Namespace) -> dict[str, Any]:
+    """The run's specification as plain strings (stored with the results for --resume)."""
+    return {
+        "case": None if args.case is None else str(args.case),
+        "speed_ramp": args.speed_ramp,
+        "speed": args.speed,
+        "duration": args.duration,
+        "voltage_ramp": args.voltage_ramp,
+        "controller": args.controller,
+        "stop_time": args.stop_time,
+        "steps_per_rev": args.steps_per_rev,
+        "sample_rate": args.sample_rate,
+    }
+
+
+def _q(text: str, kind: str, field: str) -> float:
+    from foilbearing.units import parse_quantity
+
+    return parse_quantity(
+        text.replace("s2", "s**2") if kind == "angular_acceleration" else text, kind, field=field
+    )
+
+
+def _build(spec: dict[str, Any]) -> tuple[Any, ...]:
+    from foilbearing.case import default_case_path, load_case
+    from foilbearing.control import (
+        SubsyncController,
+        constant_speed,
+        linear_ramp,
+        voltage_ramp,
+    )
+    from foilbearing.orbit import OrbitSettings
+
+    case = load_case(spec["case"] or default_case_path())
+    if spec["speed"] is not None:
+        profile = constant_speed(
+            _q(spec["speed"], "speed", "--speed"), _q(spec["duration"], "time", "--duration")
+        )
+    else:
+        parts = spec["speed_ramp"].split(":")
+        if len(parts) != 3:
+            raise InputError(
+                f"--speed-ramp {spec['speed_ramp']!r}: expected START:STOP:ACCELERATION"
+            )
+        profile = linear_ramp(
+            _q(parts[0], "speed", "--speed-ramp START"),
+            _q(parts[1], "speed", "--speed-ramp STOP"),
+            _q(parts[2], "angular_acceleration", "--speed-ramp ACCELERATION"),
+        )
+    program: Any = None
+    if spec["voltage_ramp"] is not None and spec["controller"] is not None:
+        raise InputError("--voltage-ramp and --controller: choose one")
+    if spec["voltage_ramp"] is not None:
+        parts = spec["voltage_ramp"].split(":")
+        if len(parts) != 3:
+            raise InputError(
+                f"--voltage-ramp {spec['voltage_ramp']!r}: expected T0:T1:V, e.g. 6.0s:6.5s:150V"
+            )
+        if case.actuators is None:
+            raise InputError("--voltage-ramp needs a case with [actuators]")
+        program = voltage_ramp(
+            _q(parts[0], "time", "--voltage-ramp T0"),
+            _q(parts[1], "time", "--voltage-ramp T1"),
+            _q(parts[2], "voltage", "--voltage-ramp V"),
+            initial=np.asarray(case.actuators.voltages),
+        )
+    if spec["controller"] is not None:
+        kwargs: dict[str, Any] = dict(_controller_args(spec["controller"]))
+        program = SubsyncController(**kwargs)
+    settings = OrbitSettings(
+        steps_per_rev=int(spec["steps_per_rev"]),
+        sample_rate=_q(spec["sample_rate"], "frequency", "--sample-rate"),
+    )
+    stop = None if spec["stop_time"] is None else _q(spec["stop_time"], "time", "--stop-time")
+    return case, profile, program, settings, stop
+
+
+def _controller_args(text: str) -> dict[str, float]:
+    kinds = {
+        "threshold": ("length", "threshold"),
+        "target": ("voltage", "target"),
+        "slew": ("slew", "slew_rate"),
+        "window": ("time", "window"),
+        "period": ("time", "period"),
+        "initial": ("voltage", "initial"),
+    }
+    out: dict[str, float] = {}
+    for item in filter(None, (s.strip() for s in text.split(","))):
+        key, _, value = item.partition("=")
+        if key not in kinds or not value:
+            raise InputError(
+                f"--controller {item!r}: expected KEY=VALUE with KEY one of " + ", ".join(kinds)
+            )
+        kind, name = kinds[key]
+        if kind == "slew":
+            from foilbearing.units import ureg
+
+            try:
+                out[name] = float(ureg.Quantity(value).to("V/s").magnitude)
+            except Exception:
+                raise InputError(
+                    f"--controller slew={value!r}: expected a rate like 1000V/s"
+                ) from None
+        else:
+            out[name] = _q(value, kind, f"--controller {key}")
+    return out
+
+
+def _cmd_orbit(args: argparse.Namespace) -> int:
+    from foilbearing.io import write_with
+    from foilbearing.orbit import simulate
+    from foilbearing.orbit_analysis import analyse_orbit, write_orbit_figures
+    from foilbearing.orbit_io import load_orbit, to_netcdf
+
+    resume = None
+    if args.resume is not None:
+        resume, spec = load_orbit(args.resume)
+        spec["stop_time"] = args.stop_time  # a resumed run goes on to the end unless told
+        out_path = args.out or args.resume
+    else:
+        spec = run_spec_from_args(args)
+        out_path = args.out
+    case, profile, program, settings, stop = _build(spec)
+
+    def save(result: Any) -> None:
+        if out_path is not None:
+            write_with(out_path, lambda tmp: to_netcdf(result, spec, tmp))
+
+    result = simulate(
+        case,
+        profile,
+        program,
+        settings,
+        progress=not args.json,
+        stop_time=stop,
+        resume=resume,
+        checkpoint=save if out_path is not None else None,
+    )
+    save(result)
+    analysis = analyse_orbit(result)
+    out = analysis.headline(result)
+    if out_path is not None:
+        out["netcdf"] = str(out_path)
+    if args.plot is not None:
+        out["figures"] = [str(p) for p in write_orbit_figures(result, analysis, args.plot)]
+    if args.json:
+        print(json.dumps(out, indent=2))
+    else:
+        print(result.message, file=sys.stderr)
+        for key, value in out.items():
+            print(f"  {key:<28} {value}")
+    return 0 if result.status in ("completed", "stopped", "contact") else 3

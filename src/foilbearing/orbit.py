@@ -1,0 +1,644 @@
+"""Nonlinear orbit of the journal during a speed-up, with the actuator voltage changed on the run.
+
+The semi-discrete system of :mod:`foilbearing.reynolds.transient` (film, foil,
+journal; MODEL.md section 5) is integrated by a variable-step BDF2 in
+physical time with a modified Newton iteration: the sparse Jacobian is
+factorised once and reused over many steps, refreshed only when the Newton
+iteration slows down. The time step is a fixed fraction of the rotation period
+(``steps_per_rev``), so it shrinks as the rotor speeds up. The run starts from
+the static equilibrium without imbalance at the initial speed and voltages
+(the paper's procedure), then applies the imbalance. It stops cleanly at
+contact (minimum film below ``contact_film`` × C), on Ctrl-C or at the end of
+the speed profile, and keeps every sample computed until then.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from foilbearing.case import Case
+from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
+from foilbearing.errors import InputError
+from foilbearing.film import film_model
+from foilbearing.reynolds.transient import Inputs, TransientSystem
+from foilbearing.static import solve_equilibrium
+from foilbearing.structure import base_preload, preload_shape
+
+__all__ = ["OrbitResult", "OrbitSettings", "OrbitSimulation", "simulate"]
+
+FloatArray = NDArray[np.float64]
+RPM = math.pi / 30.0
+
+
+@dataclass(frozen=True)
+class OrbitSettings:
+    """Integrator and output settings (safe defaults).
+
+    Attributes
+    ----------
+    steps_per_rev
+        Time steps per rotor revolution (Δt = 2π/(ω · steps_per_rev)).
+    max_step
+        Largest time step, s.
+    sample_rate
+        Output sampling rate, Hz (uniform samples, linear interpolation between steps).
+    contact_film
+        The run stops when the minimum film falls below this fraction of C.
+    newton_tol
+        Convergence of the Newton update in the weighted max-norm (1 = tolerance met).
+    rtol, atol_pressure, atol_position
+        Relative and absolute tolerances of the weighted norm (P; ε and U in units of C).
+    max_newton
+        Newton iterations per attempt before the Jacobian is refreshed.
+    """
+
+    steps_per_rev: int = 16
+    max_step: float = 1e-3
+    sample_rate: float = 10_000.0
+    contact_film: float = 0.02
+    newton_tol: float = 1.0
+    rtol: float = 1e-4
+    atol_pressure: float = 1e-5
+    atol_position: float = 1e-5
+    max_newton: int = 6
+
+    def check(self, max_speed: float) -> None:
+        """Errors before any work for settings that cannot resolve the synchronous frequency."""
+        f_sync = max_speed / (2 * math.pi)
+        if self.steps_per_rev < 8:
+            raise InputError(
+                f"steps_per_rev = {self.steps_per_rev}: at least 8 resolve the 1X motion"
+            )
+        if self.sample_rate < 4.0 * f_sync:
+            raise InputError(
+                f"sample_rate = {self.sample_rate:g} Hz cannot resolve the synchronous frequency "
+                f"{f_sync:.0f} Hz at the top speed: use at least {4 * f_sync:.0f} Hz"
+            )
+        if not self.max_step > 0:
+            raise InputError(f"max_step = {self.max_step!r} s: must be > 0")
+        if not 0.0 < self.contact_film < 1.0:
+            raise InputError(f"contact_film = {self.contact_film!r}: a fraction of C in (0, 1)")
+
+
+@dataclass
+class OrbitResult:
+    """Time series of a run (SI), its settings and how it ended.
+
+    Attributes
+    ----------
+    time, e_x, e_y, speed, phase, min_film
+        Uniform samples (s, m, m, rad/s, rad, m).
+    voltages
+        Applied voltage per actuator, V, shape (n_samples, n_actuators).
+    status
+        "completed" (end of the speed profile), "stopped" (at ``stop_time``),
+        "contact", "interrupted" or "failed".
+    message
+        How the run ended (contact time, speed and angle; what failed).
+    """
+
+    case: Case
+    settings: OrbitSettings
+    time: FloatArray
+    e_x: FloatArray
+    e_y: FloatArray
+    speed: FloatArray
+    phase: FloatArray
+    min_film: FloatArray
+    voltages: FloatArray
+    status: str
+    message: str
+    wall_time: float
+    steps: int
+    factorizations: int
+    newton_iterations: int
+    contact: dict[str, float] | None = None
+    checkpoint: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    def to_dataset(self) -> Any:
+        """The run as an xarray Dataset (time series, settings, status, checkpoint)."""
+        import xarray as xr
+
+        n_act = self.voltages.shape[1] if self.voltages.ndim == 2 else 0
+        ds = xr.Dataset(
+            {
+                "e_x": ("time", self.e_x * 1e6, {"units": "um", "long_name": "journal X (load)"}),
+                "e_y": ("time", self.e_y * 1e6, {"units": "um", "long_name": "journal Y"}),
+                "speed": ("time", self.speed / RPM, {"units": "rpm"}),
+                "phase": ("time", self.phase, {"units": "rad", "long_name": "rotation angle"}),
+                "min_film": ("time", self.min_film * 1e6, {"units": "um"}),
+                "voltage": (("time", "actuator"), self.voltages.reshape(-1, n_act), {"units": "V"}),
+            },
+            coords={"time": ("time", self.time, {"units": "s"})},
+        )
+        s = self.settings
+        ds.attrs.update(
+            status=self.status,
+            message=self.message,
+            wall_time_s=self.wall_time,
+            steps=self.steps,
+            factorizations=self.factorizations,
+            newton_iterations=self.newton_iterations,
+            steps_per_rev=s.steps_per_rev,
+            max_step_s=s.max_step,
+            sample_rate_Hz=s.sample_rate,
+            contact_film=s.contact_film,
+            clearance_um=self.case.bearing.clearance * 1e6,
+            case_title=self.case.title,
+            imbalance_g_mm=self.case.rotor.imbalance * 1e6,
+            rotor_mass_kg=self.case.rotor.mass,
+        )
+        if self.contact:
+            for k, v in self.contact.items():
+                ds.attrs[f"contact_{k}"] = v
+        for k, v in self.checkpoint.items():
+            ds[f"checkpoint_{k}"] = (f"checkpoint_{k}_dim", np.atleast_1d(np.asarray(v, float)))
+        return ds
+
+
+class OrbitSimulation:
+    """One run: the system, the programs, the stepper state and the output buffers."""
+
+    def __init__(
+        self,
+        case: Case,
+        speed: SpeedProfile,
+        voltage: VoltageSchedule | SubsyncController | None = None,
+        settings: OrbitSettings | None = None,
+    ) -> None:
+        self.case, self.profile = case, speed
+        self.settings = settings or OrbitSettings()
+        self.settings.check(float(np.max(speed.speeds)))
+        act = case.actuators
+        self.n_act = 0 if act is None else len(act.angles)
+        if voltage is not None:
+            if act is None:
+                raise InputError("a voltage program needs a case with [actuators]")
+            voltage.check(act.max_voltage, self.n_act)
+        self.voltage = voltage
+        self.model = film_model(case)
+        g = self.model.grid
+        b, gas = case.bearing, case.gas
+        c_total = self.model.compliance
+        if case.foil is not None:
+            c_bump = np.full(
+                g.n_theta, gas.ambient_pressure / (b.clearance * case.foil.bump_stiffness)
+            )
+            gamma = case.foil.loss_factor
+        else:
+            c_bump, gamma = np.zeros(g.n_theta), 0.0
+        self.system = TransientSystem(
+            g,
+            sigma=12.0 * gas.viscosity * b.radius**2 / (gas.ambient_pressure * b.clearance**2),
+            c_act=np.maximum(c_total - c_bump, 0.0),
+            c_bump=c_bump,
+            loss_factor=gamma,
+            film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
+        )
+        # Unit preload lobes per actuator (or shim), so r_p follows the voltages in time.
+        if act is not None:
+            self.lobes = np.array(
+                [
+                    preload_shape(g.theta, act.angles, np.eye(self.n_act)[n])
+                    for n in range(self.n_act)
+                ]
+            )
+        else:
+            self.lobes = np.zeros((0, g.n_theta))
+        self.static_preload = self.model.preload if act is None else None
+
+    # ------------------------------------------------------------------ inputs
+    def volts(self, t: float) -> FloatArray:
+        """Actuator voltages at t (V)."""
+        if self.case.actuators is None:
+            return np.zeros(0)
+        if self.voltage is None:
+            return np.asarray(self.case.actuators.voltages, float)
+        v = np.asarray(self.voltage(t), float)
+        return np.broadcast_to(v, (self.n_act,)).copy()
+
+    def preload(self, volts: FloatArray) -> FloatArray:
+        """r_p(θ_i)/C for actuator voltages (static shims if no actuators)."""
+        if self.static_preload is not None:
+            return self.static_preload
+        act = self.case.actuators
+        assert act is not None
+        delta = base_preload(
+            volts,
+            act.d33_quadratic,
+            act.d33_linear,
+            act.k_p,
+            act.holder_spring_stiffness,
+            act.holder_pre_extension,
+        )
+        return (delta @ self.lobes) / self.case.bearing.clearance
+
+    def inputs(self, t: float, volts: FloatArray, imbalance: bool = True) -> Inputs:
+        """Inputs of the system at time t."""
+        w, wd, phi = self.profile.omega(t), self.profile.omega_dot(t), self.profile.phase(t)
+        case = self.case
+        c, m = case.bearing.clearance, case.rotor.mass
+        u = case.rotor.imbalance_radius if imbalance else 0.0
+        fx = case.operation.load / m + u * (w * w * math.cos(phi) + wd * math.sin(phi))
+        fy = u * (w * w * math.sin(phi) - wd * math.cos(phi))
+        return Inputs(case.bearing_number(w), w, self.preload(volts), np.array([fx, fy]) / c)
+
+    # ------------------------------------------------------------ start state
+    def initial_state(self) -> FloatArray:
+        """Static equilibrium without imbalance at the initial speed and voltages, as a state."""
+        case = self.case
+        if case.actuators is not None:
+            case = case.with_voltages(tuple(float(v) for v in self.volts(0.0)))
+        st = solve_equilibrium(case, speed=self.profile.omega(0.0), model=None)
+        if not st.converged:
+            raise InputError(f"no static equilibrium at the start of the run: {st.message}")
+        sys_ = self.system
+        q = np.maximum(st.P.mean(axis=1) - 1.0, 0.0)
+        u = sys_.c_bump * q if sys_.dynamic_bump else np.zeros(sys_.nt)
+        return np.concatenate([st.P.ravel(), u, [st.eps_x, st.eps_y, 0.0, 0.0]])
+
+    def weights(self, y: FloatArray) -> FloatArray:
+        """Error weights 1/(atol + rtol |y|) of the Newton convergence test."""
+        s, sys_ = self.settings, self.system
+        atol = np.empty(sys_.size)
+        atol[: sys_.n] = s.atol_pressure
+        atol[sys_.n : -2] = s.atol_position
+        atol[-2:] = s.atol_position * max(self.profile.speeds.max(), 1.0)
+        return 1.0 / (atol + s.rtol * np.abs(y))
+
+
+@dataclass
+class _State:
+    """Everything needed to continue a run: the last three accepted states and their steps."""
+
+    t: float
+    y: FloatArray
+    y_prev: FloatArray | None = None
+    h_prev: float | None = None
+    y_prev2: FloatArray | None = None
+    h_prev2: float | None = None
+
+    def as_checkpoint(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"t": self.t, "y": self.y}
+        if self.y_prev is not None and self.h_prev is not None:
+            out.update(y_prev=self.y_prev, h_prev=self.h_prev)
+        if self.y_prev2 is not None and self.h_prev2 is not None:
+            out.update(y_prev2=self.y_prev2, h_prev2=self.h_prev2)
+        return out
+
+    @classmethod
+    def from_checkpoint(cls, data: dict[str, Any]) -> _State:
+        def scalar(key: str) -> float | None:
+            return float(np.ravel(data[key])[0]) if key in data else None
+
+        t = scalar("t")
+        assert t is not None
+        return cls(
+            t,
+            np.asarray(data["y"], float),
+            data.get("y_prev"),
+            scalar("h_prev"),
+            data.get("y_prev2"),
+            scalar("h_prev2"),
+        )
+
+
+def simulate(
+    case: Case,
+    speed: SpeedProfile,
+    voltage: VoltageSchedule | SubsyncController | None = None,
+    settings: OrbitSettings | None = None,
+    *,
+    progress: bool | Callable[[float, float], None] = False,
+    stop_time: float | None = None,
+    resume: OrbitResult | None = None,
+    checkpoint: Callable[[OrbitResult], None] | None = None,
+    checkpoint_every: float = 30.0,
+) -> OrbitResult:
+    """Integrate the orbit over the speed profile.
+
+    Parameters
+    ----------
+    case
+        Bearing case (rotor mass and imbalance from ``[rotor]``, load from ``[operation]``).
+    speed
+        Speed profile ω(t).
+    voltage
+        Open-loop schedule, closed-loop controller, or None (the case's voltages held).
+    settings
+        Integrator and output settings.
+    progress
+        True for a tqdm bar (simulated time, speed, time left); or a callable
+        ``f(t, speed)`` called after every step.
+    stop_time
+        End the run at this simulated time (default: the end of the profile).
+    resume
+        A stopped run to continue from its checkpoint (same case and programs).
+    checkpoint
+        Called with the partial result every ``checkpoint_every`` seconds of
+        wall time (e.g. to save it), so a crash loses little.
+    """
+    sim = OrbitSimulation(case, speed, voltage, settings)
+    if resume is not None:
+        if not resume.checkpoint:
+            raise InputError("the run to resume has no checkpoint")
+        state = _State.from_checkpoint(resume.checkpoint)
+        if isinstance(voltage, SubsyncController) and "triggered_at" in resume.checkpoint:
+            trig = float(np.ravel(resume.checkpoint["triggered_at"])[0])
+            voltage.triggered_at = None if math.isnan(trig) else trig
+        samples = _Samples.from_result(resume)
+    else:
+        state = _State(0.0, sim.initial_state())
+        samples = _Samples(1.0 / sim.settings.sample_rate)
+    return _run(sim, state, samples, progress, stop_time, checkpoint, checkpoint_every)
+
+
+def _run(
+    sim: OrbitSimulation,
+    st: _State,
+    out: _Samples,
+    progress: bool | Callable[[float, float], None],
+    stop_time: float | None,
+    checkpoint: Callable[[OrbitResult], None] | None,
+    checkpoint_every: float,
+) -> OrbitResult:
+    s, sys_ = sim.settings, sim.system
+    t_end = sim.profile.duration if stop_time is None else min(stop_time, sim.profile.duration)
+    clock = time.perf_counter()
+    last_checkpoint = clock
+    bar = _progress_bar(progress, t_end, st.t)
+    volts = sim.volts(st.t)
+    inp = sim.inputs(st.t, volts)
+    q_now = sys_.storage(st.y, inp)
+    q_prev = (
+        sys_.storage(st.y_prev, sim.inputs(st.t - st.h_prev, sim.volts(st.t - st.h_prev)))
+        if (st.y_prev is not None and st.h_prev is not None)
+        else None
+    )
+    if not out.rows:
+        out.add(st.t, st.y, sim, volts, inp)
+    lu, lu_c0 = None, math.nan
+    counters = [0, 0, 0]  # steps, factorizations, Newton iterations
+    status, message, contact = "completed", "", None
+
+    def result(status: str, message: str) -> OrbitResult:
+        cp = st.as_checkpoint()
+        if isinstance(sim.voltage, SubsyncController):
+            trig = sim.voltage.triggered_at
+            cp["triggered_at"] = math.nan if trig is None else trig
+        return OrbitResult(
+            sim.case,
+            s,
+            *out.arrays(sim.n_act),
+            status=status,
+            message=message,
+            wall_time=time.perf_counter() - clock,
+            steps=counters[0],
+            factorizations=counters[1],
+            newton_iterations=counters[2],
+            contact=contact,
+            checkpoint=cp,
+        )
+
+    try:
+        while st.t < t_end - 1e-12:
+            t, y = st.t, st.y
+            omega = sim.profile.omega(t)
+            h = min(s.max_step, 2 * math.pi / (omega * s.steps_per_rev), t_end - t)
+            while True:
+                t_new = t + h
+                volts = sim.volts(t_new)
+                inp = sim.inputs(t_new, volts)
+                if st.h_prev is None or st.y_prev is None or q_prev is None:
+                    c0, hist, guess = 1.0 / h, -q_now / h, y.copy()
+                else:
+                    rho = h / st.h_prev
+                    c0 = (1 + 2 * rho) / ((1 + rho) * h)
+                    hist = (-(1 + rho) * q_now + rho * rho / (1 + rho) * q_prev) / h
+                    guess = _predict(y, st.y_prev, st.y_prev2, h, st.h_prev, st.h_prev2)
+                ok, y_new, its, lu, lu_c0, nf = _newton(sim, guess, inp, c0, hist, lu, lu_c0)
+                counters[2] += its
+                counters[1] += nf
+                if ok:
+                    break
+                h *= 0.5
+                if h < 1e-9:
+                    raise FloatingPointError(f"time step collapsed at t = {t:.6f} s")
+            counters[0] += 1
+            st.y_prev2, st.h_prev2 = st.y_prev, st.h_prev
+            st.y_prev, st.h_prev = y, h
+            st.y, st.t = y_new, t_new
+            q_prev, q_now = q_now, sys_.storage(y_new, inp)
+            out.add(t_new, y_new, sim, volts, inp, previous=(t, y))
+            if isinstance(sim.voltage, SubsyncController):
+                for ts, ex in out.new_samples():
+                    sim.voltage.observe(ts, ex, sim.profile.phase(ts))
+            h_min = sys_.min_film(y_new, inp.preload)
+            if h_min < s.contact_film:
+                w = sim.profile.omega(t_new)
+                k = sys_.n + sys_.nt
+                contact = {
+                    "time_s": t_new,
+                    "speed_rpm": w / RPM,
+                    "angle_deg": math.degrees(math.atan2(y_new[k + 1], y_new[k])),
+                    "min_film_um": h_min * sim.case.bearing.clearance * 1e6,
+                }
+                status = "contact"
+                message = (
+                    f"contact at t = {t_new:.4f} s, {w / RPM:.0f} rpm: minimum film "
+                    f"{h_min:.3f} C < {s.contact_film} C, journal at "
+                    f"{contact['angle_deg']:.1f} deg from +X"
+                )
+                break
+            if bar is not None:
+                bar(t_new, sim.profile.omega(t_new))
+            if checkpoint is not None and time.perf_counter() - last_checkpoint > checkpoint_every:
+                checkpoint(result("running", f"checkpoint at t = {t_new:.4f} s"))
+                last_checkpoint = time.perf_counter()
+    except KeyboardInterrupt:
+        status, message = "interrupted", f"interrupted by the user at t = {st.t:.4f} s"
+    except (FloatingPointError, ValueError, RuntimeError) as exc:
+        status, message = "failed", f"the integration failed at t = {st.t:.4f} s: {exc}"
+    finally:
+        if bar is not None:
+            bar(None, None)
+    if status == "completed":
+        if st.t < sim.profile.duration - 1e-9:
+            status = "stopped"  # at stop_time: the profile goes on, the run can be resumed
+        message = (
+            f"{status} at {st.t:.4f} s ({sim.profile.omega(st.t) / RPM:.0f} rpm) after "
+            f"{counters[0]} steps"
+        )
+    return result(status, message)
+
+
+def _predict(
+    y: FloatArray,
+    y1: FloatArray,
+    y2: FloatArray | None,
+    h: float,
+    h1: float,
+    h2: float | None,
+) -> FloatArray:
+    """Extrapolate the state to t + h through the last two or three accepted states."""
+    if y2 is None or h2 is None:
+        return y + (h / h1) * (y - y1)
+    # Lagrange extrapolation on the nodes 0, −h1, −h1 − h2 (relative to the last step).
+    t0, t1, t2, x = 0.0, -h1, -h1 - h2, h
+    l0 = (x - t1) * (x - t2) / ((t0 - t1) * (t0 - t2))
+    l1 = (x - t0) * (x - t2) / ((t1 - t0) * (t1 - t2))
+    l2 = (x - t0) * (x - t1) / ((t2 - t0) * (t2 - t1))
+    return l0 * y + l1 * y1 + l2 * y2
+
+
+def _newton(
+    sim: OrbitSimulation,
+    y: FloatArray,
+    inp: Inputs,
+    c0: float,
+    hist: FloatArray,
+    lu: Any,
+    lu_c0: float,
+) -> tuple[bool, FloatArray, int, Any, float, int]:
+    """Modified Newton on c0·Q(y) + hist − f(y) = 0, reusing the factor while it converges."""
+    s, sys_ = sim.settings, sim.system
+    y0 = y
+    factorizations = 0
+    its = 0
+    for attempt in range(2):
+        y = y0.copy()
+        if lu is None or attempt == 1 or abs(c0 - lu_c0) > 0.2 * c0:
+            lu = sys_.factorize(y, inp, c0)
+            lu_c0 = c0
+            factorizations += 1
+        prev = math.inf
+        w = sim.weights(y)
+        for _ in range(s.max_newton):
+            its += 1
+            g, h_min = sys_.newton_residual(y, inp, c0, hist)
+            if h_min <= 0.0:
+                break  # the iterate closed the film: retry with a fresh matrix or a shorter step
+            dy = lu.solve(g)
+            y -= dy
+            err = float(np.max(np.abs(dy) * w))
+            if not np.isfinite(err) or y[: sys_.n].min() <= 0.0:
+                break
+            if err <= s.newton_tol and sys_.min_film(y, inp.preload) > 0.0:
+                return True, y, its, lu, lu_c0, factorizations
+            if err > 0.5 * prev:
+                break
+            prev = err
+    return False, y0, its, None, math.nan, factorizations
+
+
+class _Samples:
+    """Uniformly sampled output, by linear interpolation between accepted steps."""
+
+    def __init__(self, dt: float) -> None:
+        self.dt = dt
+        self.next = 0.0
+        self.rows: list[tuple[float, ...]] = []
+        self.volts: list[FloatArray] = []
+        self._fresh: list[tuple[float, float]] = []
+
+    def add(
+        self,
+        t: float,
+        y: FloatArray,
+        sim: OrbitSimulation,
+        volts: FloatArray,
+        inp: Inputs,
+        previous: tuple[float, FloatArray] | None = None,
+    ) -> None:
+        sys_ = sim.system
+        c = sim.case.bearing.clearance
+        k = sys_.n + sys_.nt
+        h_min = sys_.min_film(y, inp.preload) * c
+        while self.next <= t + 1e-12:
+            ts = self.next
+            if previous is None or t == previous[0]:
+                ex, ey = y[k], y[k + 1]
+            else:
+                t0, y0 = previous
+                w = (ts - t0) / (t - t0)
+                ex, ey = (1 - w) * y0[k] + w * y[k], (1 - w) * y0[k + 1] + w * y[k + 1]
+            self.rows.append(
+                (ts, ex * c, ey * c, sim.profile.omega(ts), sim.profile.phase(ts), h_min)
+            )
+            self.volts.append(volts)
+            self._fresh.append((ts, ex * c))
+            self.next = ts + self.dt
+
+    @classmethod
+    def from_result(cls, res: OrbitResult) -> _Samples:
+        """Continue the samples of a stopped run."""
+        out = cls(1.0 / res.settings.sample_rate)
+        for k in range(res.time.size):
+            out.rows.append(
+                (
+                    float(res.time[k]),
+                    float(res.e_x[k]),
+                    float(res.e_y[k]),
+                    float(res.speed[k]),
+                    float(res.phase[k]),
+                    float(res.min_film[k]),
+                )
+            )
+            out.volts.append(np.asarray(res.voltages[k], float))
+        out.next = float(res.time[-1]) + out.dt if res.time.size else 0.0
+        return out
+
+    def new_samples(self) -> list[tuple[float, float]]:
+        fresh, self._fresh = self._fresh, []
+        return fresh
+
+    def arrays(
+        self, n_act: int
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        a = np.array(self.rows, dtype=float).reshape(-1, 6)
+        v = np.array(self.volts, dtype=float).reshape(-1, n_act)
+        return a[:, 0], a[:, 1], a[:, 2], a[:, 3], a[:, 4], a[:, 5], v
+
+
+def _progress_bar(
+    progress: bool | Callable[[float, float], None], t_end: float, t_start: float = 0.0
+) -> Callable[[float | None, float | None], None] | None:
+    if progress is False:
+        return None
+    if callable(progress):
+        cb = progress
+
+        def call(t: float | None, w: float | None) -> None:
+            if t is not None and w is not None:
+                cb(t, w)
+
+        return call
+    from tqdm import tqdm
+
+    bar = tqdm(
+        total=t_end,
+        unit="s",
+        unit_scale=False,
+        desc="orbit",
+        dynamic_ncols=True,
+        bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s simulated [{elapsed}<{remaining}{postfix}]",
+    )
+    last = [t_start]
+
+    def update(t: float | None, w: float | None) -> None:
+        if t is None:
+            bar.close()
+            return
+        if t - last[0] >= 0.002 * t_end:
+            bar.update(t - last[0])
+            last[0] = t
+            bar.set_postfix_str(f"{(w or 0.0) / RPM:,.0f} rpm")
+
+    return update

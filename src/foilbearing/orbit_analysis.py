@@ -1,0 +1,134 @@
+"""What a speed-up run shows: waterfall, sub-synchronous amplitude, onset, whip, divergence.
+
+Glue between :mod:`foilbearing.orbit` (the run) and :mod:`foilbearing.signals`
+(the arrays): the analysis of the paper's Figs. 13-15 applied to e_X (the load
+direction, the paper's "vertical" motion), with the headline numbers that
+``foilbearing orbit --json`` prints, and the figures.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from foilbearing.orbit import OrbitResult
+from foilbearing.signals import (
+    Onset,
+    SubsyncResult,
+    Waterfall,
+    divergence_speed,
+    onset,
+    subsynchronous_amplitude,
+    waterfall,
+)
+
+__all__ = ["OrbitAnalysis", "analyse_orbit", "write_orbit_figures"]
+
+#: Sub-synchronous amplitude that counts as onset: 1 µm, 1 % of the paper's clearance.
+ONSET_THRESHOLD = 1e-6
+
+
+@dataclass(frozen=True)
+class OrbitAnalysis:
+    """Signal analysis of one run (None where the run is too short to analyse)."""
+
+    waterfall: Waterfall | None
+    subsync: SubsyncResult | None
+    onset: Onset | None
+    divergence_speed_rpm: float | None
+    max_subsync_amplitude: float | None
+
+    def headline(self, result: OrbitResult) -> dict[str, Any]:
+        """Unit-named keys: onset_speed_rpm, whip_frequency_Hz, divergence_speed_rpm, ..."""
+        o = self.onset
+        return {
+            "onset_speed_rpm": None if o is None else o.onset_speed_rpm,
+            "whip_frequency_Hz": None if o is None else o.whirl_frequency_hz,
+            "subsync_intervals_rpm_Hz": [] if o is None else [list(iv) for iv in o.intervals],
+            "divergence_speed_rpm": self.divergence_speed_rpm,
+            "max_subsync_amplitude_um": (
+                None if self.max_subsync_amplitude is None else self.max_subsync_amplitude * 1e6
+            ),
+            "wall_time_s": result.wall_time,
+            "status": result.status,
+            "message": result.message,
+            "end_speed_rpm": float(result.speed[-1] * 30 / math.pi) if result.speed.size else None,
+            "steps": result.steps,
+        }
+
+
+def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) -> OrbitAnalysis:
+    """Waterfall, sub-synchronous amplitude (1X removed by order tracking), onset, divergence."""
+    t = result.time
+    c = result.case.bearing.clearance
+    if t.size < 8 or t[-1] - t[0] < 1.0:
+        # Too short for 0.25 s windows with the sustain rule: report what can be said.
+        div = (
+            divergence_speed(
+                t,
+                result.e_x,
+                result.e_y,
+                result.speed,
+                c,
+                stopped_by_contact=result.status == "contact",
+                contact_time=None,
+            )
+            if result.status == "contact"
+            else None
+        )
+        return OrbitAnalysis(None, None, None, div, None)
+    wf = waterfall(
+        t, result.e_x, result.speed, fmax_hz=min(2000.0, 0.45 * result.settings.sample_rate)
+    )
+    sub = subsynchronous_amplitude(t, result.e_x, result.speed, result.phase)
+    ons = onset(sub, threshold=threshold)
+    contact = result.contact or {}
+    div = divergence_speed(
+        t,
+        result.e_x,
+        result.e_y,
+        result.speed,
+        c,
+        stopped_by_contact=result.status == "contact",
+        contact_time=contact.get("time_s"),
+    )
+    amp = float(np.nanmax(sub.amplitude)) if sub.amplitude.size else None
+    return OrbitAnalysis(wf, sub, ons, div, amp)
+
+
+def write_orbit_figures(
+    result: OrbitResult, analysis: OrbitAnalysis, folder: Path, label: str = "orbit"
+) -> list[Path]:
+    """Transient (Fig. 13a/14), waterfall colour map and 3-D (Fig. 13b), orbits; PNG files."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots import orbit as po
+
+    c = result.case.bearing.clearance
+    paths = [
+        save_figure(
+            po.plot_transient(result.time, result.e_x, result.e_y, result.speed, c),
+            folder / f"{label}_transient.png",
+        )
+    ]
+    if analysis.waterfall is not None:
+        paths.append(
+            save_figure(po.plot_waterfall(analysis.waterfall), folder / f"{label}_waterfall.png")
+        )
+        paths.append(
+            save_figure(
+                po.plot_waterfall_3d(analysis.waterfall), folder / f"{label}_waterfall3d.png"
+            )
+        )
+    top = float(result.speed.max() * 30 / math.pi) if result.speed.size else 0.0
+    marks = [s for s in (10e3, 20e3, 30e3, 50e3, 70e3, 90e3) if s <= top] or [top]
+    paths.append(
+        save_figure(
+            po.plot_orbits(result.time, result.e_x, result.e_y, result.speed, marks[-4:], c),
+            folder / f"{label}_orbits.png",
+        )
+    )
+    return paths

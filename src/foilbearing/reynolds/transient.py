@@ -1,0 +1,295 @@
+"""The semi-discrete unsteady system: film, foil and journal in physical time.
+
+State ``y = [P (n), U (n_theta), ε_X, ε_Y, v_X, v_Y]`` with P = p/p_a on the
+cells (n = n_theta·n_z), U = u_b/C the bump compression (a viscoelastic state)
+on the θ-rows, ε the journal position in units of C and v = dε/dt (1/s). In
+the implicit form used by every stepper, ``d Q(y)/dt = f(y, t)`` with
+
+    Q = [P·H, U, ε_X, ε_Y, v_X, v_Y],
+    f = [R(P, H; Λ(t))/(A σ),  (ω/γ)(c_b q − U),  v_X, v_Y,  (F + F_ext)/(m C)],
+
+where R is the steady finite-volume residual (so steady states are exactly the
+static solutions), A = ΔθΔZ, σ = 12 μ R²/(p_a C²) (unsteady term of Eq. 4 in
+physical time: 2Λ ∂/∂τ = σ ∂/∂t), q = max(p̄, 0) the engaged axial-mean gauge
+pressure, and the film (MODEL.md sections 2-3)
+
+    H = 1 + ε_X cos θ + ε_Y sin θ − r_p(θ, t)/C + U + c_a q.
+
+The bump is a spring k_b in parallel with a viscous damper c_b = γ k_b/ω (the
+loss factor's equivalent at the running speed, MODEL.md section 3) in series
+with the massless elastic actuator of compliance c_a = φ(θ) p_a/(C k_act) under
+the stingers. With γ = 0 the bump is purely elastic and joins c_a.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.sparse.linalg import splu
+
+from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.grid import Grid
+from foilbearing.reynolds.steady import Workspace
+
+__all__ = ["Inputs", "TransientFactor", "TransientSystem"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Inputs:
+    """Time-dependent inputs at one instant.
+
+    Attributes
+    ----------
+    lam
+        Bearing number Λ(t).
+    omega
+        Rotor speed ω(t), rad/s.
+    preload
+        r_p(θ_i, t)/C, shape (n_theta,).
+    force
+        External force on the journal in units of m·C (load plus imbalance
+        divided by m C), 1/s², shape (2,).
+    """
+
+    lam: float
+    omega: float
+    preload: FloatArray
+    force: FloatArray
+
+
+class TransientSystem:
+    """Residual pieces and Jacobian of the semi-discrete system (arrays in, arrays out).
+
+    Parameters
+    ----------
+    grid
+        Finite-volume grid.
+    sigma
+        σ = 12 μ R²/(p_a C²), s.
+    c_act
+        Actuator (elastic, in series) compliance per θ-row, p_a/(C k), shape (n_theta,).
+    c_bump
+        Bump compliance p_a/(C k_b) per θ-row (zeros: rigid surface).
+    loss_factor
+        γ of the bump; 0 makes the bump purely elastic (no U dynamics).
+    film_force_scale
+        p_a R²/(m C): film force per unit Σ w(P − 1) as an acceleration of ε, 1/s².
+    """
+
+    def __init__(
+        self,
+        grid: Grid,
+        sigma: float,
+        c_act: FloatArray,
+        c_bump: FloatArray,
+        loss_factor: float,
+        film_force_scale: float,
+    ) -> None:
+        self.grid = grid
+        self.n = grid.size
+        self.nt = grid.n_theta
+        self.sigma = sigma
+        self.area = grid.d_theta * grid.d_z
+        self.gamma = loss_factor
+        self.dynamic_bump = bool(loss_factor > 0.0 and np.any(c_bump > 0.0))
+        self.c_act = np.asarray(c_act, float) + (0.0 if self.dynamic_bump else np.asarray(c_bump))
+        self.c_bump = np.asarray(c_bump, float) if self.dynamic_bump else np.zeros(self.nt)
+        self.cos_t = np.cos(grid.theta)
+        self.sin_t = np.sin(grid.theta)
+        w_x, w_y = grid.force_weights()
+        self.w = np.vstack([w_x.ravel(), w_y.ravel()])
+        self.force_scale = film_force_scale
+        self.size = self.n + self.nt + 4
+        self.ws = Workspace(grid)
+        self.expand = sp.kron(sp.eye(self.nt), np.ones((grid.n_z, 1)), format="csr")
+        self.mean = sp.kron(sp.eye(self.nt), np.ones((1, grid.n_z)) / grid.n_z, format="csr")
+        self._res = np.empty(grid.shape)
+        self.diag_slots = kern.stencil_pattern(grid.n_theta, grid.n_z)[2][:, :, 2].ravel()
+        self.c_indptr, self.c_indices = kern.coupled_pattern(grid.n_theta, grid.n_z)
+        self._jc = np.empty(self.c_indices.size)
+
+    # ----------------------------------------------------------------- pieces
+    def split(self, y: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Views (P (n_theta, n_z), U, ε (2,), v (2,)) of a state vector."""
+        n, nt = self.n, self.nt
+        return y[:n].reshape(self.grid.shape), y[n : n + nt], y[n + nt : n + nt + 2], y[-2:]
+
+    def film(self, y: FloatArray, preload: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Film H (n_theta, n_z) and engaged mean gauge pressure q (n_theta,)."""
+        P, U, eps, _ = self.split(y)
+        q = np.maximum(P.mean(axis=1) - 1.0, 0.0)
+        row = 1.0 + eps[0] * self.cos_t + eps[1] * self.sin_t - preload + U + self.c_act * q
+        return np.repeat(row[:, None], self.grid.n_z, axis=1), q
+
+    def storage(self, y: FloatArray, inputs: Inputs) -> FloatArray:
+        """Q(y): the quantities whose time derivative the system states."""
+        P, U, eps, v = self.split(y)
+        H, _ = self.film(y, inputs.preload)
+        return np.concatenate([(P * H).ravel(), U, eps, v])
+
+    def rhs(self, y: FloatArray, inputs: Inputs) -> FloatArray:
+        """f(y, t): right-hand side of dQ/dt = f."""
+        P, U, _eps, v = self.split(y)
+        H, q = self.film(y, inputs.preload)
+        g = self.grid
+        kern.residual(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, self._res)
+        f_p = self._res.ravel() / (self.area * self.sigma)
+        if self.dynamic_bump:
+            f_u = inputs.omega / self.gamma * (self.c_bump * q - U)
+        else:
+            f_u = np.zeros(self.nt)
+        accel = self.force_scale * (self.w @ (P.ravel() - 1.0)) + inputs.force
+        return np.concatenate([f_p, f_u, v, accel])
+
+    def newton_residual(
+        self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray
+    ) -> tuple[FloatArray, float]:
+        """G = c0·Q(y) + hist − f(y) (the BDF equations) and the minimum film, in one pass."""
+        P, U, eps, v = self.split(y)
+        H, q = self.film(y, inputs.preload)
+        g = self.grid
+        kern.residual(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, self._res)
+        out = np.empty(self.size)
+        n, nt = self.n, self.nt
+        out[:n] = c0 * (P * H).ravel() - self._res.ravel() / (self.area * self.sigma)
+        f_u = inputs.omega / self.gamma * (self.c_bump * q - U) if self.dynamic_bump else 0.0
+        out[n : n + nt] = c0 * U - f_u
+        out[n + nt : n + nt + 2] = c0 * eps - v
+        out[-2:] = c0 * v - self.force_scale * (self.w @ (P.ravel() - 1.0)) - inputs.force
+        out += hist
+        return out, float(H.min())
+
+    def factorize(self, y: FloatArray, inputs: Inputs, c0: float) -> TransientFactor:
+        """Factorise the Newton matrix of :meth:`jacobian` by block elimination.
+
+        The bump states U (diagonal rows) and the journal (ε, v: four unknowns)
+        are eliminated, leaving the pressures with the foil-coupled pattern of
+        the static solver (one sparse LU) plus a rank-2 Woodbury correction for
+        the journal's film force. :meth:`TransientFactor.solve` equals a solve
+        with :meth:`jacobian` (tested).
+        """
+        P, _U, _eps, _v = self.split(y)
+        H, _q = self.film(y, inputs.preload)
+        g = self.grid
+        Pc = np.ascontiguousarray(P)
+        ws = self.ws
+        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, ws.jp)
+        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, ws.jh)
+        scale = 1.0 / (self.area * self.sigma)
+        # Row scaling of the Reynolds block: c0·∂(PH) − ∂R/(Aσ).
+        jp = -scale * ws.jp
+        jh = -scale * ws.jh
+        jp[self.diag_slots] += c0 * H.ravel()
+        jh[self.diag_slots] += c0 * P.ravel()
+        rate = inputs.omega / self.gamma if self.dynamic_bump else 0.0
+        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+        c_eff = self.c_act + rate * self.c_bump / (c0 + rate)
+        kern.coupled_jacobian(jp, jh, c_eff * active / g.n_z, g.n_z, self._jc)
+        n = self.n
+        b = sp.csc_matrix((self._jc, self.c_indices, self.c_indptr), shape=(n, n))
+        # CSR data read as CSC is B^T: factor it and solve with trans="T".
+        lu = splu(b, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+        jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
+        a_pe = jh_mat @ np.column_stack(
+            [np.repeat(self.cos_t, g.n_z), np.repeat(self.sin_t, g.n_z)]
+        )
+        s_vp = self.force_scale * self.w  # (2, n)
+        y_border = lu.solve(np.ascontiguousarray(a_pe / c0**2), trans="T")
+        small = np.eye(2) + s_vp @ y_border  # Woodbury: I + V^T B^-1 U, V^T = S_vp
+        return TransientFactor(self, lu, jh_mat, a_pe, s_vp, y_border, small, c0, rate, active)
+
+    def min_film(self, y: FloatArray, preload: FloatArray) -> float:
+        """Smallest film thickness h/C."""
+        return float(self.film(y, preload)[0].min())
+
+    # --------------------------------------------------------------- Jacobian
+    def jacobian(self, y: FloatArray, inputs: Inputs, c0: float) -> sp.csc_matrix:
+        """∂/∂y of c0·Q(y) − f(y, t) (the BDF Newton matrix, c0 = α₀/Δt), sparse CSC."""
+        P, _U, _eps, _v = self.split(y)
+        H, _q = self.film(y, inputs.preload)
+        g = self.grid
+        Pc = np.ascontiguousarray(P)
+        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, self.ws.jp)
+        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, self.ws.jh)
+        n = self.n
+        j_p = sp.csr_matrix((self.ws.jp, self.ws.indices, self.ws.indptr), shape=(n, n))
+        j_h = sp.csr_matrix((self.ws.jh, self.ws.indices, self.ws.indptr), shape=(n, n))
+        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+        dq_dp = sp.diags(active) @ self.mean  # (nt, n)
+        # ∂H/∂P through the actuator compliance, ∂H/∂U, ∂H/∂ε (per cell)
+        dh_dp = self.expand @ sp.diags(self.c_act) @ dq_dp
+        dh_du = self.expand
+        dh_de = sp.csr_matrix(
+            np.column_stack([np.repeat(self.cos_t, g.n_z), np.repeat(self.sin_t, g.n_z)])
+        )
+        scale = 1.0 / (self.area * self.sigma)
+        p_diag = sp.diags(P.ravel())
+        # Reynolds rows: c0 ∂(PH)/∂y − ∂R/∂y /(Aσ)
+        rp_p = c0 * (sp.diags(H.ravel()) + p_diag @ dh_dp) - scale * (j_p + j_h @ dh_dp)
+        rp_u = c0 * (p_diag @ dh_du) - scale * (j_h @ dh_du)
+        rp_e = c0 * (p_diag @ dh_de) - scale * (j_h @ dh_de)
+        zeros_2 = sp.csr_matrix((n, 2))
+        # Foil rows
+        if self.dynamic_bump:
+            rate = inputs.omega / self.gamma
+            fu_p = -rate * sp.diags(self.c_bump) @ dq_dp
+            fu_u = sp.diags(np.full(self.nt, c0 + rate))
+        else:
+            fu_p = sp.csr_matrix((self.nt, n))
+            fu_u = sp.diags(np.full(self.nt, c0))
+        # Journal rows: c0 ε − v ; c0 v − accel
+        je_v = sp.diags([-1.0, -1.0])
+        je_e = sp.diags([c0, c0])
+        jv_p = sp.csr_matrix(-self.force_scale * self.w)
+        jv_v = sp.diags([c0, c0])
+        blocks = [
+            [rp_p, rp_u, rp_e, zeros_2],
+            [fu_p, fu_u, None, None],
+            [None, None, je_e, je_v],
+            [jv_p, None, None, jv_v],
+        ]
+        return sp.bmat(blocks, format="csc")
+
+
+class TransientFactor:
+    """A factorised Newton matrix (see :meth:`TransientSystem.factorize`)."""
+
+    def __init__(
+        self,
+        system: TransientSystem,
+        lu: object,
+        jh: sp.csr_matrix,
+        a_pe: FloatArray,
+        s_vp: FloatArray,
+        y_border: FloatArray,
+        small: FloatArray,
+        c0: float,
+        rate: float,
+        active: FloatArray,
+    ) -> None:
+        self.sys, self.lu, self.jh, self.a_pe = system, lu, jh, a_pe
+        self.s_vp, self.y_border, self.small_inv = s_vp, y_border, np.linalg.inv(small)
+        self.c0, self.rate, self.active = c0, rate, active
+
+    def solve(self, g: FloatArray) -> FloatArray:
+        """Δy with J Δy = g (J the Newton matrix at factorisation)."""
+        s = self.sys
+        n, nt, nz = s.n, s.nt, s.grid.n_z
+        c0, rate = self.c0, self.rate
+        g_p, g_u, g_e, g_v = g[:n], g[n : n + nt], g[n + nt : n + nt + 2], g[-2:]
+        # Eliminate U: (c0 + rate) dU − rate c_b q'(dP) = g_u
+        rhs = g_p - self.jh @ np.repeat(g_u / (c0 + rate), nz)
+        # Eliminate the journal: c0 de − dv = g_e, c0 dv − S_vp dP = g_v
+        rhs -= self.a_pe @ ((g_v + c0 * g_e) / c0**2)
+        z = self.lu.solve(rhs, trans="T")  # type: ignore[attr-defined]
+        d_p = z - self.y_border @ (self.small_inv @ (self.s_vp @ z))
+        d_e = (self.s_vp @ d_p + g_v + c0 * g_e) / c0**2
+        d_v = c0 * d_e - g_e
+        dq = self.active * d_p.reshape(nt, nz).mean(axis=1)
+        d_u = (g_u + rate * s.c_bump * dq) / (c0 + rate)
+        return np.concatenate([d_p, d_u, d_e, d_v])

@@ -1,0 +1,216 @@
+"""Signal analysis on synthetic speed-up records with a known truth.
+
+The record is a 4 s segment of the paper's ramp (3 krpm upwards at
+500 rad/s², 20 kHz): a large synchronous response (1X, amplitude varying
+slowly), a static offset, noise, and a sub-synchronous tone switched on with a
+raised-cosine ramp. The tolerances follow from the analysis window T = 0.25 s:
+frequency resolution 1/T = 4 Hz; a windowed amplitude can lead or lag the true
+one by at most T/2, i.e. α·T/2 = 62.5 rad/s = 597 rpm of speed, plus one hop
+for the discrete windows.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from foilbearing.errors import InputError
+from foilbearing.signals import (
+    divergence_speed,
+    onset,
+    subsynchronous_amplitude,
+    waterfall,
+)
+
+FS = 20_000.0
+ALPHA = 500.0  # rad/s²
+W0 = 3000 * math.pi / 30  # rad/s
+RPM = 30 / math.pi
+T_WIN = 0.25
+HOP = T_WIN * 0.25
+A1 = 20e-6  # 1X amplitude (mean), m
+AW = 5e-6  # whirl amplitude, m
+F_W = 120.0  # whirl frequency, Hz
+RAMP = 0.1  # switch-on ramp, s
+SPEED_TOL_RPM = ALPHA * (T_WIN / 2 + HOP) * RPM  # 895 rpm
+
+
+def record(duration: float = 4.0, seed: int = 0):
+    t = np.arange(round(duration * FS)) / FS
+    speed = W0 + ALPHA * t
+    phase = W0 * t + 0.5 * ALPHA * t**2
+    a1 = A1 * (1 + 0.3 * np.sin(2 * np.pi * 0.3 * t))  # through a mild "critical speed"
+    noise = 0.2e-6 * np.random.default_rng(seed).standard_normal(t.size)
+    return t, speed, phase, 30e-6 + a1 * np.cos(phase + 0.4) + noise
+
+
+def switch(t: np.ndarray, t_on: float, t_off: float = np.inf) -> np.ndarray:
+    """Raised-cosine envelope 0 → 1 over RAMP from t_on, back to 0 from t_off."""
+    up = np.clip((t - t_on) / RAMP, 0, 1)
+    down = np.clip((t - t_off) / RAMP, 0, 1)
+    return (0.5 - 0.5 * np.cos(np.pi * up)) * (0.5 + 0.5 * np.cos(np.pi * down))
+
+
+def crossing_rpm(t_on: float, level: float) -> float:
+    """Speed at which the switched-on amplitude AW·env crosses ``level``."""
+    tc = t_on + RAMP * math.acos(1 - 2 * level / AW) / math.pi
+    return (W0 + ALPHA * tc) * RPM
+
+
+@pytest.fixture(scope="module")
+def whirl():
+    t, speed, phase, x = record()
+    t_on = 2.0
+    x = x + AW * switch(t, t_on) * np.cos(2 * np.pi * F_W * t)
+    return t, speed, phase, x, t_on
+
+
+def test_waterfall_ridges(whirl):
+    t, speed, _, x, t_on = whirl
+    wf = waterfall(t, x, speed)
+    assert wf.amplitude.shape == (wf.times.size, wf.frequencies_hz.size)
+    run_hz = wf.speeds_rpm / 60
+    np.testing.assert_allclose(wf.speeds_rpm, np.interp(wf.times, t, speed) * RPM)
+    resolution = 1 / wf.window_s
+    f = wf.frequencies_hz[None, :]
+    # 1X ridge: the peak above 0.9X lies at the running frequency at the window centre.
+    f1 = wf.frequencies_hz[np.argmax(np.where(f > 0.9 * run_hz[:, None], wf.amplitude, 0), axis=1)]
+    assert np.max(np.abs(f1 - run_hz)) < resolution
+    # The whirl tone: the peak below 0.9X, once it is fully on.
+    after = wf.times - wf.window_s / 2 > t_on + RAMP
+    fw = wf.frequencies_hz[np.argmax(np.where(f < 0.9 * run_hz[:, None], wf.amplitude, 0), axis=1)]
+    assert after.sum() > 10
+    assert np.max(np.abs(fw[after] - F_W)) < resolution
+
+
+def test_waterfall_amplitude_of_a_sinusoid():
+    t = np.arange(round(2.0 * FS)) / FS
+    amp, f0 = 3.0, 77.3  # off the bin grid on purpose
+    wf = waterfall(t, 5.0 + amp * np.sin(2 * np.pi * f0 * t + 1.0), np.full(t.size, 1000.0))
+    peak = wf.amplitude.max(axis=1)
+    np.testing.assert_allclose(peak, amp, rtol=0.05)
+    assert np.all(np.abs(wf.frequencies_hz[wf.amplitude.argmax(axis=1)] - f0) < 1 / wf.window_s)
+    assert wf.times[0] >= wf.window_s / 2 - 1e-9  # only windows wholly inside the record
+
+
+def test_subsync_amplitude_removes_1x(whirl):
+    t, speed, phase, x, t_on = whirl
+    sub = subsynchronous_amplitude(t, x, speed, phase)
+    before = sub.times + sub.window_s / 2 < t_on
+    after = sub.times - sub.window_s / 2 > t_on + RAMP
+    assert before.sum() > 10 and after.sum() > 10
+    # 1X is large (14–26 µm) and tracked, yet the sub-synchronous part reads ~0.
+    assert np.all(sub.synchronous_amplitude[before] > 13e-6)
+    assert np.max(sub.amplitude[before]) < 0.05 * 0.7 * A1
+    np.testing.assert_allclose(sub.amplitude[after], AW, rtol=0.10)
+    np.testing.assert_allclose(sub.frequency_hz[after], F_W, atol=2.0)
+    assert np.all(np.isnan(sub.frequency_hz[before][2:]))  # noise alone: no frequency
+
+
+def test_subsync_amplitude_of_a_half_speed_whirl():
+    t, speed, phase, x = record()
+    x = x + AW * switch(t, 1.5) * np.cos(0.45 * phase)  # whirl tracking 0.45X
+    sub = subsynchronous_amplitude(t, x, speed, phase)
+    after = sub.times - sub.window_s / 2 > 1.5 + RAMP
+    np.testing.assert_allclose(sub.amplitude[after], AW, rtol=0.10)
+    np.testing.assert_allclose(sub.frequency_hz[after], 0.45 * sub.speeds_rpm[after] / 60, atol=4.0)
+
+
+def test_onset_speed_and_frequency(whirl):
+    t, speed, phase, x, t_on = whirl
+    on = onset(subsynchronous_amplitude(t, x, speed, phase), threshold=1e-6)
+    assert on.onset_speed_rpm is not None and on.whirl_frequency_hz is not None
+    assert abs(on.onset_speed_rpm - crossing_rpm(t_on, 1e-6)) < SPEED_TOL_RPM
+    assert abs(on.whirl_frequency_hz - F_W) < 2.0
+    assert len(on.intervals) == 1
+    # The same as a fraction of the clearance.
+    on_c = onset(subsynchronous_amplitude(t, x, speed, phase), clearance=100e-6, fraction=0.01)
+    assert on_c.threshold == pytest.approx(1e-6)
+    assert on_c.onset_speed_rpm == pytest.approx(on.onset_speed_rpm)
+
+
+def test_burst_is_not_onset_but_sustained_intervals_are():
+    t, speed, phase, x = record(seed=1)
+    tone = np.cos(2 * np.pi * F_W * t)
+    # A ~0.1 s burst, at 1.3 s where 0.9X = 138 Hz is clear of the tone.
+    burst = x + AW * switch(t, 1.3, 1.3 + 0.05) * tone
+    on = onset(subsynchronous_amplitude(t, burst, speed, phase))
+    assert on.onset_speed_rpm is None and on.intervals == []
+    # The same burst counts once the sustain time is shorter than its windowed length.
+    assert (
+        len(onset(subsynchronous_amplitude(t, burst, speed, phase), sustain_s=0.1).intervals) == 1
+    )
+
+    two = burst + AW * (switch(t, 2.0, 2.7) + switch(t, 3.1, 3.9)) * tone
+    on = onset(subsynchronous_amplitude(t, two, speed, phase))
+    assert len(on.intervals) == 2
+    (s1, e1, f1), (s2, e2, f2) = on.intervals
+    assert abs(s1 - crossing_rpm(2.0, 1e-6)) < SPEED_TOL_RPM  # the burst before is skipped
+    assert abs(s2 - crossing_rpm(3.1, 1e-6)) < SPEED_TOL_RPM
+    assert e1 < s2 < e2 and abs(f1 - F_W) < 2.0 and abs(f2 - F_W) < 2.0
+    assert on.onset_speed_rpm == pytest.approx(s1, abs=SPEED_TOL_RPM)
+
+
+def test_divergence_of_a_growing_whirl():
+    clearance = 100e-6
+    t, speed, phase, _ = record()
+    growth = 2.0  # 1/s
+    a = 2e-6 * np.exp(growth * t)
+    wt = 2 * np.pi * F_W * t
+    e_x = 0.6 * clearance + 5e-6 * np.cos(phase) + a * np.cos(wt)  # big static eccentricity
+    e_y = -0.2 * clearance + 5e-6 * np.sin(phase) + a * np.sin(wt)
+    t_true = math.log(0.9 * clearance / 2e-6) / growth
+    rpm_true = (W0 + ALPHA * t_true) * RPM
+    rpm = divergence_speed(t, e_x, e_y, speed, clearance, stopped_by_contact=False)
+    assert rpm is not None and abs(rpm - rpm_true) < ALPHA * T_WIN * RPM
+    # Nothing diverges before; a contact stop is taken at its time.
+    cut = t < t_true - 0.5
+    no = divergence_speed(
+        t[cut], e_x[cut], e_y[cut], speed[cut], clearance, stopped_by_contact=False
+    )
+    assert no is None
+    stop = divergence_speed(
+        t, e_x, e_y, speed, clearance, stopped_by_contact=True, contact_time=3.0
+    )
+    assert stop == pytest.approx((W0 + ALPHA * 3.0) * RPM)
+
+
+def test_rejects_non_uniform_time():
+    t, speed, _, x = record(duration=1.0)
+    t = t.copy()
+    t[100] += 1e-5
+    with pytest.raises(InputError, match="uniformly"):
+        waterfall(t, x, speed)
+
+
+def test_plots_return_figures(whirl):
+    from matplotlib.figure import Figure
+
+    from foilbearing.plots.orbit import (
+        plot_orbits,
+        plot_subsync,
+        plot_transient,
+        plot_waterfall,
+        plot_waterfall_3d,
+    )
+
+    t, speed, phase, x, _ = whirl
+    y = np.roll(x, 50)
+    wf = waterfall(t, x, speed)
+    sub = subsynchronous_amplitude(t, x, speed, phase)
+    on = onset(sub)
+
+    fig = plot_transient(t, x, y, speed, 100e-6)
+    assert isinstance(fig, Figure) and len(fig.axes) == 2  # twin speed axis
+    fig = plot_waterfall(wf)
+    assert len(fig.axes) == 2 and len(fig.axes[0].lines) == 2  # map + colour bar; 1X, 0.5X
+    fig = plot_waterfall_3d(wf, max_lines=20)
+    assert fig.axes[0].name == "3d" and len(fig.axes[0].lines) == 20
+    fig = plot_subsync({"0 V": sub, "50 V": sub}, {"0 V": on})
+    assert len(fig.axes[0].lines) == 3  # two cases and one onset marker
+    fig = plot_orbits(t, x, y, speed, [10_000, 20_000, 95_000], 100e-6)
+    visible = [ax for ax in fig.axes if ax.get_visible()]
+    assert len(visible) == 3
+    assert [len(ax.lines) for ax in visible] == [2, 2, 1]  # the last speed is never reached
