@@ -151,8 +151,10 @@ def _parser() -> argparse.ArgumentParser:
     stab.set_defaults(func=_cmd_stability)
 
     from foilbearing.cli_orbit import register as register_orbit
+    from foilbearing.cli_sweep import register as register_sweep
 
     register_orbit(sub)
+    register_sweep(sub)
 
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
     _add_case_arg(study)

@@ -57,6 +57,10 @@ class OrbitSettings:
         Relative and absolute tolerances of the weighted norm (P; ε and U in units of C).
     max_newton
         Newton iterations per attempt before the Jacobian is refreshed.
+    newton_fraction
+        The Newton iteration also stops when its update is below this fraction of
+        the first update (the predictor's miss), which scales with the step's
+        truncation error.
     """
 
     steps_per_rev: int = 16
@@ -68,6 +72,7 @@ class OrbitSettings:
     atol_pressure: float = 1e-5
     atol_position: float = 1e-5
     max_newton: int = 6
+    newton_fraction: float = 0.01
 
     def check(self, max_speed: float) -> None:
         """Errors before any work for settings that cannot resolve the synchronous frequency."""
@@ -520,6 +525,9 @@ def _newton(
             factorizations += 1
         prev = math.inf
         w = sim.weights(y)
+        # Solve to a fraction of the step's own change (predictor to corrector), as BDF codes
+        # do: the Newton error then stays well below the truncation error of the step.
+        first_change = math.inf
         for _ in range(s.max_newton):
             its += 1
             g, h_min = sys_.newton_residual(y, inp, c0, hist)
@@ -530,7 +538,10 @@ def _newton(
             err = float(np.max(np.abs(dy) * w))
             if not np.isfinite(err) or y[: sys_.n].min() <= 0.0:
                 break
-            if err <= s.newton_tol and sys_.min_film(y, inp.preload) > 0.0:
+            if first_change == math.inf:
+                first_change = err
+            tol = max(s.newton_tol, s.newton_fraction * first_change)
+            if err <= tol and sys_.min_film(y, inp.preload) > 0.0:
                 return True, y, its, lu, lu_c0, factorizations
             if err > 0.5 * prev:
                 break

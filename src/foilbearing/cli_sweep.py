@@ -1,0 +1,105 @@
+"""The ``foilbearing sweep`` subcommand: a parameter sweep on Dask.
+
+``foilbearing sweep SWEEP.toml [--out RESULT] [--scheduler ADDRESS]
+[--workers N] [--resume] [--assemble] [--json]`` runs every point of the sweep
+file (``docs/sweep-format.md``) on a local Dask cluster (one single-thread
+worker process per core) or on an existing ``dask.distributed`` scheduler,
+writes each finished point to ``RESULT.d/points/`` as it completes and the
+assembled Dataset to ``RESULT.nc``. Exit code 0 when every point is ok, 3 when
+some failed (they are recorded with their message), 2 for bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from foilbearing.errors import InputError
+
+__all__ = ["cmd_sweep", "register"]
+
+
+def register(subparsers: Any) -> argparse.ArgumentParser:
+    """Add the ``sweep`` subcommand to ``subparsers`` (from ``add_subparsers``)."""
+    p = subparsers.add_parser(
+        "sweep",
+        help="parameter sweep over case fields, speed and voltages on Dask",
+        description=__doc__.split("\n\n")[1] if __doc__ else None,
+    )
+    p.add_argument("sweep_file", type=Path, metavar="SWEEP.toml", help="sweep file (TOML)")
+    p.add_argument(
+        "--out",
+        type=Path,
+        default=None,
+        metavar="RESULT",
+        help="writes RESULT.d/ (one file per point) and RESULT.nc "
+        "(default: the sweep file's name, in the current folder)",
+    )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        default=None,
+        help="address of a running dask.distributed scheduler (default: a local cluster)",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="worker processes of the local cluster (default: one per core)",
+    )
+    p.add_argument("--resume", action="store_true", help="continue RESULT.d, skip finished points")
+    p.add_argument(
+        "--assemble",
+        action="store_true",
+        help="compute nothing: gather the finished points of RESULT.d into RESULT.nc",
+    )
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_sweep)
+    return p
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    """Run the ``sweep`` subcommand; returns the exit code (0 all ok, 3 some failed).
+
+    Raises
+    ------
+    InputError
+        Bad sweep file, case, point, option, or a results folder that cannot
+        be used; nothing is computed then.
+    """
+    from foilbearing.sweep import load_sweep, output_paths, run_sweep
+
+    if args.workers is not None and args.workers < 1:
+        raise InputError(f"--workers {args.workers}: expected at least 1")
+    if args.workers is not None and args.scheduler is not None:
+        raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")
+    spec = load_sweep(args.sweep_file)
+    out = args.out if args.out is not None else Path(args.sweep_file.stem)
+    folder, _ = output_paths(out)
+    if args.assemble and not folder.is_dir():
+        raise InputError(f"--assemble: no results folder {folder} (run the sweep first)")
+    summary: dict[str, Any] = run_sweep(
+        spec,
+        out,
+        scheduler=args.scheduler,
+        n_workers=args.workers,
+        resume=args.resume or args.assemble,
+        compute=not args.assemble,
+        progress=not args.json,
+    )
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(
+            f"{summary['n_points']} points: {summary['n_ok']} ok, {summary['n_failed']} failed, "
+            f"{summary['n_missing']} missing ({summary['n_computed']} computed, "
+            f"{summary['n_skipped']} already done) in {summary['wall_time_s']:.1f} s",
+            file=sys.stderr,
+        )
+        print(f"points:  {summary['results_folder']}/points/")
+        print(f"dataset: {summary['dataset']}")
+    return 0 if summary["n_ok"] == summary["n_points"] else 3

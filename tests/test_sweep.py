@@ -1,0 +1,304 @@
+"""Parameter sweeps: the sweep file, validation of every point, and runs on a real Dask cluster.
+
+The cluster tests start one ``LocalCluster`` of two single-thread worker
+processes for the module; points use coarse grids so each costs 20-150 ms.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import signal
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from foilbearing.case import Grid, default_case
+from foilbearing.cli_sweep import register
+from foilbearing.errors import InputError
+from foilbearing.static import solve_equilibrium
+from foilbearing.sweep import ANALYSES, load_sweep, output_paths, run_point, run_sweep
+from foilbearing.units import parse_quantity
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "sweep_voltage_speed.toml"
+NUMERIC = ("eccentricity", "attitude_deg", "min_film_um", "drag_torque_Nm", "bearing_number")
+
+
+def _write(tmp_path: Path, body: str, name: str = "sweep.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(body, encoding="utf-8")
+    return path
+
+
+def _cli(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog="foilbearing")
+    register(parser.add_subparsers())
+    return parser.parse_args(argv)
+
+
+def _direct(n_theta: int, n_z: int, speed: str, voltage: str, **bearing: str) -> dict:
+    """The headline of a direct ``solve_equilibrium`` call, without the sweep machinery."""
+    case = default_case()
+    b = {k: parse_quantity(v, "length", field=k) for k, v in bearing.items()}
+    case = replace(case, grid=Grid(n_theta, n_z), bearing=replace(case.bearing, **b))
+    case = case.with_voltages(parse_quantity(voltage, "voltage", field="v"))
+    return solve_equilibrium(case, speed=parse_quantity(speed, "speed", field="s")).headline()
+
+
+# --------------------------------------------------------------------------- parsing, validation
+
+
+def test_example_sweep_file_is_valid() -> None:
+    spec = load_sweep(EXAMPLE)
+    assert spec.analysis == "static"
+    assert spec.n_points == math.prod(spec.shape) > 1
+
+
+def test_grid_is_the_cartesian_product(tmp_path: Path) -> None:
+    path = _write(
+        tmp_path,
+        """
+        [parameters]
+        speed = ["30000 rpm", "60000 rpm"]
+        voltage = ["0 V", "100 V", "150 V"]
+        bearing.clearance = ["80 um", "0.1 mm"]
+        """,
+    )
+    spec = load_sweep(path)
+    assert spec.shape == (2, 3, 2)
+    assert [p.dim for p in spec.parameters] == ["speed", "voltage", "bearing_clearance"]
+    assert [p.unit for p in spec.parameters] == ["rpm", "V", "um"]
+    assert spec.parameters[2].coords == pytest.approx((80.0, 100.0))
+    # point 7 = (1, 0, 1) in C order: the last parameter varies fastest
+    assert spec.point_values(7) == {
+        "speed": "60000 rpm",
+        "voltage": "0 V",
+        "bearing.clearance": "0.1 mm",
+    }
+    case = spec.point_case(7)
+    assert case.operation.speed == pytest.approx(60000 * math.pi / 30)
+    assert case.bearing.clearance == pytest.approx(1e-4)
+
+
+def test_voltage_of_one_actuator(tmp_path: Path) -> None:
+    path = _write(tmp_path, '[parameters]\n"voltage[1]" = ["0 V", "120 V"]\n')
+    case = load_sweep(path).point_case(1)
+    assert case.actuators is not None and case.actuators.voltages == (0.0, 120.0, 0.0)
+
+
+@pytest.mark.parametrize(
+    ("body", "words"),
+    [
+        ('[parameters]\n"bearing.clearence" = ["80 um"]\n', ["bearing.clearence", "unknown"]),
+        (
+            '[parameters]\n"bearing.clearance" = ["80 um", "5 kg"]\n',
+            ["bearing.clearance[1]", "5 kg"],
+        ),
+        (
+            '[parameters]\nspeed = ["50000 rpm"]\n"bearing.clearance" = ["80 um", "-5 um"]\n',
+            ["point 1", "bearing.clearance", "-5 um"],
+        ),
+        ('[parameters]\nvoltage = ["0 V", "100 V", "200 V"]\n', ["point 2", "voltage", "200"]),
+        ('[parameters]\n"voltage[3]" = ["0 V"]\n', ["voltage[3]", "3 actuators"]),
+        ('[parameters]\nvoltage = ["0 V"]\n"voltage[1]" = ["0 V"]\n', ["voltage[1]", "voltage"]),
+        ('analysis = "orbits"\n[parameters]\nspeed = ["1 rpm"]\n', ["orbits", "static"]),
+        ('analysis = "stability"\n[parameters]\nspeed = ["1 rpm"]\n', ["speed", "cannot be swept"]),
+        ("[parameters]\n", ["nothing to sweep"]),
+        ('[parameters]\nspeed = "50000 rpm"\n', ["speed", "list"]),
+    ],
+)
+def test_bad_sweep_is_one_input_error_before_any_work(
+    tmp_path: Path, body: str, words: list[str]
+) -> None:
+    path = _write(tmp_path, body)
+    with pytest.raises(InputError) as info:
+        args = _cli(["sweep", str(path), "--out", str(tmp_path / "res")])
+        args.func(args)
+    message = str(info.value)
+    assert message.startswith(str(path)) and "\n" not in message
+    for word in words:
+        assert word in message
+    assert not (tmp_path / "res.d").exists() and not (tmp_path / "res.nc").exists()
+
+
+def test_a_failing_evaluator_is_a_failed_record() -> None:
+    def boom(case, options):
+        raise ValueError("no film")
+
+    data = json.loads(json.dumps(load_sweep(EXAMPLE).point_data(0)))
+    rec = run_point(0, data, "here", boom, {})
+    assert rec["status"] == "failed" and rec["error"] == "ValueError: no film"
+    assert set(ANALYSES) >= {"static", "coefficients", "stability"}
+
+
+def test_output_paths() -> None:
+    assert output_paths("out/run") == (Path("out/run.d"), Path("out/run.nc"))
+    assert output_paths("out/run.nc") == (Path("out/run.d"), Path("out/run.nc"))
+
+
+# --------------------------------------------------------------------------- on a real cluster
+
+
+@pytest.fixture(scope="module")
+def client():
+    distributed = pytest.importorskip("distributed")
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
+        ) as cluster,
+        distributed.Client(cluster) as cl,
+    ):
+        yield cl
+
+
+@pytest.mark.slow
+def test_dataset_dims_coords_and_values(tmp_path: Path, client) -> None:
+    path = _write(
+        tmp_path,
+        """
+        title = "dims"
+        [set]
+        grid.n_theta = 48
+        [parameters]
+        speed = ["30000 rpm", "60000 rpm"]
+        voltage = ["0 V", "100 V", "150 V"]
+        "bearing.clearance" = ["80 um", "100 um"]
+        """,
+    )
+    summary = run_sweep(load_sweep(path), tmp_path / "res", client=client)
+    assert summary["n_ok"] == summary["n_points"] == 12
+    ds = xr.load_dataset(tmp_path / "res.nc")
+    assert ds["eccentricity"].dims == ("speed", "voltage", "bearing_clearance")
+    assert ds["speed"].values.tolist() == [30000.0, 60000.0] and ds["speed"].units == "rpm"
+    assert ds["voltage"].values.tolist() == [0.0, 100.0, 150.0] and ds["voltage"].units == "V"
+    assert ds["bearing_clearance"].attrs == {"units": "um", "parameter": "bearing.clearance"}
+    assert ds["preload_um"].dims[-1] == "actuator" and ds["force_N"].dims[-1] == "axis"
+    assert (ds["status"] == "ok").all() and (ds["error"] == "").all()
+    point = ds.sel(speed=60000.0, voltage=100.0, bearing_clearance=100.0)
+    direct = _direct(48, 12, "60000 rpm", "100 V", clearance="100 um")
+    for key in NUMERIC:
+        assert float(point[key]) == direct[key], key
+    assert point["preload_um"].values.tolist() == direct["preload_um"]
+
+
+@pytest.mark.slow
+def test_a_lost_worker_loses_no_point(tmp_path: Path, client) -> None:
+    path = _write(
+        tmp_path,
+        """
+        [set]
+        grid.n_theta = 256
+        grid.n_z = 16
+        [parameters]
+        voltage = ["0 V", "50 V", "100 V", "150 V"]
+        speed = ["30000 rpm", "50000 rpm", "70000 rpm"]
+        """,
+    )
+    spec = load_sweep(path)
+    pids = client.run(os.getpid)  # worker address -> process id
+    killed: list[str] = []
+    seen: list[int] = []
+
+    def kill_one(record: dict) -> None:
+        seen.append(record["index"])
+        if len(seen) == 2:
+            busy = [w for w, keys in client.processing().items() if keys]
+            killed.append(busy[0])
+            os.kill(pids[busy[0]], signal.SIGKILL)  # a hard loss, mid-task
+
+    summary = run_sweep(spec, tmp_path / "res", client=client, on_point=kill_one)
+    assert killed
+    assert sorted(seen) == list(range(12))  # each point reported exactly once
+    assert summary["n_ok"] == 12 and summary["n_missing"] == 0
+    files = sorted((tmp_path / "res.d" / "points").glob("*.json"))
+    assert [json.loads(f.read_text())["index"] for f in files] == list(range(12))
+    ds = xr.load_dataset(tmp_path / "res.nc")
+    for i in (0, 5, 11):
+        vals = spec.point_values(i)
+        direct = _direct(256, 16, vals["speed"], vals["voltage"])
+        point = ds.isel(voltage=i // 3, speed=i % 3)
+        for key in NUMERIC:
+            assert float(point[key]) == direct[key], (i, key)
+
+
+class _Stop(Exception):
+    pass
+
+
+@pytest.mark.slow
+def test_resume_computes_only_the_missing_points(tmp_path: Path, client) -> None:
+    path = _write(
+        tmp_path,
+        """
+        [set]
+        grid.n_theta = 48
+        [parameters]
+        voltage = ["0 V", "50 V", "100 V", "150 V"]
+        speed = ["30000 rpm", "60000 rpm"]
+        """,
+    )
+    spec = load_sweep(path)
+
+    def stop_after_3(record: dict) -> None:
+        if len(list((tmp_path / "res.d" / "points").glob("*.json"))) == 3:
+            raise _Stop
+
+    with pytest.raises(_Stop):
+        run_sweep(spec, tmp_path / "res", client=client, on_point=stop_after_3)
+    files = sorted((tmp_path / "res.d" / "points").glob("*.json"))
+    assert len(files) == 3
+    mtimes = {f.name: f.stat().st_mtime_ns for f in files}
+    with pytest.raises(InputError, match="--resume"):
+        run_sweep(spec, tmp_path / "res", client=client)
+    summary = run_sweep(spec, tmp_path / "res", client=client, resume=True)
+    assert (summary["n_computed"], summary["n_skipped"], summary["n_ok"]) == (5, 3, 8)
+    assert {f.name: f.stat().st_mtime_ns for f in files} == mtimes
+    assert (xr.load_dataset(tmp_path / "res.nc")["status"] == "ok").all()
+    other = _write(tmp_path, path.read_text().replace("150 V", "140 V"), "other.toml")
+    with pytest.raises(InputError, match="another sweep"):
+        run_sweep(load_sweep(other), tmp_path / "res", client=client, resume=True)
+
+
+@pytest.mark.slow
+def test_failed_point_is_recorded_and_the_rest_complete(tmp_path: Path, client, capsys) -> None:
+    path = _write(
+        tmp_path,
+        """
+        [set]
+        grid.n_theta = 48
+        [parameters]
+        "operation.load" = ["8.8 N", "2000 N", "20 N"]
+        """,
+    )
+    address = client.scheduler.address
+    args = _cli(
+        ["sweep", str(path), "--out", str(tmp_path / "res"), "--scheduler", address, "--json"]
+    )
+    assert args.func(args) == 3
+    out = json.loads(capsys.readouterr().out)
+    assert (out["n_points"], out["n_ok"], out["n_failed"]) == (3, 2, 1)
+    assert out["dataset"] == str(tmp_path / "res.nc") and out["wall_time_s"] > 0
+    ds = xr.load_dataset(tmp_path / "res.nc")
+    assert ds["status"].values.tolist() == ["ok", "failed", "ok"]
+    assert "equilibrium not found" in str(ds["error"].values[1])
+    assert np.isnan(ds["eccentricity"].values[1]) and not np.isnan(ds["eccentricity"].values[2])
+    record = json.loads((tmp_path / "res.d" / "points" / "000001.json").read_text())
+    assert record["parameters"] == {"operation.load": "2000 N"}
+
+
+@pytest.mark.slow
+def test_cli_on_its_own_local_cluster(tmp_path: Path, capsys) -> None:
+    path = _write(
+        tmp_path, '[set]\ngrid.n_theta = 48\n[parameters]\nspeed = ["40000 rpm", "50000 rpm"]\n'
+    )
+    args = _cli(["sweep", str(path), "--out", str(tmp_path / "r"), "--workers", "1", "--json"])
+    assert args.func(args) == 0
+    assert json.loads(capsys.readouterr().out)["n_ok"] == 2
+    args = _cli(["sweep", str(path), "--out", str(tmp_path / "r"), "--assemble", "--json"])
+    assert args.func(args) == 0
+    assert json.loads(capsys.readouterr().out)["n_computed"] == 0
