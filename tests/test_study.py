@@ -11,7 +11,7 @@ from foilbearing.cli import main
 
 
 def test_study_writes_figures_results_and_comparison(tmp_path: Path, capsys) -> None:
-    assert main(["study", "--out", str(tmp_path), "--json"]) == 0
+    assert main(["study", "--out", str(tmp_path), "--orbits", "none", "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     for name in (
         "fig05b_stack_displacement.png",

@@ -159,6 +159,12 @@ def _parser() -> argparse.ArgumentParser:
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
     _add_case_arg(study)
     study.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")
+    study.add_argument(
+        "--orbits",
+        choices=("full", "none"),
+        default="full",
+        help="run the four speed-up orbits of Figs. 13-15 (default full)",
+    )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=_cmd_study)
     return p
@@ -594,7 +600,7 @@ def _cmd_study(args: argparse.Namespace) -> int:
     from foilbearing.study import run_study
 
     case = _load(args.case)
-    summary = run_study(case, args.out, progress=not args.json)
+    summary = run_study(case, args.out, progress=not args.json, orbits=args.orbits == "full")
     if args.json:
         _emit(summary)
     return 0

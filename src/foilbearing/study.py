@@ -19,7 +19,9 @@ __all__ = ["run_study"]
 REPO_EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "data"
 
 
-def run_study(case: Case, out: Path, *, progress: bool = True) -> dict[str, Any]:
+def run_study(
+    case: Case, out: Path, *, progress: bool = True, orbits: bool = True
+) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
 
     Parameters
@@ -30,6 +32,8 @@ def run_study(case: Case, out: Path, *, progress: bool = True) -> dict[str, Any]
         Output folder, created if needed.
     progress
         Print a line per stage to stderr.
+    orbits
+        Run the paper's four speed-up orbits (Figs. 13-15; the longest stage).
 
     Returns
     -------
@@ -79,11 +83,25 @@ def run_study(case: Case, out: Path, *, progress: bool = True) -> dict[str, Any]
     if case.actuators is not None:
         onsets = _stability_stage(case, out, results, stage)
 
-    from foilbearing.paper import markdown_table, stability_comparison, static_comparison
+    if orbits and case.actuators is not None:
+        from foilbearing.study_orbits import paper_orbit_runs
+
+        stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
+        results["orbits"] = paper_orbit_runs(case, out, stage)
+        write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
+
+    from foilbearing.paper import (
+        markdown_table,
+        orbit_comparison,
+        stability_comparison,
+        static_comparison,
+    )
 
     rows = static_comparison(case, results["structure"], sweep)
     if onsets is not None:
         rows += stability_comparison(onsets)
+    if "orbits" in results:
+        rows += orbit_comparison(results["orbits"]["runs"])
     table = markdown_table(rows)
     results["paper_comparison"] = [r.__dict__ for r in rows]
     write_text(
