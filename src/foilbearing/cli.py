@@ -150,11 +150,13 @@ def _parser() -> argparse.ArgumentParser:
     stab.add_argument("--json", action="store_true", help="print one JSON object")
     stab.set_defaults(func=_cmd_stability)
 
+    from foilbearing.cli_optimize import register as register_optimize
     from foilbearing.cli_orbit import register as register_orbit
     from foilbearing.cli_sweep import register as register_sweep
 
     register_orbit(sub)
     register_sweep(sub)
+    register_optimize(sub)
 
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
     _add_case_arg(study)
