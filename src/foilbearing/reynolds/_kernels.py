@@ -43,7 +43,9 @@ Jacobians
 in θ, column indices sorted within rows), built once per grid by
 :func:`stencil_pattern`; the kernels fill only the ``data`` array. The coupled
 foil Jacobian has dense ``n_z × n_z`` blocks on three θ block-diagonals
-(:func:`coupled_pattern`, :func:`coupled_jacobian`).
+(:func:`coupled_pattern`, :func:`coupled_jacobian`); that matrix is
+factorised by block cyclic elimination (:func:`block_cyclic_factor`,
+:func:`block_cyclic_solve`; wrapped by :mod:`foilbearing.reynolds.blocksolve`).
 
 Every kernel has a plain-NumPy twin (suffix ``_py``) with the same signature;
 ``tests/test_kernels.py`` checks each kernel against its twin.
@@ -56,10 +58,18 @@ from numba import njit
 from numpy.typing import NDArray
 
 __all__ = [
+    "BC_NOT_FINITE",
+    "BC_OK",
+    "BC_ZERO_PIVOT",
     "bernoulli",
     "bernoulli_deriv",
     "bernoulli_deriv_py",
     "bernoulli_py",
+    "block_cyclic_alloc",
+    "block_cyclic_factor",
+    "block_cyclic_factor_py",
+    "block_cyclic_solve",
+    "block_cyclic_solve_py",
     "coupled_jacobian",
     "coupled_jacobian_py",
     "coupled_pattern",
@@ -599,3 +609,445 @@ def coupled_jacobian_py(
     c_indptr, c_indices = coupled_pattern(n_theta, n_z)
     rows = np.repeat(np.arange(n), np.diff(c_indptr))
     out[:] = full[rows, c_indices]
+
+
+# ---------------------------------------------------------------------------
+# Block cyclic tridiagonal LU (the matrix on the coupled pattern)
+# ---------------------------------------------------------------------------
+#
+# B (n = n_theta·n_z) on :func:`coupled_pattern` is block tridiagonal and
+# periodic in θ with dense n_z × n_z blocks. With N = n_theta, block row i
+# holds L_i = B[i, i−1], A_i = B[i, i], U_i = B[i, i+1] (indices mod N). Block
+# Gaussian elimination in θ order (no pivoting between blocks; partial
+# pivoting inside each pivot block) keeps the periodic fill in a border: the
+# last block column (G_i = current B[i, N−1]) and last block row
+# (R_i = current B[N−1, i]). For i = 0 … N−2, with D_i the pivot block:
+#
+#     [V_i | W_i] = D_i⁻¹ [U_i | G_i]          (U_{N−2} is G_{N−2}: V_{N−2} = 0)
+#     [D_{i+1} | G_{i+1}] −= L_{i+1} [V_i | W_i]          (i ≤ N−3)
+#     [R_{i+1} | S] −= R_i [V_i | W_i]
+#
+# from D_0 = A_0, G_0 = L_0, G_{N−2} = U_{N−2}, R_0 = U_{N−1},
+# R_{N−2} = L_{N−1}, S = A_{N−1} (other G, R zero); cost O(N n_z³). The pivot
+# blocks are inverted explicitly (from their LU): the solve is then five
+# independent n_z-long dot products per row and block, O(N n_z²).
+#
+# Factor storage ``fac`` of shape (N, n_z, 5 n_z): block row i holds the
+# five n_z × n_z slots [D_i⁻¹ | V_i | W_i | L_i | R_i] side by side
+# (column offsets 0, n_z, 2 n_z, 3 n_z, 4 n_z), so that [V_i | W_i] is one
+# n_z × 2 n_z matrix. fac[N−1, :, :n_z] holds S⁻¹; slots that do not exist
+# (L_0, V_{N−2}, the rest of row N−1) are zero.
+
+BC_OK, BC_ZERO_PIVOT, BC_NOT_FINITE = 0, 1, 2
+
+
+def block_cyclic_alloc(n_theta: int, n_z: int) -> FloatArray:
+    """Factor storage for :func:`block_cyclic_factor`, shape (n_theta, n_z, 5 n_z).
+
+    ``n_theta >= 3`` (the three θ-blocks of a row are distinct), ``n_z >= 1``.
+    """
+    if n_theta < 3 or n_z < 1:
+        raise ValueError(f"block cyclic LU needs n_theta >= 3 and n_z >= 1, got {n_theta}, {n_z}")
+    return np.zeros((n_theta, n_z, 5 * n_z))
+
+
+@njit(cache=True, fastmath={"contract"})
+def _lu_inverse(a: FloatArray, piv: IntArray, inv: FloatArray) -> int:
+    """Inverse of the n_z × n_z block ``a[:, :n_z]`` (LU with partial pivoting).
+
+    ``a`` (n_z, ≥ n_z) is overwritten by its LU factors (LAPACK getrf
+    layout), ``inv`` (n_z, n_z) receives the inverse. Returns −1, or the
+    column of the first exactly zero pivot (then ``inv`` is undefined).
+    """
+    m = inv.shape[0]
+    for k in range(m):
+        p = k
+        best = abs(a[k, k])
+        for r in range(k + 1, m):
+            v = abs(a[r, k])
+            if v > best:
+                best = v
+                p = r
+        piv[k] = p
+        if best == 0.0:
+            return k
+        if p != k:
+            for c in range(m):
+                t = a[k, c]
+                a[k, c] = a[p, c]
+                a[p, c] = t
+        rk = 1.0 / a[k, k]
+        for r in range(k + 1, m):
+            lrk = a[r, k] * rk
+            a[r, k] = lrk
+            for c in range(k + 1, m):
+                a[r, c] -= lrk * a[k, c]
+    # inv = U⁻¹ L⁻¹ P (as LAPACK getri): L⁻¹ is unit lower triangular
+    inv[:, :] = 0.0
+    for r in range(m):
+        inv[r, r] = 1.0
+        for k in range(r):
+            lrk = a[r, k]
+            for c in range(k + 1):
+                inv[r, c] -= lrk * inv[k, c]
+    for r in range(m - 1, -1, -1):
+        for k in range(r + 1, m):
+            urk = a[r, k]
+            for c in range(m):
+                inv[r, c] -= urk * inv[k, c]
+        rr = 1.0 / a[r, r]
+        for c in range(m):
+            inv[r, c] *= rr
+    for k in range(m - 1, -1, -1):
+        p = piv[k]
+        if p != k:
+            for r in range(m):
+                t = inv[r, k]
+                inv[r, k] = inv[r, p]
+                inv[r, p] = t
+    return -1
+
+
+@njit(cache=True, fastmath={"contract"})
+def _gemm_acc(
+    c: FloatArray,
+    c0: int,
+    a: FloatArray,
+    b: FloatArray,
+    m: int,
+    w: int,
+    alpha: float,
+) -> None:
+    """``c[:, c0:c0+w] += alpha · a @ b[:, :w]`` for ``a`` of shape (m, m).
+
+    Column offset into full C-contiguous rows keeps the inner loop contiguous;
+    two rows at a time reuse each row of ``b``. ``a``, ``b`` must not overlap ``c``.
+    """
+    for r in range(0, m - 1, 2):
+        for k in range(m):
+            a0 = alpha * a[r, k]
+            a1 = alpha * a[r + 1, k]
+            for q in range(w):
+                bq = b[k, q]
+                c[r, c0 + q] += a0 * bq
+                c[r + 1, c0 + q] += a1 * bq
+    if m % 2:
+        r = m - 1
+        for k in range(m):
+            ark = alpha * a[r, k]
+            for q in range(w):
+                c[r, c0 + q] += ark * b[k, q]
+
+
+@njit(cache=True)
+def _block_ranks(i: int, n_theta: int) -> tuple[int, int, int]:
+    """Ranks (W, C, E) of blocks i−1, i, i+1 in block row i of the coupled data."""
+    if i == 0:
+        return 2, 0, 1
+    if i == n_theta - 1:
+        return 1, 2, 0
+    return 0, 1, 2
+
+
+@njit(cache=True)
+def _norm1(a: FloatArray, c0: int, m: int) -> float:
+    """1-norm (largest column sum) of the block ``a[:, c0:c0+m]``."""
+    best = 0.0
+    for c in range(m):
+        s = 0.0
+        for r in range(m):
+            s += abs(a[r, c0 + c])
+        best = max(best, s)
+    return best
+
+
+@njit(cache=True)
+def block_cyclic_factor(
+    data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
+) -> tuple[int, int, float, float]:
+    """Block LU of the periodic block-tridiagonal matrix on :func:`coupled_pattern`.
+
+    Block Gaussian elimination in θ order with the periodic fill kept in the
+    last block row and column (see the comment above :data:`BC_OK`); partial
+    pivoting inside each ``n_z × n_z`` pivot block, none between blocks, so
+    it is meant for block-diagonally dominant matrices such as the BDF Newton
+    matrix ``c0·diag(H) + …``. Cost ``O(n_theta n_z³)``. Replaces
+    ``scipy.sparse.linalg.splu`` of the CSR matrix; twin
+    :func:`block_cyclic_factor_py`.
+
+    Parameters
+    ----------
+    data : ndarray, shape (3 n_z · n_theta n_z,)
+        CSR data of B on :func:`coupled_pattern` (row ``k = i*n_z + j``,
+        ``3 n_z`` entries, θ-blocks in increasing column order).
+    n_theta, n_z : int
+        Grid size, ``n_theta >= 3``.
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Overwritten with the factors (layout above; see :func:`block_cyclic_alloc`).
+
+    Returns
+    -------
+    status : int
+        :data:`BC_OK`; :data:`BC_ZERO_PIVOT` (a pivot block is exactly
+        singular, ``fac`` is incomplete); :data:`BC_NOT_FINITE` (``data``
+        holds inf or NaN, nothing done).
+    block : int
+        Block row of the worst-conditioned pivot block (the failing one for
+        ``BC_ZERO_PIVOT``; ``n_theta − 1`` is the border block S).
+    rcond : float
+        Smallest reciprocal 1-norm condition number ``1/(‖D‖₁ ‖D⁻¹‖₁)`` of
+        the pivot blocks (exact, from the explicit inverses; 0 if singular).
+    growth : float
+        Largest entry of the pivot blocks ``D_i`` and S after elimination over
+        the largest entry of B (about 1 for block diagonally dominant B;
+        large values mean that elimination without block pivoting is unstable).
+    """
+    n_b = n_theta
+    m = n_z
+    last = n_b - 1
+    bmax = 0.0
+    for v in data:
+        av = abs(v)
+        if not av < np.inf:  # inf or NaN
+            return BC_NOT_FINITE, -1, 0.0, np.inf
+        bmax = max(bmax, av)
+    d4 = data.reshape((n_b, m, 3, m))
+    fac[:] = 0.0
+    # G_i is kept in the V slot until block i is eliminated.
+    t = np.zeros((m, 2 * m))  # [R_i | S], R_i of the block being eliminated
+    src = np.empty((m, 2 * m))  # [U_i | G_i]
+    vw = np.empty((m, 2 * m))  # [V_i | W_i]
+    inv = np.empty((m, m))
+    lo = np.empty((m, m))
+    piv = np.empty(m, dtype=np.int64)
+    for i in range(n_b):
+        rw, rc, re = _block_ranks(i, n_b)
+        x = fac[i]
+        for r in range(m):
+            for c in range(m):
+                x[r, c] = d4[i, r, rc, c]
+        if 0 < i < last:
+            for r in range(m):
+                for c in range(m):
+                    x[r, 3 * m + c] = d4[i, r, rw, c]
+    for r in range(m):
+        for c in range(m):
+            fac[0, r, m + c] = d4[0, r, _block_ranks(0, n_b)[0], c]  # G_0 = L_0
+            fac[last - 1, r, m + c] = d4[last - 1, r, 2, c]  # G_{N-2} = U_{N-2}
+            t[r, c] = d4[last, r, 0, c]  # R_0 = U_{N-1}
+            t[r, m + c] = d4[last, r, 2, c]  # S = A_{N-1}
+    dmax = 0.0
+    rcond = np.inf
+    worst = 0
+    for i in range(last):
+        x = fac[i]
+        for r in range(m):
+            for c in range(m):
+                dmax = max(dmax, abs(x[r, c]))
+        dnorm = _norm1(x, 0, m)
+        k = _lu_inverse(x, piv, inv)
+        if k >= 0:
+            return BC_ZERO_PIVOT, i, 0.0, dmax / bmax
+        rc_i = 1.0 / (dnorm * _norm1(inv, 0, m))
+        if not rc_i >= rcond:
+            rcond = rc_i
+            worst = i
+        for r in range(m):
+            for c in range(m):
+                x[r, c] = inv[r, c]
+                src[r, c] = 0.0  # U_{N−2} is the border G_{N−2}
+                src[r, m + c] = x[r, m + c]
+        if i < last - 1:
+            re = _block_ranks(i, n_b)[2]
+            for r in range(m):
+                for c in range(m):
+                    src[r, c] = d4[i, r, re, c]
+        vw[:, :] = 0.0
+        _gemm_acc(vw, 0, inv, src, m, 2 * m, 1.0)  # [V_i | W_i]
+        for r in range(m):
+            for c in range(2 * m):
+                x[r, m + c] = vw[r, c]
+        if i < last - 1:
+            x1 = fac[i + 1]
+            for r in range(m):
+                for c in range(m):
+                    lo[r, c] = x1[r, 3 * m + c]
+            _gemm_acc(x1, 0, lo, vw, m, 2 * m, -1.0)
+        # R_i moves into its slot; the border row then takes R_{i+1}
+        for r in range(m):
+            for c in range(m):
+                x[r, 4 * m + c] = t[r, c]
+                lo[r, c] = t[r, c]
+                t[r, c] = d4[last, r, 1, c] if i == last - 2 else 0.0
+        _gemm_acc(t, 0, lo, vw, m, 2 * m, -1.0)
+    for r in range(m):
+        for c in range(m):
+            dmax = max(dmax, abs(t[r, m + c]))
+    snorm = _norm1(t, m, m)
+    for r in range(m):
+        for c in range(m):
+            t[r, c] = t[r, m + c]
+    k = _lu_inverse(t, piv, inv)
+    if k >= 0:
+        return BC_ZERO_PIVOT, last, 0.0, dmax / bmax
+    rc_s = 1.0 / (snorm * _norm1(inv, 0, m))
+    if not rc_s >= rcond:
+        rcond = rc_s
+        worst = last
+    for r in range(m):
+        for c in range(m):
+            fac[last, r, c] = inv[r, c]
+    return BC_OK, worst, rcond, dmax / bmax
+
+
+@njit(cache=True, fastmath={"reassoc", "contract"})
+def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
+    """Solve ``B x = rhs`` with the factors of :func:`block_cyclic_factor`.
+
+    Cost ``O(n_theta n_z²)`` per right-hand side; twin
+    :func:`block_cyclic_solve_py`. Dot products may be reassociated
+    (vectorised), which changes results only at rounding level.
+
+    Parameters
+    ----------
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Output of a successful :func:`block_cyclic_factor`.
+    rhs : ndarray, shape (n, k)
+        Right-hand sides, ``n = n_theta n_z``, row ``i*n_z + j``.
+    out : ndarray, shape (n, k)
+        Filled with the solutions (may be ``rhs`` itself).
+    """
+    n_b = fac.shape[0]
+    m = fac.shape[1]
+    ncol = rhs.shape[1]
+    last = n_b - 1
+    # (block, column, n_z): block vectors contiguous for the dot products
+    z = np.empty((n_b, ncol, m))
+    y = np.empty(2 * m)
+    for i in range(n_b):
+        for j in range(m):
+            for q in range(ncol):
+                z[i, q, j] = rhs[i * m + j, q]
+    # forward: y_i = b_i − L_i z_{i−1}, z_i = D_i⁻¹ y_i, y_S −= R_i z_i
+    for i in range(last):
+        for q in range(ncol):
+            if i > 0:
+                for r in range(m):
+                    acc = 0.0
+                    for c in range(m):
+                        acc += fac[i, r, 3 * m + c] * z[i - 1, q, c]
+                    y[r] = z[i, q, r] - acc
+            else:
+                for r in range(m):
+                    y[r] = z[i, q, r]
+            for r in range(m):
+                acc = 0.0
+                for c in range(m):
+                    acc += fac[i, r, c] * y[c]
+                z[i, q, r] = acc
+            for r in range(m):
+                acc = 0.0
+                for c in range(m):
+                    acc += fac[i, r, 4 * m + c] * z[i, q, c]
+                z[last, q, r] -= acc
+    for q in range(ncol):
+        for r in range(m):
+            y[r] = z[last, q, r]
+        for r in range(m):
+            acc = 0.0
+            for c in range(m):
+                acc += fac[last, r, c] * y[c]
+            z[last, q, r] = acc
+    # backward: x_i = z_i − [V_i | W_i] [x_{i+1}; x_S]  (V_{N−2} = 0)
+    for i in range(last - 1, -1, -1):
+        for q in range(ncol):
+            for c in range(m):
+                y[c] = z[i + 1, q, c] if i < last - 1 else 0.0
+                y[m + c] = z[last, q, c]
+            for r in range(m):
+                acc = 0.0
+                for c in range(2 * m):
+                    acc += fac[i, r, m + c] * y[c]
+                z[i, q, r] -= acc
+    for i in range(n_b):
+        for j in range(m):
+            for q in range(ncol):
+                out[i * m + j, q] = z[i, q, j]
+
+
+def block_cyclic_factor_py(
+    data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
+) -> tuple[int, int, float, float]:
+    """NumPy twin of :func:`block_cyclic_factor` (LAPACK inverses of the pivot blocks)."""
+    import warnings
+
+    import scipy.linalg as sla
+
+    n_b, m, last = n_theta, n_z, n_theta - 1
+    if not np.all(np.isfinite(data)):
+        return BC_NOT_FINITE, -1, 0.0, np.inf
+    bmax = float(np.abs(data).max())
+    d4 = data.reshape(n_b, m, 3, m)
+    ranks = np.array([[0, 1, 2]] * n_b)
+    ranks[0] = [2, 0, 1]
+    ranks[last] = [1, 2, 0]
+    idx = np.arange(n_b)
+    blk_w = d4[idx, :, ranks[:, 0], :]  # L_i, shape (n_b, m, m)
+    blk_c = d4[idx, :, ranks[:, 1], :]  # A_i
+    blk_e = d4[idx, :, ranks[:, 2], :]  # U_i
+    fac[:] = 0.0
+    dinv, v, w, lo, rr = (fac[:, :, s * m : (s + 1) * m] for s in range(5))
+    d = blk_c.copy()
+    g = np.zeros((n_b, m, m))
+    g[0], g[last - 1] = blk_w[0], blk_e[last - 1]
+    lo[1:last] = blk_w[1:last]
+    r_cur, s_cur = blk_e[last].copy(), blk_c[last].copy()
+    dmax, rcond, worst = 0.0, np.inf, 0
+    for i in range(n_b):
+        blk = s_cur if i == last else d[i]
+        dmax = max(dmax, float(np.abs(blk).max()))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", sla.LinAlgWarning)
+            lu = sla.lu_factor(blk, check_finite=False)[0]
+        if np.any(np.diag(lu) == 0.0):
+            return BC_ZERO_PIVOT, i, 0.0, dmax / bmax
+        inv = np.linalg.inv(blk)
+        rc_i = 1.0 / (np.abs(blk).sum(axis=0).max() * np.abs(inv).sum(axis=0).max())
+        if not rc_i >= rcond:
+            rcond, worst = float(rc_i), i
+        dinv[i] = inv
+        if i == last:
+            break
+        if i < last - 1:
+            v[i] = inv @ blk_e[i]
+        w[i] = inv @ g[i]
+        vw = np.concatenate([v[i], w[i]], axis=1)
+        if i < last - 1:
+            upd = lo[i + 1] @ vw
+            d[i + 1] -= upd[:, :m]
+            g[i + 1] -= upd[:, m:]
+        rr[i] = r_cur
+        r_next = blk_w[last] if i == last - 2 else np.zeros((m, m))
+        upd = r_cur @ vw
+        r_cur = r_next - upd[:, :m]
+        s_cur = s_cur - upd[:, m:]
+    return BC_OK, worst, rcond, dmax / bmax
+
+
+def block_cyclic_solve_py(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
+    """NumPy twin of :func:`block_cyclic_solve`."""
+    n_b, m = fac.shape[0], fac.shape[1]
+    last = n_b - 1
+    dinv, v, w, lo, rr = (fac[:, :, s * m : (s + 1) * m] for s in range(5))
+    z = rhs.reshape(n_b, m, -1).copy()
+    for i in range(last):
+        if i > 0:
+            z[i] -= lo[i] @ z[i - 1]
+        z[i] = dinv[i] @ z[i]
+        z[last] -= rr[i] @ z[i]
+    z[last] = dinv[last] @ z[last]
+    for i in range(last - 1, -1, -1):
+        z[i] -= w[i] @ z[last]
+        if i < last - 1:
+            z[i] -= v[i] @ z[i + 1]
+    out[:] = z.reshape(out.shape)

@@ -24,6 +24,7 @@ the stingers. With γ = 0 the bump is purely elastic and joins c_a.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -31,6 +32,7 @@ from numpy.typing import NDArray
 from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.blocksolve import BlockCyclicLU
 from foilbearing.reynolds.grid import Grid
 from foilbearing.reynolds.steady import Workspace
 
@@ -191,15 +193,13 @@ class TransientSystem:
         c_eff = self.c_act + rate * self.c_bump / (c0 + rate)
         kern.coupled_jacobian(jp, jh, c_eff * active / g.n_z, g.n_z, self._jc)
         n = self.n
-        b = sp.csc_matrix((self._jc, self.c_indices, self.c_indptr), shape=(n, n))
-        # CSR data read as CSC is B^T: factor it and solve with trans="T".
-        lu = splu(b, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+        lu = _factor_coupled(self._jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
         a_pe = jh_mat @ np.column_stack(
             [np.repeat(self.cos_t, g.n_z), np.repeat(self.sin_t, g.n_z)]
         )
         s_vp = self.force_scale * self.w  # (2, n)
-        y_border = lu.solve(np.ascontiguousarray(a_pe / c0**2), trans="T")
+        y_border = lu.solve(np.ascontiguousarray(a_pe / c0**2))
         small = np.eye(2) + s_vp @ y_border  # Woodbury: I + V^T B^-1 U, V^T = S_vp
         return TransientFactor(self, lu, jh_mat, a_pe, s_vp, y_border, small, c0, rate, active)
 
@@ -256,6 +256,28 @@ class TransientSystem:
         return sp.bmat(blocks, format="csc")
 
 
+class _TransposedSuperLU:
+    """SuperLU of B from its CSR data read as CSC (= Bᵀ), solving B x = b."""
+
+    def __init__(self, data: FloatArray, indices: NDArray, indptr: NDArray, n: int) -> None:
+        bt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
+        self.lu = splu(bt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+
+    def solve(self, rhs: FloatArray) -> FloatArray:
+        return self.lu.solve(rhs, trans="T")
+
+
+def _factor_coupled(
+    data: FloatArray, indices: NDArray, indptr: NDArray, n_theta: int, n_z: int
+) -> Any:
+    """Factorise B (CSR data on the foil-coupled pattern): the compiled block-cyclic LU, or
+    SuperLU when a pivot block is ill-conditioned."""
+    try:
+        return BlockCyclicLU(data, n_theta, n_z)
+    except FloatingPointError:
+        return _TransposedSuperLU(data, indices, indptr, n_theta * n_z)
+
+
 class TransientFactor:
     """A factorised Newton matrix (see :meth:`TransientSystem.factorize`)."""
 
@@ -286,7 +308,7 @@ class TransientFactor:
         rhs = g_p - self.jh @ np.repeat(g_u / (c0 + rate), nz)
         # Eliminate the journal: c0 de − dv = g_e, c0 dv − S_vp dP = g_v
         rhs -= self.a_pe @ ((g_v + c0 * g_e) / c0**2)
-        z = self.lu.solve(rhs, trans="T")  # type: ignore[attr-defined]
+        z = self.lu.solve(rhs)  # type: ignore[attr-defined]
         d_p = z - self.y_border @ (self.small_inv @ (self.s_vp @ z))
         d_e = (self.s_vp @ d_p + g_v + c0 * g_e) / c0**2
         d_v = c0 * d_e - g_e
