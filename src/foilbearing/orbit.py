@@ -27,6 +27,7 @@ from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
 from foilbearing.errors import InputError
 from foilbearing.film import film_model
+from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.transient import Inputs, TransientSystem
 from foilbearing.static import solve_equilibrium
 from foilbearing.structure import base_preload, preload_shape
@@ -390,6 +391,7 @@ def _run(
     if not out.rows:
         out.add(st.t, st.y, sim, volts, inp)
     lu, lu_c0 = None, math.nan
+    work = (np.empty(sys_.size), np.empty(sys_.size))  # Newton residual and update buffers
     counters = [0, 0, 0]  # steps, factorizations, Newton iterations
     status, message, contact = "completed", "", None
 
@@ -428,7 +430,9 @@ def _run(
                     c0 = (1 + 2 * rho) / ((1 + rho) * h)
                     hist = (-(1 + rho) * q_now + rho * rho / (1 + rho) * q_prev) / h
                     guess = _predict(y, st.y_prev, st.y_prev2, h, st.h_prev, st.h_prev2)
-                ok, y_new, its, lu, lu_c0, nf = _newton(sim, guess, inp, c0, hist, lu, lu_c0)
+                ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _newton(
+                    sim, guess, inp, c0, hist, lu, lu_c0, work
+                )
                 counters[2] += its
                 counters[1] += nf
                 if ok:
@@ -440,12 +444,11 @@ def _run(
             st.y_prev2, st.h_prev2 = st.y_prev, st.h_prev
             st.y_prev, st.h_prev = y, h
             st.y, st.t = y_new, t_new
-            q_prev, q_now = q_now, sys_.storage(y_new, inp)
-            out.add(t_new, y_new, sim, volts, inp, previous=(t, y))
+            q_prev, q_now = q_now, q_new
+            out.add(t_new, y_new, sim, volts, inp, previous=(t, y), min_film=h_min)
             if isinstance(sim.voltage, SubsyncController):
                 for ts, ex in out.new_samples():
                     sim.voltage.observe(ts, ex, sim.profile.phase(ts))
-            h_min = sys_.min_film(y_new, inp.preload)
             if h_min < s.contact_film:
                 w = sim.profile.omega(t_new)
                 k = sys_.n + sys_.nt
@@ -511,42 +514,75 @@ def _newton(
     hist: FloatArray,
     lu: Any,
     lu_c0: float,
-) -> tuple[bool, FloatArray, int, Any, float, int]:
-    """Modified Newton on c0·Q(y) + hist − f(y) = 0, reusing the factor while it converges."""
+    work: tuple[FloatArray, FloatArray],
+) -> tuple[bool, FloatArray, int, Any, float, int, FloatArray, float]:
+    """Modified Newton on c0·Q(y) + hist − f(y) = 0, reusing the factor while it converges.
+
+    A stale factor that converges too slowly is refreshed at the current
+    iterate and the iteration goes on from there; a fresh factor that fails
+    (or a stale one whose iterate closes the film) restarts from the guess
+    with a fresh factor, then gives up (the caller halves the step).
+    ``work`` holds two state-sized buffers (residual, update) reused across
+    iterations. Returns ``(converged, y, iterations, factor, factor_c0,
+    factorisations, Q(y), min film)``; on failure y is the guess and Q is empty.
+    """
     s, sys_ = sim.settings, sim.system
+    n = sys_.n
+    g_buf, dy_buf = work
     y0 = y
     factorizations = 0
     its = 0
+    # Both attempts start from the same guess: one set of error weights per step.
+    w = sim.weights(y0)
     for attempt in range(2):
         y = y0.copy()
-        if lu is None or attempt == 1 or abs(c0 - lu_c0) > 0.2 * c0:
+        fresh = lu is None or attempt == 1 or abs(c0 - lu_c0) > 0.2 * c0
+        if fresh:
             lu = sys_.factorize(y, inp, c0)
             lu_c0 = c0
             factorizations += 1
         prev = math.inf
-        w = sim.weights(y)
         # Solve to a fraction of the step's own change (predictor to corrector), as BDF codes
         # do: the Newton error then stays well below the truncation error of the step.
         first_change = math.inf
-        for _ in range(s.max_newton):
+        k = 0  # iterations with the current factor
+        while True:
             its += 1
-            g, h_min = sys_.newton_residual(y, inp, c0, hist)
+            k += 1
+            g, h_min = sys_.newton_residual(y, inp, c0, hist, g_buf)
             if h_min <= 0.0:
                 break  # the iterate closed the film: retry with a fresh matrix or a shorter step
-            dy = lu.solve(g)
-            y -= dy
-            err = float(np.max(np.abs(dy) * w))
-            if not np.isfinite(err) or y[: sys_.n].min() <= 0.0:
+            dy = lu.solve(g, dy_buf)
+            err, p_min = kern.newton_update(y, dy, w, n)  # y -= dy
+            if not math.isfinite(err) or p_min <= 0.0:
                 break
             if first_change == math.inf:
                 first_change = err
             tol = max(s.newton_tol, s.newton_fraction * first_change)
-            if err <= tol and sys_.min_film(y, inp.preload) > 0.0:
-                return True, y, its, lu, lu_c0, factorizations
-            if err > 0.5 * prev:
-                break
+            # Contraction rate of this factor; the error left in y is about rate/(1−rate)·err.
+            rate = err / prev if k > 1 else math.nan
+            if err <= tol or (rate < 1.0 and rate / (1.0 - rate) * err <= tol):
+                q_new, h_new = sys_.storage_min_film(y, inp.preload)
+                if h_new > 0.0:
+                    return True, y, its, lu, lu_c0, factorizations, q_new, h_new
+            if fresh:
+                if k >= s.max_newton or rate > 0.5:
+                    break
+            elif k >= s.max_newton or rate >= 1.0:
+                break  # diverging on a stale factor: restart from the guess with a fresh one
+            elif rate ** (s.max_newton - k) / (1.0 - rate) * err > tol:
+                # A stale factor that will not converge in time: refresh it here, go on from y.
+                lu = sys_.factorize(y, inp, c0)
+                lu_c0 = c0
+                factorizations += 1
+                fresh = True
+                prev = math.inf
+                k = 0
+                continue
             prev = err
-    return False, y0, its, None, math.nan, factorizations
+        if fresh:
+            break
+    return False, y0, its, None, math.nan, factorizations, np.empty(0), math.nan
 
 
 class _Samples:
@@ -567,11 +603,15 @@ class _Samples:
         volts: FloatArray,
         inp: Inputs,
         previous: tuple[float, FloatArray] | None = None,
+        min_film: float | None = None,
     ) -> None:
+        """Samples up to t (interpolated from ``previous``); ``min_film`` (h/C of y) if known."""
         sys_ = sim.system
         c = sim.case.bearing.clearance
         k = sys_.n + sys_.nt
-        h_min = sys_.min_film(y, inp.preload) * c
+        if min_film is None:
+            min_film = sys_.min_film(y, inp.preload)
+        h_min = min_film * c
         while self.next <= t + 1e-12:
             ts = self.next
             if previous is None or t == previous[0]:

@@ -48,7 +48,11 @@ factorised by block cyclic elimination (:func:`block_cyclic_factor`,
 :func:`block_cyclic_solve`; wrapped by :mod:`foilbearing.reynolds.blocksolve`).
 
 Every kernel has a plain-NumPy twin (suffix ``_py``) with the same signature;
-``tests/test_kernels.py`` checks each kernel against its twin.
+``tests/test_kernels.py`` checks each kernel against its twin. The kernels of
+the transient Newton iteration (:func:`transient_residual`,
+:func:`transient_storage`, :func:`transient_solve`) have their twins in
+:mod:`foilbearing.reynolds.transient` (the methods they replace, named in
+each docstring), checked by ``tests/test_transient_kernels.py``.
 """
 
 from __future__ import annotations
@@ -77,9 +81,14 @@ __all__ = [
     "jacobian_H_py",
     "jacobian_P",
     "jacobian_P_py",
+    "newton_update",
+    "newton_update_py",
     "residual",
     "residual_py",
     "stencil_pattern",
+    "transient_residual",
+    "transient_solve",
+    "transient_storage",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -1051,3 +1060,334 @@ def block_cyclic_solve_py(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> 
         if i < last - 1:
             z[i] -= v[i] @ z[i + 1]
     out[:] = z.reshape(out.shape)
+
+
+# ---------------------------------------------------------------------------
+# Transient Newton iteration (compiled; NumPy twins in reynolds.transient)
+# ---------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _film_rows(
+    y: FloatArray,
+    preload: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    n_z: int,
+    q: FloatArray,
+    h_row: FloatArray,
+) -> float:
+    """Engaged mean gauge pressure q and film H per θ-row of a transient state.
+
+    Fills ``q[i] = max(mean_j P[i, j] − 1, 0)`` and
+    ``h_row[i] = 1 + ε_X cos θ_i + ε_Y sin θ_i − r_p,i/C + U_i + c_a,i q_i``;
+    returns ``min_i h_row[i]`` (NaN if any row is NaN).
+    """
+    n_theta = q.shape[0]
+    n = n_theta * n_z
+    e_x = y[n + n_theta]
+    e_y = y[n + n_theta + 1]
+    h_min = np.inf
+    bad = False
+    for i in range(n_theta):
+        acc = 0.0
+        for j in range(n_z):
+            acc += y[i * n_z + j]
+        qi = acc / n_z - 1.0
+        if qi < 0.0:
+            qi = 0.0
+        q[i] = qi
+        h = 1.0 + e_x * cos_t[i] + e_y * sin_t[i] - preload[i] + y[n + i] + c_act[i] * qi
+        h_row[i] = h
+        if h != h:
+            bad = True
+        elif h < h_min:
+            h_min = h
+    return np.nan if bad else h_min
+
+
+@njit(cache=True)
+def transient_residual(
+    y: FloatArray,
+    c0: float,
+    hist: FloatArray,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    force: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    w: FloatArray,
+    force_scale: float,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    H: FloatArray,
+    res: FloatArray,
+    out: FloatArray,
+) -> float:
+    """BDF equations ``G = c0·Q(y) + hist − f(y)`` and the minimum film, in one pass.
+
+    Twin: :meth:`foilbearing.reynolds.transient.TransientSystem.newton_residual_py`
+    (same result up to rounding: dot products are summed in another order).
+
+    Parameters
+    ----------
+    y : ndarray, shape (n + n_theta + 4,)
+        State ``[P (n), U (n_theta), ε_X, ε_Y, v_X, v_Y]``, ``n = n_theta n_z``,
+        P cell ``k = i*n_z + j``.
+    c0 : float
+        BDF leading coefficient α₀/Δt, 1/s.
+    hist : ndarray, shape (n + n_theta + 4,)
+        History part of the BDF equations.
+    lam : float
+        Bearing number Λ(t).
+    rate : float
+        ω/γ of the viscoelastic bump, 1/s (0 for a purely elastic bump).
+    preload : ndarray, shape (n_theta,)
+        r_p(θ_i, t)/C.
+    force : ndarray, shape (2,)
+        External force on the journal in units of m·C, 1/s².
+    cos_t, sin_t : ndarray, shape (n_theta,)
+        cos θ_i, sin θ_i.
+    c_act, c_bump : ndarray, shape (n_theta,)
+        Actuator and bump compliances per θ-row, p_a/(C k).
+    w : ndarray, shape (2, n)
+        Force weights (X, Y) of the cells.
+    force_scale : float
+        p_a R²/(m C), 1/s².
+    denom : float
+        ``A σ = ΔθΔZ · 12 μ R²/(p_a C²)``, s.
+    d_theta, d_z : float
+        Cell sizes Δθ, ΔZ.
+    H, res : ndarray, shape (n_theta, n_z)
+        Filled with the film h/C and the finite-volume residual :func:`residual`.
+    out : ndarray, shape (n + n_theta + 4,)
+        Filled with G.
+
+    Returns
+    -------
+    float
+        Minimum film ``min H`` (NaN if the film holds a NaN).
+    """
+    n_theta, n_z = H.shape
+    n = n_theta * n_z
+    q = np.empty(n_theta)
+    h_row = np.empty(n_theta)
+    h_min = _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    for i in range(n_theta):
+        for j in range(n_z):
+            H[i, j] = h_row[i]
+    P = y[:n].reshape((n_theta, n_z))
+    residual(P, H, lam, d_theta, d_z, res)
+    fx = 0.0
+    fy = 0.0
+    for i in range(n_theta):
+        h = h_row[i]
+        for j in range(n_z):
+            k = i * n_z + j
+            p = y[k]
+            out[k] = c0 * (p * h) - res[i, j] / denom + hist[k]
+            fx += w[0, k] * (p - 1.0)
+            fy += w[1, k] * (p - 1.0)
+        u = y[n + i]
+        out[n + i] = c0 * u - rate * (c_bump[i] * q[i] - u) + hist[n + i]
+    m = n + n_theta
+    for k in range(2):
+        out[m + k] = c0 * y[m + k] - y[m + 2 + k] + hist[m + k]
+    out[m + 2] = c0 * y[m + 2] - force_scale * fx - force[0] + hist[m + 2]
+    out[m + 3] = c0 * y[m + 3] - force_scale * fy - force[1] + hist[m + 3]
+    return h_min
+
+
+@njit(cache=True)
+def transient_storage(
+    y: FloatArray,
+    preload: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    n_z: int,
+    out: FloatArray,
+) -> float:
+    """Stored quantities ``Q(y) = [P·H, U, ε, v]`` and the minimum film, in one pass.
+
+    Twin: :meth:`foilbearing.reynolds.transient.TransientSystem.storage` and
+    :meth:`~foilbearing.reynolds.transient.TransientSystem.min_film`.
+
+    Parameters
+    ----------
+    y : ndarray, shape (n + n_theta + 4,)
+        State (see :func:`transient_residual`).
+    preload, cos_t, sin_t, c_act : ndarray, shape (n_theta,)
+        As in :func:`transient_residual`.
+    n_z : int
+        Cells per θ-row.
+    out : ndarray, shape (n + n_theta + 4,)
+        Filled with Q(y).
+
+    Returns
+    -------
+    float
+        Minimum film ``min H`` (NaN if the film holds a NaN).
+    """
+    n_theta = preload.shape[0]
+    q = np.empty(n_theta)
+    h_row = np.empty(n_theta)
+    h_min = _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    for i in range(n_theta):
+        h = h_row[i]
+        for j in range(n_z):
+            k = i * n_z + j
+            out[k] = y[k] * h
+    for k in range(n_theta * n_z, y.shape[0]):
+        out[k] = y[k]
+    return h_min
+
+
+@njit(cache=True)
+def transient_solve(
+    g: FloatArray,
+    fac: FloatArray,
+    jh_data: FloatArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+    c0: float,
+    rate: float,
+    active: FloatArray,
+    c_bump: FloatArray,
+    work: FloatArray,
+    out: FloatArray,
+) -> None:
+    """Newton update ``Δy`` with ``J Δy = g`` by block elimination (factors of the transient matrix).
+
+    Eliminates the bump states U and the journal (ε, v), solves the pressure
+    block with :func:`block_cyclic_solve` and applies the rank-2 Woodbury
+    correction of the film force. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientFactor.solve_py` (same result
+    up to rounding).
+
+    Parameters
+    ----------
+    g : ndarray, shape (n + n_theta + 4,)
+        Right-hand side (the BDF residual), ``n = n_theta n_z``.
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Block cyclic factors of the pressure block B (:func:`block_cyclic_factor`).
+    jh_data, jh_rows, jh_indptr : ndarray
+        CSR arrays of the scaled film Jacobian ``c0·diag(P) − ∂R/∂H/(Aσ)``, (n, n),
+        with the θ-row ``indices // n_z`` of each column in place of its index
+        (the mat-vec is with ``repeat(x, n_z)``).
+    a_pe : ndarray, shape (n, 2)
+        Its product with ``∂H/∂ε`` (columns cos θ, sin θ per cell).
+    s_vp : ndarray, shape (2, n)
+        Film force per unit P as an acceleration, 1/s².
+    y_border : ndarray, shape (n, 2)
+        ``B⁻¹ a_pe / c0²``.
+    small_inv : ndarray, shape (2, 2)
+        Inverse of the Woodbury matrix ``I + s_vp y_border``.
+    c0 : float
+        BDF leading coefficient at factorisation, 1/s.
+    rate : float
+        ω/γ of the bump (0 for an elastic bump), 1/s.
+    active : ndarray, shape (n_theta,)
+        1.0 on θ-rows where the mean gauge pressure is engaged, else 0.0.
+    c_bump : ndarray, shape (n_theta,)
+        Bump compliance per θ-row.
+    work : ndarray, shape (n, 1)
+        Scratch (the pressure right-hand side).
+    out : ndarray, shape (n + n_theta + 4,)
+        Filled with Δy.
+    """
+    n_theta = active.shape[0]
+    n = work.shape[0]
+    n_z = n // n_theta
+    m = n + n_theta
+    cu = c0 + rate
+    c2 = c0**2
+    b0 = (g[m + 2] + c0 * g[m]) / c2
+    b1 = (g[m + 3] + c0 * g[m + 1]) / c2
+    g_u = np.empty(n_theta)
+    for i in range(n_theta):
+        g_u[i] = g[n + i] / cu
+    for r in range(n):
+        acc = 0.0
+        for s in range(jh_indptr[r], jh_indptr[r + 1]):
+            acc += jh_data[s] * g_u[jh_rows[s]]
+        work[r, 0] = g[r] - acc - (a_pe[r, 0] * b0 + a_pe[r, 1] * b1)
+    block_cyclic_solve(fac, work, work)
+    t0 = 0.0
+    t1 = 0.0
+    for r in range(n):
+        t0 += s_vp[0, r] * work[r, 0]
+        t1 += s_vp[1, r] * work[r, 0]
+    u0 = small_inv[0, 0] * t0 + small_inv[0, 1] * t1
+    u1 = small_inv[1, 0] * t0 + small_inv[1, 1] * t1
+    f0 = 0.0
+    f1 = 0.0
+    for r in range(n):
+        d = work[r, 0] - (y_border[r, 0] * u0 + y_border[r, 1] * u1)
+        out[r] = d
+        f0 += s_vp[0, r] * d
+        f1 += s_vp[1, r] * d
+    for k in range(2):
+        d_e = ((f0 if k == 0 else f1) + g[m + 2 + k] + c0 * g[m + k]) / c2
+        out[m + k] = d_e
+        out[m + 2 + k] = c0 * d_e - g[m + k]
+    for i in range(n_theta):
+        acc = 0.0
+        for j in range(n_z):
+            acc += out[i * n_z + j]
+        dq = active[i] * (acc / n_z)
+        out[n + i] = (g[n + i] + rate * c_bump[i] * dq) / cu
+
+
+@njit(cache=True)
+def newton_update(
+    y: FloatArray, dy: FloatArray, weights: FloatArray, n: int
+) -> tuple[float, float]:
+    """``y −= dy`` in place; the weighted max-norm of dy and the smallest new pressure.
+
+    Twin :func:`newton_update_py`.
+
+    Parameters
+    ----------
+    y, dy, weights : ndarray, shape (m,)
+        Iterate (updated in place), Newton update and error weights.
+    n : int
+        Number of pressure unknowns (the first n entries of y).
+
+    Returns
+    -------
+    err : float
+        ``max |dy| · weights`` (NaN if any term is NaN).
+    p_min : float
+        ``min y[:n]`` after the update.
+    """
+    err = 0.0
+    bad = False
+    p_min = np.inf
+    for k in range(y.shape[0]):
+        y[k] -= dy[k]
+        e = abs(dy[k]) * weights[k]
+        if e != e:
+            bad = True
+        elif e > err:
+            err = e
+        if k < n and y[k] < p_min:
+            p_min = y[k]
+    return (np.nan if bad else err), p_min
+
+
+def newton_update_py(
+    y: FloatArray, dy: FloatArray, weights: FloatArray, n: int
+) -> tuple[float, float]:
+    """NumPy twin of :func:`newton_update`."""
+    y -= dy
+    return float(np.max(np.abs(dy) * weights)), float(y[:n].min())

@@ -111,6 +111,14 @@ class TransientSystem:
         self.expand = sp.kron(sp.eye(self.nt), np.ones((grid.n_z, 1)), format="csr")
         self.mean = sp.kron(sp.eye(self.nt), np.ones((1, grid.n_z)) / grid.n_z, format="csr")
         self._res = np.empty(grid.shape)
+        self._H = np.empty(grid.shape)
+        self._work = np.empty((self.n, 1))
+        self.jh_rows = self.ws.indices // grid.n_z  # θ-row of each column of dR/dH
+        # ∂H/∂ε per cell (n, 2) and the film force per unit P (2, n), for factorize
+        self.dh_de = np.column_stack(
+            [np.repeat(self.cos_t, grid.n_z), np.repeat(self.sin_t, grid.n_z)]
+        )
+        self.s_vp = self.force_scale * self.w
         self.diag_slots = kern.stencil_pattern(grid.n_theta, grid.n_z)[2][:, :, 2].ravel()
         self.c_indptr, self.c_indices = kern.coupled_pattern(grid.n_theta, grid.n_z)
         self._jc = np.empty(self.c_indices.size)
@@ -149,9 +157,87 @@ class TransientSystem:
         return np.concatenate([f_p, f_u, v, accel])
 
     def newton_residual(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        out: FloatArray | None = None,
+    ) -> tuple[FloatArray, float]:
+        """G = c0·Q(y) + hist − f(y) (the BDF equations) and the minimum film, in one pass.
+
+        Compiled (:func:`~foilbearing.reynolds._kernels.transient_residual`);
+        :meth:`newton_residual_py` is its NumPy twin.
+
+        Parameters
+        ----------
+        y : ndarray, shape (size,)
+            State (C-contiguous float64).
+        inputs : Inputs
+            Inputs at the new time.
+        c0 : float
+            BDF leading coefficient α₀/Δt, 1/s.
+        hist : ndarray, shape (size,)
+            History part of the BDF equations.
+        out : ndarray, shape (size,), optional
+            Buffer for G (a new array if None).
+
+        Returns
+        -------
+        G : ndarray, shape (size,)
+            ``out`` filled.
+        h_min : float
+            Minimum film h/C of y.
+        """
+        if out is None:
+            out = np.empty(self.size)
+        g = self.grid
+        h_min = kern.transient_residual(
+            y,
+            c0,
+            hist,
+            inputs.lam,
+            self.rate(inputs),
+            inputs.preload,
+            inputs.force,
+            self.cos_t,
+            self.sin_t,
+            self.c_act,
+            self.c_bump,
+            self.w,
+            self.force_scale,
+            self.area * self.sigma,
+            g.d_theta,
+            g.d_z,
+            self._H,
+            self._res,
+            out,
+        )
+        return out, float(h_min)
+
+    def storage_min_film(
+        self, y: FloatArray, preload: FloatArray, out: FloatArray | None = None
+    ) -> tuple[FloatArray, float]:
+        """Q(y) and the smallest film h/C, in one pass.
+
+        Compiled (:func:`~foilbearing.reynolds._kernels.transient_storage`);
+        :meth:`storage` and :meth:`min_film` are its NumPy twins.
+        """
+        if out is None:
+            out = np.empty(self.size)
+        h_min = kern.transient_storage(
+            y, preload, self.cos_t, self.sin_t, self.c_act, self.grid.n_z, out
+        )
+        return out, float(h_min)
+
+    def rate(self, inputs: Inputs) -> float:
+        """ω/γ of the viscoelastic bump, 1/s (0 for a purely elastic bump)."""
+        return inputs.omega / self.gamma if self.dynamic_bump else 0.0
+
+    def newton_residual_py(
         self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray
     ) -> tuple[FloatArray, float]:
-        """G = c0·Q(y) + hist − f(y) (the BDF equations) and the minimum film, in one pass."""
+        """NumPy twin of :meth:`newton_residual` (no ``out`` buffer)."""
         P, U, eps, v = self.split(y)
         H, q = self.film(y, inputs.preload)
         g = self.grid
@@ -195,10 +281,8 @@ class TransientSystem:
         n = self.n
         lu = _factor_coupled(self._jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
-        a_pe = jh_mat @ np.column_stack(
-            [np.repeat(self.cos_t, g.n_z), np.repeat(self.sin_t, g.n_z)]
-        )
-        s_vp = self.force_scale * self.w  # (2, n)
+        a_pe = jh_mat @ self.dh_de
+        s_vp = self.s_vp  # (2, n)
         y_border = lu.solve(np.ascontiguousarray(a_pe / c0**2))
         small = np.eye(2) + s_vp @ y_border  # Woodbury: I + V^T B^-1 U, V^T = S_vp
         return TransientFactor(self, lu, jh_mat, a_pe, s_vp, y_border, small, c0, rate, active)
@@ -295,11 +379,61 @@ class TransientFactor:
         active: FloatArray,
     ) -> None:
         self.sys, self.lu, self.jh, self.a_pe = system, lu, jh, a_pe
-        self.s_vp, self.y_border, self.small_inv = s_vp, y_border, np.linalg.inv(small)
+        self.s_vp, self.y_border = s_vp, y_border
+        self.small_inv = np.linalg.inv(small).astype(np.float64)
         self.c0, self.rate, self.active = c0, rate, active
+        # The compiled solve needs the block cyclic factors (not the SuperLU fallback).
+        self._fac = lu._fac if isinstance(lu, BlockCyclicLU) else None
 
-    def solve(self, g: FloatArray) -> FloatArray:
-        """Δy with J Δy = g (J the Newton matrix at factorisation)."""
+    def solve(self, g: FloatArray, out: FloatArray | None = None) -> FloatArray:
+        """Δy with J Δy = g (J the Newton matrix at factorisation).
+
+        Compiled (:func:`~foilbearing.reynolds._kernels.transient_solve`) on the
+        block cyclic factors; :meth:`solve_py` (its NumPy twin) with the SuperLU
+        fallback.
+
+        Parameters
+        ----------
+        g : ndarray, shape (size,)
+            Right-hand side.
+        out : ndarray, shape (size,), optional
+            Buffer for Δy (a new array if None; not ``g`` itself).
+
+        Returns
+        -------
+        ndarray, shape (size,)
+            Δy.
+        """
+        if self._fac is None:
+            d = self.solve_py(g)
+            if out is None:
+                return d
+            out[:] = d
+            return out
+        if out is None:
+            out = np.empty_like(g)
+        s = self.sys
+        kern.transient_solve(
+            g,
+            self._fac,
+            self.jh.data,
+            s.jh_rows,
+            s.ws.indptr,
+            self.a_pe,
+            self.s_vp,
+            self.y_border,
+            self.small_inv,
+            self.c0,
+            self.rate,
+            self.active,
+            s.c_bump,
+            s._work,
+            out,
+        )
+        return out
+
+    def solve_py(self, g: FloatArray) -> FloatArray:
+        """NumPy twin of :meth:`solve` (any LU with a SuperLU-like ``solve``)."""
         s = self.sys
         n, nt, nz = s.n, s.nt, s.grid.n_z
         c0, rate = self.c0, self.rate
