@@ -18,6 +18,7 @@ run: $(STAMP)
 	$(BIN)/foilbearing study --out out
 
 test: $(STAMP)
+	bash scripts/setup_chromium.sh
 	$(BIN)/python -m pytest -q
 
 # The ROSS export needs ROSS >= 3.0, hence Python >= 3.13: a second venv (scripts/setup_ross_env.sh).

@@ -67,7 +67,7 @@ class OrbitSettings:
     steps_per_rev: int = 16
     max_step: float = 1e-3
     sample_rate: float = 10_000.0
-    contact_film: float = 0.02
+    contact_film: float = 0.005
     newton_tol: float = 1.0
     rtol: float = 1e-4
     atol_pressure: float = 1e-5

@@ -7,7 +7,6 @@ and tests with stated tolerances, never inside a computation.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from itertools import pairwise
 from typing import Any
 
 import numpy as np
@@ -241,12 +240,15 @@ def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
 
 
 def orbit_comparison(runs: list[dict[str, Any]]) -> list[Row]:
-    """The four speed-up runs beside the paper's Figs. 13-15 (MODEL.md section 6)."""
+    """The speed-up runs beside the paper's Figs. 13-15 (MODEL.md section 6)."""
     paper = {
-        0.0: ("whirl from ~15 krpm at 123-147 Hz, gone by ~19 krpm; whip diverges at ~33 krpm"),
-        50.0: "whip ~105 Hz, diverges at 44.4 krpm",
-        100.0: "no divergence up to 90 krpm; bounded whip ~127 Hz",
-        150.0: "no divergence up to 90 krpm; whip onset 79.1 krpm, ~143 Hz",
+        (
+            0.0,
+            "none",
+        ): "whirl from ~15 krpm at 123-147 Hz, gone by ~19 krpm; whip diverges at ~33 krpm",
+        (50.0, "ramp"): "whip ~105 Hz, diverges at 44.4 krpm",
+        (100.0, "ramp"): "no divergence up to 90 krpm; bounded whip ~127 Hz",
+        (150.0, "ramp"): "no divergence up to 90 krpm; whip onset 79.1 krpm, ~143 Hz",
     }
     note = (
         "μ, rotor mass and imbalance are assumed (MODEL.md section 1); onset = sustained "
@@ -255,51 +257,42 @@ def orbit_comparison(runs: list[dict[str, Any]]) -> list[Row]:
     rows = []
     for run in runs:
         v = float(run["voltage_V"])
+        control = str(run.get("control", "none"))
+        kind = (
+            "held"
+            if control.startswith("held")
+            else ("ramp" if control.startswith("ramp") else "none")
+        )
         parts = []
         for start, end, freq in run.get("subsync_intervals_rpm_Hz", []):
-            parts.append(f"{start / 1e3:.1f}-{end / 1e3:.1f} krpm at {freq:.0f} Hz")
+            parts.append(f"sub-synchronous {start / 1e3:.1f}-{end / 1e3:.1f} krpm at {freq:.0f} Hz")
         div = run.get("divergence_speed_rpm")
         parts.append(
-            "diverges at "
-            + (
-                f"{div / 1e3:.1f} krpm"
-                if div
-                else f"—: none up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
-            )
+            f"diverges at {div / 1e3:.1f} krpm"
+            if div
+            else f"no divergence up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
         )
-        rows.append(
-            Row(
-                f"orbit, {v:g} V" + (" ramp at 6.0-6.5 s" if v else ""),
-                paper.get(v, ""),
-                "; ".join(parts),
-                "",
-                note,
-            )
-        )
-    ordered = [r for r in runs if float(r["voltage_V"]) > 0]
-    div = [r.get("divergence_speed_rpm") or 1e9 for r in runs]
+        ref = paper.get((v, kind), "(not in the paper: voltage held from the start)")
+        rows.append(Row(f"orbit, {v:g} V, control: {control}", ref, "; ".join(parts), "", note))
+    held = [
+        r
+        for r in runs
+        if str(r.get("control", "")).startswith("held") or float(r["voltage_V"]) == 0.0
+    ]
+    div = [r.get("divergence_speed_rpm") or 1e9 for r in held]
     rows.append(
         Row(
-            "orbit trend: divergence delayed by the voltage (0 V < 50 V < 100/150 V)",
+            "orbit trend: divergence delayed by the voltage (0 → 150 V)",
             "yes",
-            "yes" if div == sorted(div) else "NO",
+            "yes"
+            if div == sorted(div)
+            else "NO: "
+            + " / ".join("none" if d >= 1e9 else f"{d / 1e3:.1f}" for d in div)
+            + " krpm",
             "",
-            "",
+            "voltages held from the start",
         )
     )
-    found = [r.get("whip_after_control_Hz") for r in ordered]
-    freqs = [float(f) for f in found if f is not None]
-    if freqs and len(freqs) == len(found):
-        rising = all(a < b for a, b in pairwise(freqs))
-        rows.append(
-            Row(
-                "orbit trend: whip frequency rises with voltage",
-                "105 / 127 / 143 Hz",
-                " / ".join(f"{f:.0f}" for f in freqs) + " Hz" + ("" if rising else " (NO)"),
-                "",
-                "after the control ramp",
-            )
-        )
     return rows
 
 

@@ -114,9 +114,14 @@ def run_study(
     )
     if progress:
         print(table)
+    from foilbearing.report import write_report
 
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
-    stage(f"done: results in {out}/")
+    report = write_report(out)
+    results["report"] = str(report)
+
+    write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
+    stage(f"done: results in {out}/, report {report}")
     return results
 
 

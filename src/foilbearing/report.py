@@ -1,0 +1,499 @@
+"""One self-contained HTML page from what ``foilbearing study`` wrote.
+
+The page reads only the study folder: ``summary.json`` and the PNG figures
+beside it. Every figure is embedded as a base64 data URI and the style sheet is
+inline, so the file can be mailed or archived alone; it loads nothing from
+anywhere and runs no script. Stages appear in the paper's order and only if
+``summary.json`` has them.
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import re
+import struct
+from collections.abc import Callable, Iterable, Sequence
+from html import escape
+from pathlib import Path
+from typing import Any
+
+from foilbearing.errors import InputError
+from foilbearing.io import write_text
+
+__all__ = ["STAGES", "png_size", "render_report", "write_report"]
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+#: Stage keys of summary.json in the paper's order, with section titles.
+STAGES: tuple[tuple[str, str], ...] = (
+    ("identification", "Identification of the PZT stacks (Figs. 5-6)"),
+    ("structure", "Foil structure and base preloads (Figs. 7-8)"),
+    ("static", "Static performance, C-GFB and shimmed GFB (Figs. 9-12)"),
+    ("coefficients", "Dynamic force coefficients"),
+    ("stability", "Linear stability"),
+    ("orbits", "Speed-up orbits (Figs. 13-15)"),
+)
+
+_SUBSYNC = "Fig. 15: filtered sub-synchronous amplitude of the vertical journal motion (oil whip)."
+_CAPTIONS = {
+    "fig05b_stack_displacement.png": "Fig. 5(b): PZT stack displacement versus driving voltage "
+    "(synthetic measurements from examples/data) with the fitted curves.",
+    "fig06_stack_stiffness.png": "Fig. 6(b, c): stack displacement versus static load and the "
+    "identified stack stiffness of stacks #1-#3.",
+    "fig07_stiffness_function.png": "Fig. 7: structural stiffness function k(θ) for several "
+    "smoothness constants α.",
+    "fig08_preloads.png": "Fig. 8: base preloads r_p(θ) of the C-GFB at 0/50/100/150 V and the "
+    "shims of the shimmed GFB.",
+    "fig09_midplane.png": "Fig. 9: mid-plane gas-film pressure and film thickness at 50 krpm, "
+    "(a) C-GFB and (b) shimmed GFB.",
+    "fig10_actuator_pressure.png": "Fig. 10: local gas-film pressure at θ = 60°, 180° and 300° "
+    "versus speed, C-GFB and shimmed GFB.",
+    "fig11_preload.png": "Fig. 11: piezoelectric preloads at 60°, 180° and 300° versus speed "
+    "(C-GFB).",
+    "fig12_eccentricity.png": "Fig. 12: journal eccentricity and attitude angle versus speed, "
+    "C-GFB and shimmed GFB.",
+    "coefficients_50krpm_150V.png": "Not in the paper: stiffness and damping coefficients versus "
+    "excitation frequency at 50 krpm and 150 V.",
+    "stability_map.png": "Not in the paper: linear stability over speed and voltage with the "
+    "onset speeds; compare with the nonlinear orbits of Figs. 13-15.",
+    "fig15_subsync.png": _SUBSYNC,
+    "orbit_subsync.png": _SUBSYNC,
+}
+_ORBIT_FIG = re.compile(r"orbit_(?P<v>[0-9.]+)V_(?P<kind>transient|waterfall3d|waterfall|orbits)")
+_ORBIT_KINDS = ("transient", "waterfall", "waterfall3d", "orbits")
+_FIG14 = {50.0: "a", 100.0: "b", 150.0: "c"}
+
+_CSS = """
+body{margin:0;background:#f4f5f7;color:#1a1a1a;font:16px/1.5 system-ui,-apple-system,
+"Segoe UI",Roboto,"DejaVu Sans",Arial,sans-serif}
+main{max-width:1040px;margin:0 auto;padding:1.5rem 1.25rem 3rem;background:#fff}
+h1{font-size:1.7rem;margin:.2rem 0 .8rem}h2{font-size:1.35rem;margin-top:2.4rem;
+border-bottom:2px solid #d0d7de;padding-bottom:.2rem}
+a{color:#0a58ca}nav ol{columns:2;padding-left:1.4rem}
+figure{margin:1.4rem 0;text-align:center}figure img{max-width:100%;height:auto;
+border:1px solid #e3e3e3}figcaption{font-size:.92rem;color:#444;margin-top:.35rem}
+.scroll{overflow-x:auto;margin:.8rem 0}
+table{border-collapse:collapse;font-size:.88rem}
+th,td{border:1px solid #d0d7de;padding:.25rem .45rem;text-align:left;vertical-align:top}
+th{background:#f0f3f6}td.num{text-align:right;font-variant-numeric:tabular-nums}
+tr.flag td{background:#fff1dc}
+#comparison{border:2px solid #0a58ca;border-radius:6px;padding:0 1rem 1rem;margin-top:1.5rem}
+#comparison h2{border:0;margin-top:1rem}#comparison table{width:100%}
+#comparison td:nth-child(1){width:24%}#comparison td:nth-child(4){white-space:nowrap}
+.note{color:#555;font-size:.92rem}code{background:#f3f3f3;padding:0 .2rem;border-radius:3px}
+footer{margin-top:3rem;color:#666;font-size:.85rem}
+"""
+
+#: A table column: header (with units), how to get the cell from a record, number format.
+Column = tuple[str, Callable[[dict[str, Any]], Any], str]
+
+
+def write_report(out_dir: Path) -> Path:
+    """Write ``out_dir/report.html`` from the study results in ``out_dir``.
+
+    Parameters
+    ----------
+    out_dir
+        A folder written by ``foilbearing study``: ``summary.json`` and PNG figures.
+
+    Returns
+    -------
+    Path
+        The written page (atomic write: it is there whole or not at all).
+
+    Raises
+    ------
+    InputError
+        If ``summary.json`` is missing or not a JSON object.
+    """
+    out_dir = Path(out_dir)
+    path = out_dir / "summary.json"
+    if not path.is_file():
+        raise InputError("no summary.json; run `foilbearing study --out DIR`", source=str(out_dir))
+    try:
+        summary = json.loads(path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise InputError(f"not valid JSON ({exc})", source=str(path)) from exc
+    if not isinstance(summary, dict):
+        raise InputError("expected a JSON object at the top level", source=str(path))
+    return write_text(out_dir / "report.html", render_report(summary, out_dir))
+
+
+def render_report(summary: dict[str, Any], out_dir: Path) -> str:
+    """The HTML text of the report.
+
+    Parameters
+    ----------
+    summary
+        The study's ``summary.json`` as a dict.
+    out_dir
+        Where the figures are; they are found by file name (the folder may have moved).
+
+    Returns
+    -------
+    str
+        A complete HTML document with every figure embedded.
+    """
+    from foilbearing import __version__
+
+    case = summary.get("case") or {}
+    title = f"foilbearing study: {case.get('title', 'unnamed case')}"
+    used: set[str] = set()
+    sections: list[tuple[str, str, str]] = []  # (anchor, heading, html)
+    if summary.get("paper_comparison"):
+        body = _comparison(summary["paper_comparison"])
+        sections.append(("comparison", "Our numbers beside the paper's", body))
+    known = {key for key, _ in STAGES} | {"case", "paper_comparison"}
+    extra = [(k, k.replace("_", " ").capitalize()) for k in summary if k not in known]
+    for key, heading in [*STAGES, *extra]:
+        data = summary.get(key)
+        if not isinstance(data, dict) or not data:
+            continue
+        names = [Path(str(p)).name for p in data.get("figures") or []]
+        if key == "orbits":
+            names += [p.name for p in sorted(out_dir.glob("orbit_*.png"), key=_orbit_order)]
+        names = [n for n in dict.fromkeys(names) if n not in used]
+        used.update(names)
+        body = _TABLES.get(key, _generic)(data, case) + "".join(_figure(out_dir, n) for n in names)
+        sections.append((re.sub(r"[^A-Za-z0-9_-]", "-", key), heading, body))
+    rest = sorted(p.name for p in out_dir.glob("*.png") if p.name not in used)
+    if rest:
+        sections.append(("other", "Other figures", "".join(_figure(out_dir, n) for n in rest)))
+
+    toc = "".join(f'<li><a href="#{a}">{escape(t)}</a></li>' for a, t, _ in sections)
+    body = "".join(f'<section id="{a}"><h2>{escape(t)}</h2>{h}</section>' for a, t, h in sections)
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f"<title>{escape(title)}</title><style>{_CSS}</style></head>\n<body><main>"
+        f"<h1>{escape(title)}</h1>{_intro(summary, case)}"
+        f"<nav><h2>Contents</h2><ol>{toc}</ol></nav>{body}"
+        f"<footer>Written by foilbearing {escape(__version__)} from "
+        f"<code>{escape(str(out_dir / 'summary.json'))}</code>; figures embedded.</footer>"
+        "</main></body></html>\n"
+    )
+
+
+def png_size(data: bytes) -> tuple[int, int] | None:
+    """Width and height from a PNG's IHDR chunk, or None if ``data`` is not a PNG."""
+    if len(data) < 24 or data[:8] != PNG_SIGNATURE or data[12:16] != b"IHDR":
+        return None
+    width, height = struct.unpack(">II", data[16:24])
+    return (width, height) if width > 0 and height > 0 else None
+
+
+# --- the parts of the page ---------------------------------------------------------
+
+
+def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
+    ran = [t.split(" (")[0] for k, t in STAGES if isinstance(summary.get(k), dict)]
+    grid = case.get("grid") or {}
+    kind = f" ({case['bearing_type']})" if case.get("bearing_type") else ""
+    text = (
+        "<p>What <code>foilbearing study</code> computed for the case "
+        f"<b>{escape(str(case.get('title', '?')))}</b>{escape(kind)}, reproducing Park, Kim and "
+        "Sim (2021), <i>Rotordynamic Analysis of Piezoelectric Gas Foil Bearings with a "
+        "Mechanical Preload Control Based on Structural Parameter Identifications</i>. Stages, "
+        f"in the paper's order: {escape('; '.join(ran) or 'none')}. The comparison with the "
+        "paper's numbers comes first; each stage then shows its headline numbers and figures.</p>"
+        "<p>Assumed, since the paper does not give them: gas viscosity μ = "
+        f"{_f(case.get('viscosity_Pa_s'), '.3g')} Pa·s, rotor mass "
+        f"{_f(case.get('rotor_mass_kg'), '.3g')} kg, imbalance "
+        f"{_f(case.get('imbalance_g_mm'), '.3g')} g·mm. Reynolds grid "
+        f"{_f(grid.get('n_theta'), 'd')} × {_f(grid.get('n_z'), 'd')} (θ × half length).</p>"
+    )
+    cols: list[Column] = [
+        ("radius (mm)", _key("radius_mm"), ".4g"),
+        ("length (mm)", _key("length_mm"), ".4g"),
+        ("clearance (µm)", _key("clearance_um"), ".4g"),
+        ("load (N)", _key("load_N"), ".4g"),
+        ("speed (rpm)", _key("speed_rpm"), ".6g"),
+        ("k_b (N/m³)", _key("k_b_N_per_m3"), ".4g"),
+        ("loss factor", _key("loss_factor"), ".3g"),
+        ("actuators at (°)", _key("actuator_angles_deg"), ".0f"),
+        ("stinger arc (°)", _key("stinger_arc_deg"), ".3g"),
+        ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
+        ("k_sp (N/m³)", _key("k_sp_N_per_m3"), ".4g"),
+    ]
+    return text + _records([case], [c for c in cols if c[1](case) is not None])
+
+
+def _comparison(rows: list[dict[str, Any]]) -> str:
+    heads = ["quantity", "paper", "ours", "deviation", "why they differ"]
+    cells = [[str(r.get(k, "")) for k in ("quantity", "paper", "ours", "deviation", "note")]
+             for r in rows]  # fmt: skip
+    flags = [_flagged(c[2], c[3]) for c in cells]
+    return (
+        '<p class="note">Shaded: a deviation above 5 %, or a statement of the paper that we do '
+        "not reproduce (NO).</p>" + _table(heads, cells, num=(3,), flags=flags)
+    )
+
+
+def _flagged(ours: str, deviation: str) -> bool:
+    m = re.match(r"\s*([+-]?[0-9.]+)\s*%", deviation)
+    return bool(m and abs(float(m.group(1))) > 5.0) or bool(re.search(r"\bNO\b", ours))
+
+
+def _identification(d: dict[str, Any], case: dict[str, Any]) -> str:
+    def pm(key: str, se: str, spec: str) -> Callable[[dict[str, Any]], str]:
+        return lambda r: f"{_f(r.get(key), spec)} ± {_f(r.get(se), '.2g')}"
+
+    fit: list[Column] = [
+        ("D33,1 (µm/V²)", pm("d33_1_um_per_V2", "d33_1_se_um_per_V2", ".4g"), ""),
+        ("D33,2 (µm/V)", pm("d33_2_um_per_V", "d33_2_se_um_per_V", ".4g"), ""),
+        ("R²", _key("r_squared"), ".4f"),
+        ("linear D33 (µm/V)", _key("d33_linear_um_per_V"), ".4g"),
+        ("R², linear", _key("d33_linear_r_squared"), ".3f"),
+        (
+            "stack stiffness (N/m)",
+            pm("stack_stiffness_N_per_m", "stack_stiffness_se_N_per_m", ".4g"),
+            "",
+        ),
+        ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
+    ]
+    stacks = [{"stack": f"#{k}", **v} for k, v in (d.get("per_stack") or {}).items()]
+    per: list[Column] = [
+        ("stack", _key("stack"), ""),
+        ("D33,1 (µm/V²)", _key("d33_1_um_per_V2"), ".4g"),
+        ("D33,2 (µm/V)", _key("d33_2_um_per_V"), ".4g"),
+        ("R²", _key("r_squared"), ".4f"),
+        ("stroke at 150 V (µm)", _key("stroke_150V_um"), ".2f"),
+        ("stiffness (N/m)", _key("stack_stiffness_N_per_m"), ".4g"),
+    ]
+    return _records([d], fit) + _records(stacks, per)
+
+
+def _structure(d: dict[str, Any], case: dict[str, Any]) -> str:
+    springs: list[Column] = [
+        ("k_b (N/m³)", _key("k_b_N_per_m3"), ".4g"),
+        ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
+        ("k_assy (N/m³)", _key("k_assy_N_per_m3"), ".4g"),
+    ]
+    keys = ("voltages_V", "stack_stroke_um", "base_preload_um")
+    volts = _transpose(d, keys)
+    cols: list[Column] = [
+        ("driving voltage (V)", _key("voltages_V"), "g"),
+        ("stack stroke (µm)", _key("stack_stroke_um"), ".2f"),
+        ("base preload (µm)", _key("base_preload_um"), ".2f"),
+    ]
+    return _records([d], springs) + _records(volts, cols)
+
+
+def _static(d: dict[str, Any], case: dict[str, Any]) -> str:
+    points = [p for p in d.get("points", []) if isinstance(p, dict) and "speed_rpm" in p]
+    if not points:
+        return ""
+    speeds = sorted({float(p["speed_rpm"]) for p in points})
+    shown = sorted({_nearest(speeds, t) for t in (10e3, 50e3, 90e3)})
+    at = "/".join(_f(a, ".0f") for a in case.get("actuator_angles_deg", [])) or "actuators"
+    cols: list[Column] = [
+        ("bearing", _key("bearing"), ""),
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("speed (krpm)", lambda p: p["speed_rpm"] / 1e3, ".0f"),
+        ("eccentricity ε", _key("eccentricity"), ".3f"),
+        ("attitude (°)", _key("attitude_deg"), ".1f"),
+        ("min film (µm)", _key("min_film_um"), ".1f"),
+        (f"preload at {at}° (µm)", _key("preload_um"), ".1f"),
+        (f"film pressure at {at}° (kPa)", _key("actuator_pressure_kPa"), ".1f"),
+        ("converged", _key("converged"), ""),
+    ]
+    n_ok = sum(bool(p.get("converged")) for p in points)
+    note = (
+        f'<p class="note">{len(points)} equilibria ({n_ok} converged), shown here at '
+        f"{', '.join(_f(s / 1e3, '.0f') for s in shown)} krpm; all of them are in "
+        "<code>static_sweep.nc</code> beside this page.</p>"
+    )
+    return note + _records([p for p in points if float(p["speed_rpm"]) in shown], cols)
+
+
+def _coefficients(d: dict[str, Any], case: dict[str, Any]) -> str:
+    note = (
+        f'<p class="note">Equilibrium at {_f(d.get("speed_rpm"), ".6g")} rpm: ε = '
+        f"{_f(d.get('eccentricity'), '.3f')}, attitude {_f(d.get('attitude_deg'), '.1f')}°.</p>"
+    )
+    keys = ("frequency_Hz", "frequency_ratio", "K_N_per_m", "C_Ns_per_m")
+    rows = _transpose(d, keys)
+    cols: list[Column] = [
+        ("frequency (Hz)", _key("frequency_Hz"), ".1f"),
+        ("ratio to speed", _key("frequency_ratio"), ".2f"),
+    ]
+    for i, ij in enumerate(("xx", "xy", "yx", "yy")):
+        cols.append((f"K{ij} (MN/m)", _entry("K_N_per_m", i, 1e-6), ".4f"))
+    for i, ij in enumerate(("xx", "xy", "yx", "yy")):
+        cols.append((f"C{ij} (N·s/m)", _entry("C_Ns_per_m", i), ".1f"))
+    return note + _records(rows, cols)
+
+
+def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
+    shim = {e.get("voltage_V"): e for e in d.get("shimmed", [])}
+    rows = [e | {"shim": shim.get(e.get("voltage_V"), {})} for e in d.get("C-GFB", [])]
+    cols: list[Column] = [
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("C-GFB onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whirl frequency (Hz)", _key("whirl_frequency_Hz"), ".0f"),
+        ("whirl ratio", _key("whirl_ratio"), ".2f"),
+        ("shimmed onset (krpm)", lambda r: _krpm("onset_speed_rpm")(r["shim"]), ".1f"),
+        ("shimmed whirl (Hz)", lambda r: r["shim"].get("whirl_frequency_Hz"), ".0f"),
+    ]
+    note = (
+        '<p class="note">Linear onset of instability (rigid rotor, voltage held from the '
+        "start); the paper's Figs. 13-15 are nonlinear speed-ups.</p>"
+    )
+    return note + _records(rows, cols)
+
+
+def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
+    def intervals(r: dict[str, Any]) -> str:
+        ivs = r.get("subsync_intervals_rpm_Hz") or []
+        return "; ".join(f"{a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz" for a, b, f in ivs)
+
+    cols: list[Column] = [
+        ("final voltage (V)", _key("voltage_V"), "g"),
+        ("sub-sync onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whip (Hz)", _key("whip_frequency_Hz"), ".0f"),
+        ("sub-synchronous intervals", lambda r: intervals(r) or None, ""),
+        ("divergence (krpm)", _krpm("divergence_speed_rpm"), ".1f"),
+        ("max sub-sync amplitude (µm)", _key("max_subsync_amplitude_um"), ".1f"),
+        ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
+        ("wall time (s)", _key("wall_time_s"), ".0f"),
+        ("solver", _key("message"), ""),
+    ]
+    note = (
+        '<p class="note">Speed-up from 3 to 90 krpm at 500 rad/s²; the voltage ramps up from '
+        "0 between 6.0 and 6.5 s (about 32.6 krpm).</p>"
+    )
+    return note + _records([r for r in d.get("runs", []) if isinstance(r, dict)], cols)
+
+
+def _generic(d: dict[str, Any], case: dict[str, Any]) -> str:
+    rows = [[k, _f(v, ".4g")] for k, v in d.items() if isinstance(v, int | float | str)]
+    return _table(["quantity", "value"], rows, num=(1,)) if rows else ""
+
+
+_TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
+    "identification": _identification,
+    "structure": _structure,
+    "static": _static,
+    "coefficients": _coefficients,
+    "stability": _stability,
+    "orbits": _orbits,
+}
+
+
+# --- helpers -----------------------------------------------------------------------
+
+
+def _figure(out_dir: Path, name: str) -> str:
+    """A <figure> with the PNG embedded, or a note where the file is missing or not a PNG."""
+    caption = _caption(name)
+    path = out_dir / name
+    data = path.read_bytes() if path.is_file() else b""
+    size = png_size(data)
+    if size is None:
+        why = "is missing" if not data else "is not a PNG"
+        return f'<p class="note">Figure <code>{escape(name)}</code> {why}: {escape(caption)}</p>'
+    uri = "data:image/png;base64," + base64.b64encode(data).decode("ascii")
+    return (
+        f'<figure><img src="{uri}" alt="{escape(caption)}" width="{size[0]}" '
+        f'height="{size[1]}"><figcaption>{escape(caption)} '
+        f"<code>{escape(name)}</code></figcaption></figure>"
+    )
+
+
+def _caption(name: str) -> str:
+    if name in _CAPTIONS:
+        return _CAPTIONS[name]
+    m = _ORBIT_FIG.fullmatch(Path(name).stem)
+    if m is None:
+        return name
+    v, kind = float(m["v"]), m["kind"]
+    run = f"{v:g} V throughout" if v == 0 else f"ramp to {v:g} V at 6.0-6.5 s"
+    fig13b = "Fig. 13(b)" if v == 0 else "Like Fig. 13(b)"
+    fig14 = f"Fig. 14({_FIG14[v]})" if v in _FIG14 else "Like Fig. 14"
+    what = {
+        "transient": ("Fig. 13(a)" if v == 0 else fig14) + ": journal motion e_X, e_Y and speed",
+        "waterfall": fig13b + ": waterfall of e_X",
+        "waterfall3d": fig13b + ": waterfall of e_X in 3-D",
+        "orbits": "Not in the paper: journal orbits at selected speeds",
+    }[kind]
+    return f"{what}; speed-up 3-90 krpm, {run}."
+
+
+def _orbit_order(p: Path) -> tuple[float, int, str]:
+    m = _ORBIT_FIG.fullmatch(p.stem)
+    if m is None:
+        return (float("inf"), 0, p.name)
+    return (float(m["v"]), _ORBIT_KINDS.index(m["kind"]), p.name)
+
+
+def _records(records: list[dict[str, Any]], cols: list[Column]) -> str:
+    """A table with one row per record and one column per ``(header, getter, format)``."""
+    if not records or not cols:
+        return ""
+    rows = [[_f(_get(get, r), spec) for _, get, spec in cols] for r in records]
+    num = [j for j, (_, _, spec) in enumerate(cols) if spec]
+    return _table([h for h, _, _ in cols], rows, num=num)
+
+
+def _table(
+    heads: list[str], rows: list[list[str]], *, num: Iterable[int] = (), flags: Sequence[bool] = ()
+) -> str:
+    """A table of plain-text cells (escaped here); the columns in ``num`` right-aligned."""
+    cols = set(num)
+    th = "".join(f"<th>{escape(h)}</th>" for h in heads)
+    trs = []
+    for i, row in enumerate(rows):
+        flag = ' class="flag"' if i < len(flags) and flags[i] else ""
+        tds = "".join(
+            f"<td{' class=num' if j in cols else ''}>{escape(c)}</td>" for j, c in enumerate(row)
+        )
+        trs.append(f"<tr{flag}>{tds}</tr>")
+    table = f"<table><thead><tr>{th}</tr></thead><tbody>{''.join(trs)}</tbody></table>"
+    return f'<div class="scroll">{table}</div>'
+
+
+def _get(get: Callable[[dict[str, Any]], Any], record: dict[str, Any]) -> Any:
+    try:
+        return get(record)
+    except (KeyError, IndexError, TypeError, ValueError):
+        return None
+
+
+def _transpose(d: dict[str, Any], keys: tuple[str, ...]) -> list[dict[str, Any]]:
+    """Records from parallel lists: ``{k: [a, b]}`` to ``[{k: a}, {k: b}]``."""
+    cols = (d.get(k) or [] for k in keys)
+    return [dict(zip(keys, v, strict=True)) for v in zip(*cols, strict=False)]
+
+
+def _entry(name: str, i: int, scale: float = 1.0) -> Callable[[dict[str, Any]], Any]:
+    """Element ``i`` (row-major) of the 2 × 2 matrix ``record[name]``, times ``scale``."""
+    return lambda r: r[name][i // 2][i % 2] * scale
+
+
+def _key(name: str) -> Callable[[dict[str, Any]], Any]:
+    return lambda r: r.get(name)
+
+
+def _krpm(name: str) -> Callable[[dict[str, Any]], Any]:
+    return lambda r: None if r.get(name) is None else float(r[name]) / 1e3
+
+
+def _nearest(values: list[float], target: float) -> float:
+    return min(values, key=lambda s: abs(s - target))
+
+
+def _f(x: Any, spec: str) -> str:
+    """Format a number, or a list of numbers joined by ' / '; '—' for None."""
+    if x is None:
+        return "—"
+    if isinstance(x, bool):
+        return "yes" if x else "NO"
+    if isinstance(x, list | tuple):
+        return " / ".join(_f(v, spec) for v in x)
+    if isinstance(x, int | float) and spec:
+        try:
+            return format(x, spec)
+        except ValueError:
+            return format(x, "g")
+    return str(x)

@@ -1,0 +1,309 @@
+"""report.html: one self-contained page from a study folder, checked by parsing and in Chromium."""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import json
+import os
+import re
+import shutil
+import struct
+import subprocess
+import zlib
+from html.parser import HTMLParser
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from foilbearing.report import write_report
+
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+# --- helpers -----------------------------------------------------------------------
+
+
+class _Page(HTMLParser):
+    """Every tag with its attributes, and the text."""
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.tags: list[tuple[str, dict[str, str]]] = []
+        self.text: list[str] = []
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.tags.append((tag, {k: v or "" for k, v in attrs}))
+
+    def handle_data(self, data: str) -> None:
+        self.text.append(data)
+
+    def imgs(self) -> list[dict[str, str]]:
+        return [a for t, a in self.tags if t == "img"]
+
+    def ids(self) -> set[str]:
+        return {a["id"] for _, a in self.tags if "id" in a}
+
+
+def parse(path: Path) -> tuple[str, _Page]:
+    text = path.read_text(encoding="utf-8")
+    page = _Page()
+    page.feed(text)
+    page.close()
+    return text, page
+
+
+def tiny_png(width: int, height: int, rgb: tuple[int, int, int] = (200, 30, 30)) -> bytes:
+    """A valid 8-bit RGB PNG, written by hand (no plotting needed)."""
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return (
+            struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+        )
+
+    raw = b"".join(b"\x00" + bytes(rgb) * width for _ in range(height))
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    return PNG + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+
+
+def decoded_pngs(page: _Page) -> list[bytes]:
+    """The images of the page, each checked to be an embedded PNG with a size."""
+    out = []
+    for img in page.imgs():
+        assert img.get("alt", "").strip(), "every image needs alt text"
+        src = img.get("src", "")
+        assert src.startswith("data:image/png;base64,"), src[:60]
+        data = base64.b64decode(src.split(",", 1)[1], validate=True)
+        assert data[:8] == PNG and data[12:16] == b"IHDR"
+        width, height = struct.unpack(">II", data[16:24])
+        assert width > 0 and height > 0
+        out.append(data)
+    return out
+
+
+def assert_self_contained(text: str, page: _Page) -> None:
+    low = text.lower()
+    for scheme in ("http://", "https://", "file://"):
+        assert scheme not in low, f"external reference {scheme}"
+    for tag, attrs in page.tags:
+        assert tag not in ("script", "link", "iframe", "object", "embed"), tag
+        for key in ("src", "href"):
+            ref = attrs.get(key)
+            if ref is not None:
+                assert ref.startswith(("data:", "#")), f"<{tag} {key}={ref[:60]}>"
+
+
+def fake_summary() -> dict[str, Any]:
+    return {
+        "case": {
+            "title": "Test <script>alert(1)</script> & co",
+            "viscosity_Pa_s": 1.85e-5,
+            "rotor_mass_kg": 0.897,
+            "imbalance_g_mm": 8.5,
+            "grid": {"n_theta": 24, "n_z": 4},
+            "actuator_angles_deg": [60.0, 180.0, 300.0],
+        },
+        "structure": {
+            "k_b_N_per_m3": 8.7e9,
+            "voltages_V": [0.0, 150.0],
+            "stack_stroke_um": [0.0, 73.83],
+            "base_preload_um": [0.0, 72.94],
+            "figures": ["/elsewhere/fig07_stiffness_function.png", "/elsewhere/fig08_preloads.png"],
+        },
+        "orbits": {
+            "runs": [
+                {
+                    "voltage_V": 0.0,
+                    "onset_speed_rpm": 15000.0,
+                    "whip_frequency_Hz": 130.0,
+                    "subsync_intervals_rpm_Hz": [[15000.0, 19000.0, 130.0]],
+                    "divergence_speed_rpm": None,
+                    "message": "ok",
+                }
+            ],
+            "figures": [],
+        },
+        "paper_comparison": [
+            {
+                "quantity": "k_b (N/m³)",
+                "paper": "8.69e9",
+                "ours": "8.700e+09",
+                "deviation": "+0.12 %",
+                "note": "a <b>note</b> & more",
+            },
+            {
+                "quantity": "Fig. 12: attitude falls",
+                "paper": "yes",
+                "ours": "NO",
+                "deviation": "",
+                "note": "why",
+            },
+        ],
+    }
+
+
+@pytest.fixture
+def fake_out(tmp_path: Path) -> Path:
+    """A study folder with three tiny PNGs (one listed, one orbit figure, one stray)."""
+    (tmp_path / "summary.json").write_text(json.dumps(fake_summary()), encoding="utf-8")
+    (tmp_path / "fig07_stiffness_function.png").write_bytes(tiny_png(4, 3))
+    (tmp_path / "orbit_0V_transient.png").write_bytes(tiny_png(2, 5, (0, 90, 200)))
+    (tmp_path / "extra_plot.png").write_bytes(tiny_png(3, 3, (0, 0, 0)))
+    return tmp_path
+
+
+# --- (a), (b): structure of the page ------------------------------------------------
+
+
+def test_page_is_self_contained_and_complete(fake_out: Path) -> None:
+    text, page = parse(write_report(fake_out))
+    assert_self_contained(text, page)
+    pngs = decoded_pngs(page)
+    on_disk = {p.read_bytes() for p in fake_out.glob("*.png")}
+    assert set(pngs) == on_disk and len(pngs) == len(on_disk)  # every figure, once
+    body = html.unescape("".join(page.text))
+    for row in fake_summary()["paper_comparison"]:
+        for key in ("quantity", "paper", "ours", "note"):
+            assert row[key] in body
+    assert "<script>alert" not in text and "&lt;b&gt;note" in text  # escaped
+    assert {"comparison", "structure", "orbits", "other"} <= page.ids()
+    assert text.index('id="comparison"') < text.index('id="structure"') < text.index('id="orbits"')
+    assert "1.85e-05 Pa·s" in body and "0.897 kg" in body and "24 × 4" in body
+    assert "fig08_preloads.png" in body and "is missing" in body  # listed, not on disk
+    assert "Fig. 13(a)" in body  # the orbit figure's caption names the paper's figure
+    assert not list(fake_out.glob(".report.html.*"))  # atomic write left no temporary
+
+
+def test_missing_stage_is_omitted(fake_out: Path) -> None:
+    summary = fake_summary()
+    del summary["orbits"], summary["paper_comparison"]
+    (fake_out / "summary.json").write_text(json.dumps(summary), encoding="utf-8")
+    (fake_out / "orbit_0V_transient.png").unlink()
+    text, page = parse(write_report(fake_out))
+    assert "orbits" not in page.ids() and "comparison" not in page.ids()
+    assert "structure" in page.ids() and "#orbits" not in text
+    assert len(decoded_pngs(page)) == 2
+
+
+def test_no_summary_is_an_input_error(tmp_path: Path) -> None:
+    from foilbearing.errors import InputError
+
+    with pytest.raises(InputError, match=r"summary\.json"):
+        write_report(tmp_path)
+
+
+# --- (c): the real study's page in headless Chromium --------------------------------
+
+
+@pytest.fixture(scope="module")
+def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The study without orbits (about 15 s), once for this module."""
+    from foilbearing import default_case
+    from foilbearing.study import run_study
+
+    out = tmp_path_factory.mktemp("study")
+    run_study(default_case(), out, progress=False, orbits=False)
+    write_report(out)
+    return out
+
+
+def test_study_page_is_self_contained(study_out: Path) -> None:
+    import matplotlib.image as mpimg
+
+    text, page = parse(study_out / "report.html")
+    assert_self_contained(text, page)
+    pngs = decoded_pngs(page)
+    assert {p.read_bytes() for p in study_out.glob("*.png")} == set(pngs)
+    for data in pngs:
+        assert mpimg.imread(io.BytesIO(data), format="png").shape[0] > 100
+    summary = json.loads((study_out / "summary.json").read_text())
+    body = html.unescape("".join(page.text))
+    for row in summary["paper_comparison"]:
+        assert row["quantity"] in body and row["ours"] in body
+    order = [k for k in ("identification", "structure", "static", "coefficients", "stability")]
+    assert [text.index(f'<section id="{k}"') for k in order] == sorted(
+        text.index(f'<section id="{k}"') for k in order
+    )
+
+
+#: Injected before </head> of a copy: records load errors (capture phase), console
+#: errors and warnings, and after `load` every image's state and every fetched resource.
+CHECKER = """<script>(function(){var errs=[];
+window.addEventListener('error',function(e){var t=e.target;
+errs.push(t&&t!==window&&t.tagName?'failed to load <'+t.tagName+'> '+String(t.src||t.href).slice(0,60)
+:'uncaught: '+e.message);},true);
+['error','warn'].forEach(function(k){var o=console[k];console[k]=function(){
+errs.push('console.'+k+': '+Array.prototype.join.call(arguments,' '));o.apply(console,arguments);};});
+window.addEventListener('load',function(){var imgs=Array.prototype.slice.call(document.images);
+var r={images:imgs.length,errors:errs,
+broken:imgs.filter(function(i){return!(i.complete&&i.naturalWidth>0&&i.naturalHeight>0);})
+.map(function(i){return(i.alt||i.src).slice(0,80);}),
+resources:performance.getEntriesByType('resource').map(function(e){return e.name.slice(0,80);})};
+var p=document.createElement('pre');p.id='fb-check';p.textContent=JSON.stringify(r);
+document.body.appendChild(p);});})();</script>"""
+
+
+def chromium() -> str:
+    """Debian's chromium; skipped if absent, unless CI is set (then it must be there)."""
+    for exe in ("/usr/bin/chromium", shutil.which("chromium")):
+        if exe and os.access(exe, os.X_OK):
+            return exe
+    message = "chromium not installed: run `bash scripts/setup_chromium.sh`"
+    if os.environ.get("CI"):
+        pytest.fail(message)
+    pytest.skip(message)
+
+
+def run_in_chromium(page: Path, tmp: Path) -> tuple[dict[str, Any], list[str]]:
+    """Load a checker-injected copy of ``page``; the checker's result and console lines."""
+    text = page.read_text(encoding="utf-8")
+    assert "</head>" in text
+    probe = tmp / "probe.html"
+    probe.write_text(text.replace("</head>", CHECKER + "</head>", 1), encoding="utf-8")
+    cmd = [
+        chromium(),
+        "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync",
+        "--disable-extensions", "--host-resolver-rules=MAP * ~NOTFOUND",
+        f"--user-data-dir={tmp / 'chromium-profile'}", "--enable-logging=stderr", "--v=0",
+        "--virtual-time-budget=5000", "--dump-dom", probe.as_uri(),
+    ]  # fmt: skip
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=90, check=False)
+    m = re.search(r'<pre id="fb-check">(.*?)</pre>', proc.stdout, re.S)
+    assert proc.returncode == 0 and m, (
+        f"chromium failed (rc {proc.returncode}):\n{proc.stderr[-3000:]}"
+    )
+    console = [line for line in proc.stderr.splitlines() if ":CONSOLE" in line]
+    return json.loads(html.unescape(m.group(1))), console
+
+
+def test_page_loads_cleanly_in_headless_chromium(study_out: Path, tmp_path: Path) -> None:
+    n_img = len(parse(study_out / "report.html")[1].imgs())
+    result, console = run_in_chromium(study_out / "report.html", tmp_path)
+    assert console == []
+    assert result == {"images": n_img, "errors": [], "broken": [], "resources": []}
+    assert n_img == len(list(study_out.glob("*.png"))) >= 10
+
+
+def test_chromium_check_catches_broken_pages(tmp_path: Path) -> None:
+    """A negative control: the probe must see a bad image, a network image and a script error."""
+    good = base64.b64encode(tiny_png(2, 2)).decode()
+    bad = base64.b64encode(b"not a png").decode()
+    page = tmp_path / "broken.html"
+    page.write_text(
+        "<!DOCTYPE html><html><head><title>x</title></head><body>"
+        f'<img alt="good" src="data:image/png;base64,{good}">'
+        f'<img alt="bad" src="data:image/png;base64,{bad}">'
+        '<img alt="net" src="http://example.invalid/a.png">'
+        "<script>console.error('boom'); undefinedFunction();</script></body></html>",
+        encoding="utf-8",
+    )
+    result, console = run_in_chromium(page, tmp_path)
+    assert result["images"] == 3 and sorted(result["broken"]) == ["bad", "net"]
+    assert any("console.error: boom" in e for e in result["errors"])
+    assert any("uncaught" in e and "undefinedFunction" in e for e in result["errors"])
+    assert sum("failed to load <IMG>" in e for e in result["errors"]) == 2
+    assert any("example.invalid" in r for r in result["resources"])
+    assert any("Uncaught" in line for line in console)
