@@ -169,3 +169,26 @@ def test_controller_triggers_on_subsynchronous_motion_and_respects_slew_rate() -
     v = np.array(volts)
     assert np.all(v[t < 0.2] == 0.0)  # a large synchronous orbit alone does not trigger it
     assert np.max(np.diff(v)) <= 1000.0 * 1e-4 + 1e-9
+
+
+@pytest.mark.slow
+def test_paper_trends_with_control_before_the_onset() -> None:
+    # MODEL.md section 6 / issue: 0 V goes unstable well below 90 krpm; preload control delays
+    # the divergence and raises the whip frequency. Our 0 V run diverges before the paper's
+    # control time (6.0 s), so the ramp is placed before our own 0 V onset (about 2 s), as the
+    # study does, with the 1 g·mm imbalance of the study's sensitivity series.
+    from foilbearing.orbit_analysis import analyse_orbit
+
+    case = default_case()
+    case = replace(case, rotor=replace(case.rotor, imbalance=1e-6))
+    prof = linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0)
+    runs = {}
+    for volts in (0.0, 100.0, 150.0):
+        program = voltage_ramp(1.74, 2.24, volts) if volts else None
+        res = simulate(case, prof, program)
+        runs[volts] = (res, analyse_orbit(res))
+    div = {v: a.divergence_speed_rpm or math.inf for v, (_, a) in runs.items()}
+    assert div[0.0] < 45e3  # well below 90 krpm
+    assert div[0.0] < div[100.0] < div[150.0]
+    whip = {v: a.onset.whirl_frequency_hz for v, (_, a) in runs.items() if v and a.onset}
+    assert whip[100.0] < whip[150.0]

@@ -6,6 +6,7 @@ and tests with stated tolerances, never inside a computation.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -242,13 +243,10 @@ def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
 def orbit_comparison(runs: list[dict[str, Any]]) -> list[Row]:
     """The speed-up runs beside the paper's Figs. 13-15 (MODEL.md section 6)."""
     paper = {
-        (
-            0.0,
-            "none",
-        ): "whirl from ~15 krpm at 123-147 Hz, gone by ~19 krpm; whip diverges at ~33 krpm",
-        (50.0, "ramp"): "whip ~105 Hz, diverges at 44.4 krpm",
-        (100.0, "ramp"): "no divergence up to 90 krpm; bounded whip ~127 Hz",
-        (150.0, "ramp"): "no divergence up to 90 krpm; whip onset 79.1 krpm, ~143 Hz",
+        0.0: "whirl from ~15 krpm at 123-147 Hz, gone by ~19 krpm; whip diverges at ~33 krpm",
+        50.0: "whip ~105 Hz, diverges at 44.4 krpm",
+        100.0: "no divergence up to 90 krpm; bounded whip ~127 Hz",
+        150.0: "no divergence up to 90 krpm; whip onset 79.1 krpm, ~143 Hz",
     }
     note = (
         "μ, rotor mass and imbalance are assumed (MODEL.md section 1); onset = sustained "
@@ -257,42 +255,46 @@ def orbit_comparison(runs: list[dict[str, Any]]) -> list[Row]:
     rows = []
     for run in runs:
         v = float(run["voltage_V"])
-        control = str(run.get("control", "none"))
-        kind = (
-            "held"
-            if control.startswith("held")
-            else ("ramp" if control.startswith("ramp") else "none")
-        )
-        parts = []
-        for start, end, freq in run.get("subsync_intervals_rpm_Hz", []):
-            parts.append(f"sub-synchronous {start / 1e3:.1f}-{end / 1e3:.1f} krpm at {freq:.0f} Hz")
+        parts = [
+            f"sub-synchronous {a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz"
+            for a, b, f in run.get("subsync_intervals_rpm_Hz", [])
+        ]
         div = run.get("divergence_speed_rpm")
         parts.append(
             f"diverges at {div / 1e3:.1f} krpm"
             if div
             else f"no divergence up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
         )
-        ref = paper.get((v, kind), "(not in the paper: voltage held from the start)")
-        rows.append(Row(f"orbit, {v:g} V, control: {control}", ref, "; ".join(parts), "", note))
-    held = [
-        r
-        for r in runs
-        if str(r.get("control", "")).startswith("held") or float(r["voltage_V"]) == 0.0
-    ]
-    div = [r.get("divergence_speed_rpm") or 1e9 for r in held]
-    rows.append(
-        Row(
-            "orbit trend: divergence delayed by the voltage (0 → 150 V)",
-            "yes",
-            "yes"
-            if div == sorted(div)
-            else "NO: "
-            + " / ".join("none" if d >= 1e9 else f"{d / 1e3:.1f}" for d in div)
-            + " krpm",
-            "",
-            "voltages held from the start",
+        protocol = run.get("series") == "paper protocol"
+        ref = paper.get(v, "") if protocol else "(variant: not in the paper)"
+        rows.append(Row(f"orbit: {run.get('description', v)}", ref, "; ".join(parts), "", note))
+    for series in dict.fromkeys(r.get("series") for r in runs):
+        members = [r for r in runs if r.get("series") == series]
+        if series != "1 g·mm sensitivity":
+            members = [
+                r
+                for r in runs
+                if float(r["voltage_V"]) == 0.0 and r.get("series") == "paper protocol"
+            ] + members
+            members = list({id(m): m for m in members}.values())
+        if len(members) < 2:
+            continue
+        members.sort(key=lambda r: float(r["voltage_V"]))
+        div = [r.get("divergence_speed_rpm") or math.inf for r in members]
+        shown = " / ".join("none" if d == math.inf else f"{d / 1e3:.1f}" for d in div)
+        rows.append(
+            Row(
+                f"orbit trend ({series}): divergence delayed by the voltage",
+                "yes (33 / 44.4 / none / none krpm)",
+                ("yes: " if div == sorted(div) else "NO: ")
+                + shown
+                + " krpm at "
+                + " / ".join(f"{float(r['voltage_V']):g}" for r in members)
+                + " V",
+                "",
+                "",
+            )
         )
-    )
     return rows
 
 
