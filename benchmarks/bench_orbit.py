@@ -81,14 +81,31 @@ def arithmetic_limit(res) -> None:
         )
 
 
-def full_run(volts: float) -> None:
+def full_run() -> None:
+    """The paper's speed-up (3 to 90 krpm at 500 rad/s²) on the default grid.
+
+    None of our default-case runs reaches 90 krpm (they diverge between 12 and
+    35 krpm, see the report), so the timing run uses a lighter rotor (0.3 kg),
+    a 1 g·mm imbalance and the 150 V ramp before our onset, which carries a
+    whip limit cycle to about 53 krpm; the cost per step is what extrapolates
+    to the full 18.2 s (about 226,000 steps at 16 steps per revolution).
+    """
+    from dataclasses import replace
+
     case = default_case()
-    prog = voltage_ramp(6.0, 6.5, volts) if volts else None
-    res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), prog)
+    case = replace(case, rotor=replace(case.rotor, mass=0.3, imbalance=1e-6))
+    res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), voltage_ramp(1.74, 2.24, 150.0))
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    per_step = res.wall_time / max(res.steps, 1)
+    revs = ((90e3 * RPM) ** 2 - (3e3 * RPM) ** 2) / (2 * 500.0 * 2 * math.pi)
+    full_steps = revs * res.settings.steps_per_rev
     print(
-        f"paper speed-up at {volts:g} V: {res.message}; wall {res.wall_time:.1f} s, "
+        f"speed-up 3-90 krpm (0.3 kg rotor, 150 V): {res.message}; wall {res.wall_time:.1f} s, "
         f"{res.steps} steps, peak memory {peak:.0f} MB"
+    )
+    print(
+        f"  {per_step * 1e3:.3f} ms per step -> the full 18.2 s ({full_steps:,.0f} steps) would "
+        f"take about {per_step * full_steps:.0f} s (target 60 s)"
     )
     arithmetic_limit(res)
 
@@ -96,4 +113,4 @@ def full_run(volts: float) -> None:
 if __name__ == "__main__":
     side_by_side()
     if "--full" in sys.argv:
-        full_run(150.0)
+        full_run()
