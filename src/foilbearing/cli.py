@@ -17,7 +17,7 @@ from typing import Any
 
 from foilbearing.case import Case, default_case_path, load_case
 from foilbearing.errors import InputError, SolverError
-from foilbearing.units import parse_quantity
+from foilbearing.units import parse_quantity, parse_speed_range
 
 __all__ = ["main"]
 
@@ -537,27 +537,12 @@ def _cmd_coefficients(args: argparse.Namespace) -> int:
     return 0
 
 
-def _speed_range(text: str) -> list[float]:
-    parts = text.split(":")
-    if len(parts) != 3:
-        raise InputError(
-            f"--speed-range {text!r}: expected START:STOP:STEP, e.g. 5000rpm:150000rpm:5000rpm"
-        )
-    start, stop, step = (parse_quantity(p, "speed", field="--speed-range") for p in parts)
-    if not 0 < start < stop or step <= 0 or (stop - start) / step > 1000:
-        raise InputError(
-            f"--speed-range {text!r}: need 0 < START < STOP and 0 < STEP, at most 1000 steps"
-        )
-    n = round((stop - start) / step) + 1
-    return [start + k * step for k in range(n)]
-
-
 def _cmd_stability(args: argparse.Namespace) -> int:
     from foilbearing.io import save_figure
     from foilbearing.stability import onset_speed, stability_map
 
     case = _load(args.case)
-    speeds = _speed_range(args.speed_range)
+    speeds = parse_speed_range(args.speed_range, field="--speed-range")
     voltages = parse_list(args.voltage, "voltage", "--voltage")
     if case.actuators is None:
         raise InputError("the stability study over voltages needs a case with [actuators]")

@@ -78,9 +78,8 @@ def cmd_optimize(args: argparse.Namespace) -> int:
         computed then.
     """
     from foilbearing.case import default_case_path, load_case
-    from foilbearing.cli import _speed_range
     from foilbearing.optimize import PAPER_VOLTAGES, maximize_onset, minimize_drag
-    from foilbearing.units import parse_quantity
+    from foilbearing.units import parse_quantity, parse_speed_range
 
     if args.objective not in OBJECTIVES:
         raise InputError(f"--objective {args.objective!r}: allowed onset or drag")
@@ -102,7 +101,7 @@ def cmd_optimize(args: argparse.Namespace) -> int:
                 "--speed and --load belong to --objective drag; the onset objective scans "
                 "--speed-range"
             )
-        speeds = _speed_range(args.speed_range)
+        speeds = parse_speed_range(args.speed_range, field="--speed-range")
         result = maximize_onset(case, speeds=speeds, progress=progress, **budget)
     else:
         if args.speed is None:

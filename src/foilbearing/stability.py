@@ -66,18 +66,33 @@ class WhirlMode:
         return self.eigenvalue.imag
 
 
-def _least_stable(mass: float, K: np.ndarray, C: np.ndarray, near: float) -> complex:
-    """Eigenvalue with Im > 0 of m s² + C s + K = 0 that is least stable (ties: nearest ``near``)."""
+def _whirl_eigenvalues(mass: float, K: np.ndarray, C: np.ndarray) -> np.ndarray:
+    """Eigenvalues with Im > 0 of m s² + C s + K = 0 (the whirl modes), 1/s."""
     a = np.zeros((4, 4))
     a[0:2, 2:4] = np.eye(2)
     a[2:4, 0:2] = -K / mass
     a[2:4, 2:4] = -C / mass
     eig = np.linalg.eigvals(a)
-    cand = eig[eig.imag > 1e-9 * max(near, 1.0)]
-    if cand.size == 0:
-        # Over-damped: no oscillating mode; report the slowest real one.
-        return complex(eig[np.argmax(eig.real)])
-    return complex(cand[np.argmax(cand.real - 1e-12 * np.abs(cand.imag - near))])
+    return eig[eig.imag > 0.0]
+
+
+def _track(
+    static: StaticResult, mass: float, s0: complex, ws: Workspace, tol: float, max_iter: int
+) -> tuple[complex, Any, int]:
+    """Follow one whirl mode until its eigenvalue and the coefficients' frequency agree."""
+    s, w_e, fc = s0, abs(s0.imag), None
+    it = 0
+    for it in range(1, max_iter + 1):
+        fc = force_coefficients(static, w_e, workspace=ws)
+        eig = _whirl_eigenvalues(mass, fc.K[0], fc.C[0])
+        if eig.size == 0:
+            break
+        s = complex(eig[np.argmin(np.abs(eig - s))])  # the same mode: the nearest eigenvalue
+        new = s.imag
+        if abs(new - w_e) <= tol * max(w_e, 1e-12):
+            break
+        w_e = 0.5 * (w_e + new) if it > 10 else new  # damp a slow two-cycle
+    return s, fc, it
 
 
 def whirl_mode(
@@ -88,26 +103,33 @@ def whirl_mode(
     tol: float = 1e-6,
     max_iter: int = 40,
 ) -> WhirlMode:
-    """Least stable whirl mode at a static point, with the coefficients at its own frequency."""
+    """Least stable whirl mode at a static point, with the coefficients at its own frequency.
+
+    The eigenvalues at half-frequency whirl seed each mode; each is followed to
+    consistency (coefficients at its own whirl frequency) and the one with the
+    smallest logarithmic decrement is returned.
+    """
     omega = static.speed
     ws = workspace or Workspace(static.model.grid)
-    w_e = 0.5 * omega  # start from half-frequency whirl
-    s = complex(0.0, w_e)
-    fc = None
-    for it in range(1, max_iter + 1):
-        fc = force_coefficients(static, w_e, workspace=ws)
-        s = _least_stable(mass, fc.K[0], fc.C[0], w_e)
-        new = abs(s.imag) if s.imag > 0 else w_e
-        if abs(new - w_e) <= tol * max(w_e, 1e-12):
-            w_e = new
-            break
-        w_e = 0.5 * (w_e + new) if it > 10 else new  # damp a slow two-cycle
-    assert fc is not None
-    wd = max(s.imag, 1e-300)
+    fc0 = force_coefficients(static, 0.5 * omega, workspace=ws)
+    seeds = _whirl_eigenvalues(mass, fc0.K[0], fc0.C[0])
+    if seeds.size == 0:
+        seeds = np.array([complex(0.0, 0.5 * omega)])
+    best: tuple[float, complex, Any, int] | None = None
+    for seed in seeds:
+        s, fc, it = _track(static, mass, complex(seed), ws, tol, max_iter)
+        if fc is None or s.imag <= 0:
+            continue
+        dec = -2.0 * math.pi * s.real / s.imag
+        if best is None or dec < best[0]:
+            best = (dec, s, fc, it)
+    if best is None:
+        raise InputError(f"no whirl mode found at {omega / RPM:.0f} rpm (over-damped rotor)")
+    dec, s, fc, it = best
     return WhirlMode(
         speed=omega,
         eigenvalue=s,
-        log_decrement=-2.0 * math.pi * s.real / wd,
+        log_decrement=dec,
         whirl_ratio=s.imag / omega,
         K=fc.K[0],
         C=fc.C[0],

@@ -16,7 +16,7 @@ import pint
 
 from foilbearing.errors import InputError
 
-__all__ = ["SI_UNITS", "parse_quantity", "ureg"]
+__all__ = ["SI_UNITS", "parse_quantity", "parse_speed_range", "ureg"]
 
 ureg: Any = pint.UnitRegistry()
 ureg.define("rpm = revolution / minute")
@@ -112,6 +112,24 @@ def parse_quantity(value: object, kind: str, *, field: str, source: str | None =
     if not math.isfinite(result):
         raise InputError(f"{field} = {value!r}: must be finite", source=source)
     return result
+
+
+def parse_speed_range(text: str, *, field: str, source: str | None = None) -> list[float]:
+    """Speeds (rad/s) from "START:STOP:STEP", e.g. "5000rpm:150000rpm:5000rpm" (at most 1000 steps)."""
+    parts = text.split(":")
+    if len(parts) != 3:
+        raise InputError(
+            f"{field} {text!r}: expected START:STOP:STEP, e.g. 5000rpm:150000rpm:5000rpm",
+            source=source,
+        )
+    start, stop, step = (parse_quantity(p, "speed", field=field, source=source) for p in parts)
+    if not 0 < start < stop or step <= 0 or (stop - start) / step > 1000:
+        raise InputError(
+            f"{field} {text!r}: need 0 < START < STOP and 0 < STEP, at most 1000 steps",
+            source=source,
+        )
+    n = round((stop - start) / step) + 1
+    return [start + k * step for k in range(n)]
 
 
 def _example(kind: str) -> str:
