@@ -93,6 +93,17 @@ def test_superlu_fallback_uses_the_twin(setup, monkeypatch: pytest.MonkeyPatch) 
     out = np.empty(sys_.size)
     assert factor.solve(rhs, out) is out
     assert _rel(out, ref.solve(rhs)) < 1e-10
+    # The Newton iteration on the fallback: its twin, equal to the compiled one.
+    hist = 1e-3 * np.random.default_rng(9).standard_normal(sys_.size)
+    w = sim.weights(y)
+    y_a, y_b = y.copy(), y.copy()
+    bufs_a = (np.empty(sys_.size), np.empty(sys_.size))
+    bufs_b = (np.empty(sys_.size), np.empty(sys_.size))
+    res_a = factor.newton_step(y_a, inp, c0, hist, w, *bufs_a)
+    res_b = ref.newton_step(y_b, inp, c0, hist, w, *bufs_b)
+    assert res_a[0] == pytest.approx(res_b[0], rel=1e-14)
+    assert res_a[1] == pytest.approx(res_b[1], rel=1e-8)
+    assert _rel(y_a, y_b) < 1e-10
 
 
 def test_newton_update_matches_twin() -> None:
@@ -108,3 +119,108 @@ def test_newton_update_matches_twin() -> None:
     assert p_min == p_min_py
     dy[3] = np.nan
     assert math.isnan(kern.newton_update(y, dy, w, 40)[0])
+
+
+def test_jacobian_blocks_match_twin(setup) -> None:
+    sim, y, inp = setup
+    sys_ = sim.system
+    c0 = 3000.0
+    g = sys_.grid
+    n = sys_.n
+    H = np.empty(g.shape)
+    jp = np.empty(sys_.ws.jp.size)
+    jh = np.empty(sys_.ws.jh.size)
+    active = np.empty(sys_.nt)
+    jc = np.empty(sys_.c_indices.size)
+    a_pe = np.empty((n, 2))
+    kern.transient_jacobian(
+        y,
+        c0,
+        inp.lam,
+        sys_.rate(inp),
+        inp.preload,
+        sys_.cos_t,
+        sys_.sin_t,
+        sys_.c_act,
+        sys_.c_bump,
+        sys_.area * sys_.sigma,
+        g.d_theta,
+        g.d_z,
+        sys_.diag_slots,
+        sys_.jh_rows,
+        sys_.ws.indptr,
+        H,
+        jp,
+        jh,
+        active,
+        jc,
+        a_pe,
+    )
+    H_py, jp_py, jh_py, active_py, jc_py, a_pe_py = sys_.jacobian_blocks_py(y, inp, c0)
+    assert active.any() and not active.all()
+    np.testing.assert_array_equal(active, active_py)
+    for got, want in [(H, H_py), (jp, jp_py), (jh, jh_py), (jc, jc_py), (a_pe, a_pe_py)]:
+        assert _rel(got, want) < 1e-12
+
+
+def test_border_matches_twin(setup) -> None:
+    sim, y, inp = setup
+    sys_ = sim.system
+    c0 = 3000.0
+    factor = sys_.factorize(y, inp, c0)
+    y_border, small_inv = sys_.border_py(factor.lu, factor.a_pe, c0)
+    assert _rel(factor.y_border, y_border) < 1e-12
+    assert _rel(factor.small_inv, small_inv) < 1e-12
+
+
+@pytest.mark.parametrize("stale", [False, True], ids=["fresh", "stale"])
+def test_newton_step_matches_twin(setup, stale: bool) -> None:
+    sim, y, inp = setup
+    sys_ = sim.system
+    c0 = 3000.0
+    factor = sys_.factorize(y, inp, 2500.0 if stale else c0)
+    hist = 1e-3 * np.random.default_rng(8).standard_normal(sys_.size)
+    w = sim.weights(y)
+    y_c, y_py = y.copy(), y.copy()
+    g, dy = np.empty(sys_.size), np.empty(sys_.size)
+    g_py, dy_py = np.empty(sys_.size), np.empty(sys_.size)
+    h_min, err, p_min = factor.newton_step(y_c, inp, c0, hist, w, g, dy)
+    h_py, err_py, p_py = factor.newton_step_py(y_py, inp, c0, hist, w, g_py, dy_py)
+    assert h_min == pytest.approx(h_py, rel=1e-14)
+    assert err == pytest.approx(err_py, rel=1e-9)
+    assert p_min == pytest.approx(p_py, rel=1e-12)
+    assert _rel(g, g_py) < 1e-12
+    assert _rel(dy, dy_py) < 1e-9
+    assert _rel(y_c, y_py) < 1e-12
+
+
+def test_newton_step_leaves_a_closed_film(setup) -> None:
+    sim, y, inp = setup
+    sys_ = sim.system
+    factor = sys_.factorize(y, inp, 3000.0)
+    closed = y.copy()
+    closed[sys_.n + sys_.nt] = 5.0  # ε_X = 5 C: the film closes
+    before = closed.copy()
+    g, dy = np.empty(sys_.size), np.empty(sys_.size)
+    w = sim.weights(y)
+    hist = np.zeros(sys_.size)
+    h_min, err, p_min = factor.newton_step(closed, inp, 3000.0, hist, w, g, dy)
+    assert h_min <= 0.0 and math.isnan(err) and math.isnan(p_min)
+    np.testing.assert_array_equal(closed, before)
+    assert factor.newton_step_py(closed, inp, 3000.0, hist, w, g, dy)[0] == h_min
+    np.testing.assert_array_equal(closed, before)
+
+
+def test_fused_jacobians_equal_the_separate_kernels() -> None:
+    rng = np.random.default_rng(10)
+    n_theta, n_z = 16, 5
+    P = rng.uniform(0.8, 2.0, (n_theta, n_z))
+    H = rng.uniform(0.3, 1.5, (n_theta, n_z))
+    nnz = kern.stencil_pattern(n_theta, n_z)[1].size
+    jp, jh, jp2, jh2 = (np.empty(nnz) for _ in range(4))
+    for lam in (0.5, 30.0):
+        kern.jacobian_P(P, H, lam, 0.2, 0.1, jp)
+        kern.jacobian_H(P, H, lam, 0.2, 0.1, jh)
+        kern._jacobian_both(P, H, lam, 0.2, 0.1, jp2, jh2)
+        np.testing.assert_array_equal(jp2, jp)
+        np.testing.assert_array_equal(jh2, jh)

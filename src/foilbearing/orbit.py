@@ -27,7 +27,6 @@ from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
 from foilbearing.errors import InputError
 from foilbearing.film import film_model
-from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.transient import Inputs, TransientSystem
 from foilbearing.static import solve_equilibrium
 from foilbearing.structure import base_preload, preload_shape
@@ -219,6 +218,8 @@ class OrbitSimulation:
         else:
             self.lobes = np.zeros((0, g.n_theta))
         self.static_preload = self.model.preload if act is None else None
+        self._preload_cache: tuple[FloatArray, FloatArray] | None = None
+        self._atol: FloatArray | None = None
 
     # ------------------------------------------------------------------ inputs
     def volts(self, t: float) -> FloatArray:
@@ -228,12 +229,20 @@ class OrbitSimulation:
         if self.voltage is None:
             return np.asarray(self.case.actuators.voltages, float)
         v = np.asarray(self.voltage(t), float)
+        if v.shape == (self.n_act,):
+            return v.copy()
+        if v.shape == (1,):
+            return np.full(self.n_act, v[0])
         return np.broadcast_to(v, (self.n_act,)).copy()
 
     def preload(self, volts: FloatArray) -> FloatArray:
         """r_p(θ_i)/C for actuator voltages (static shims if no actuators)."""
         if self.static_preload is not None:
             return self.static_preload
+        # Voltages are held most of the run: reuse the last preload (never written to).
+        cached = self._preload_cache
+        if cached is not None and np.array_equal(cached[0], volts):
+            return cached[1]
         act = self.case.actuators
         assert act is not None
         delta = base_preload(
@@ -244,7 +253,9 @@ class OrbitSimulation:
             act.holder_spring_stiffness,
             act.holder_pre_extension,
         )
-        return (delta @ self.lobes) / self.case.bearing.clearance
+        r_p = (delta @ self.lobes) / self.case.bearing.clearance
+        self._preload_cache = (np.array(volts, float), r_p)
+        return r_p
 
     def inputs(self, t: float, volts: FloatArray, imbalance: bool = True) -> Inputs:
         """Inputs of the system at time t."""
@@ -273,10 +284,13 @@ class OrbitSimulation:
     def weights(self, y: FloatArray) -> FloatArray:
         """Error weights 1/(atol + rtol |y|) of the Newton convergence test."""
         s, sys_ = self.settings, self.system
-        atol = np.empty(sys_.size)
-        atol[: sys_.n] = s.atol_pressure
-        atol[sys_.n : -2] = s.atol_position
-        atol[-2:] = s.atol_position * max(self.profile.speeds.max(), 1.0)
+        atol = self._atol
+        if atol is None:
+            atol = np.empty(sys_.size)
+            atol[: sys_.n] = s.atol_pressure
+            atol[sys_.n : -2] = s.atol_position
+            atol[-2:] = s.atol_position * max(self.profile.speeds.max(), 1.0)
+            self._atol = atol
         return 1.0 / (atol + s.rtol * np.abs(y))
 
 
@@ -403,7 +417,7 @@ def _run(
         return OrbitResult(
             sim.case,
             s,
-            *out.arrays(sim.n_act),
+            *out.arrays(sim.n_act, sim.profile),
             status=status,
             message=message,
             wall_time=time.perf_counter() - clock,
@@ -527,7 +541,6 @@ def _newton(
     factorisations, Q(y), min film)``; on failure y is the guess and Q is empty.
     """
     s, sys_ = sim.settings, sim.system
-    n = sys_.n
     g_buf, dy_buf = work
     y0 = y
     factorizations = 0
@@ -549,11 +562,10 @@ def _newton(
         while True:
             its += 1
             k += 1
-            g, h_min = sys_.newton_residual(y, inp, c0, hist, g_buf)
+            # Residual, solve and y -= dy in one compiled call.
+            h_min, err, p_min = lu.newton_step(y, inp, c0, hist, w, g_buf, dy_buf)
             if h_min <= 0.0:
                 break  # the iterate closed the film: retry with a fresh matrix or a shorter step
-            dy = lu.solve(g, dy_buf)
-            err, p_min = kern.newton_update(y, dy, w, n)  # y -= dy
             if not math.isfinite(err) or p_min <= 0.0:
                 break
             if first_change == math.inf:
@@ -592,6 +604,7 @@ class _Samples:
         self.dt = dt
         self.next = 0.0
         self.rows: list[tuple[float, ...]] = []
+        self.lazy_from = 0  # rows from here on have their speed and phase still to fill
         self.volts: list[FloatArray] = []
         self._fresh: list[tuple[float, float]] = []
 
@@ -620,9 +633,8 @@ class _Samples:
                 t0, y0 = previous
                 w = (ts - t0) / (t - t0)
                 ex, ey = (1 - w) * y0[k] + w * y[k], (1 - w) * y0[k + 1] + w * y[k + 1]
-            self.rows.append(
-                (ts, ex * c, ey * c, sim.profile.omega(ts), sim.profile.phase(ts), h_min)
-            )
+            # Speed and phase are filled in by arrays() (vectorised, same values).
+            self.rows.append((ts, ex * c, ey * c, math.nan, math.nan, h_min))
             self.volts.append(volts)
             self._fresh.append((ts, ex * c))
             self.next = ts + self.dt
@@ -644,6 +656,7 @@ class _Samples:
             )
             out.volts.append(np.asarray(res.voltages[k], float))
         out.next = float(res.time[-1]) + out.dt if res.time.size else 0.0
+        out.lazy_from = len(out.rows)
         return out
 
     def new_samples(self) -> list[tuple[float, float]]:
@@ -651,11 +664,23 @@ class _Samples:
         return fresh
 
     def arrays(
-        self, n_act: int
+        self, n_act: int, profile: SpeedProfile
     ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
         a = np.array(self.rows, dtype=float).reshape(-1, 6)
+        k = self.lazy_from
+        a[k:, 3], a[k:, 4] = _speed_phase(profile, a[k:, 0])
         v = np.array(self.volts, dtype=float).reshape(-1, n_act)
         return a[:, 0], a[:, 1], a[:, 2], a[:, 3], a[:, 4], a[:, 5], v
+
+
+def _speed_phase(profile: SpeedProfile, t: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """``profile.omega`` and ``profile.phase`` at many times at once (the same arithmetic)."""
+    times, speeds = profile.times, profile.speeds
+    phase0 = np.concatenate([[0.0], np.cumsum(0.5 * (speeds[1:] + speeds[:-1]) * np.diff(times))])
+    k = np.clip(np.searchsorted(times, t, side="right") - 1, 0, times.size - 2)
+    dt = t - times[k]
+    a = (speeds[k + 1] - speeds[k]) / (times[k + 1] - times[k])
+    return np.interp(t, times, speeds), phase0[k] + speeds[k] * dt + 0.5 * a * dt * dt
 
 
 def _progress_bar(

@@ -50,7 +50,8 @@ factorised by block cyclic elimination (:func:`block_cyclic_factor`,
 Every kernel has a plain-NumPy twin (suffix ``_py``) with the same signature;
 ``tests/test_kernels.py`` checks each kernel against its twin. The kernels of
 the transient Newton iteration (:func:`transient_residual`,
-:func:`transient_storage`, :func:`transient_solve`) have their twins in
+:func:`transient_storage`, :func:`transient_solve`, :func:`transient_jacobian`,
+:func:`transient_border`, :func:`transient_newton_step`) have their twins in
 :mod:`foilbearing.reynolds.transient` (the methods they replace, named in
 each docstring), checked by ``tests/test_transient_kernels.py``.
 """
@@ -86,6 +87,9 @@ __all__ = [
     "residual",
     "residual_py",
     "stencil_pattern",
+    "transient_border",
+    "transient_jacobian",
+    "transient_newton_step",
     "transient_residual",
     "transient_solve",
     "transient_storage",
@@ -285,6 +289,29 @@ def _row_slots(i: int, j: int, n_theta: int, n_z: int) -> tuple[int, int, int, i
 
 
 @njit(cache=True)
+def _bern_both(x: float) -> tuple[float, float]:
+    """``(bernoulli(x), bernoulli_deriv(x))`` from one exponential (same values)."""
+    if x >= 0.0:
+        return _bern_pos(x)
+    b, db = _bern_pos(-x)
+    return b - x, -db - 1.0
+
+
+@njit(cache=True)
+def _theta_flux(pa: float, pb: float, ha: float, hb: float, lam: float, dth: float) -> float:
+    """The flux of :func:`_theta_face` alone (same value, no derivatives)."""
+    pf = 0.5 * (pa + pb)
+    hf = 0.5 * (ha + hb)
+    hf2 = hf * hf
+    hf3 = hf2 * hf
+    pe = lam * dth / (pf * hf2)
+    b = bernoulli(pe)
+    dp = pb - pa
+    g = pf * hf3 * b / dth
+    return g * dp - lam * hf * pa
+
+
+@njit(cache=True)
 def _theta_face(
     pa: float, pb: float, ha: float, hb: float, lam: float, dth: float
 ) -> tuple[float, float, float, float]:
@@ -294,8 +321,7 @@ def _theta_face(
     hf2 = hf * hf
     hf3 = hf2 * hf
     pe = lam * dth / (pf * hf2)
-    b = bernoulli(pe)
-    db = bernoulli_deriv(pe)
+    b, db = _bern_both(pe)
     dp = pb - pa
     g = pf * hf3 * b / dth
     q = g * dp - lam * hf * pa
@@ -363,7 +389,7 @@ def residual(
     for i in range(n_theta):
         ie = i + 1 if i < n_theta - 1 else 0
         for j in range(n_z):
-            q = _theta_face(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)[0]
+            q = _theta_flux(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)
             out[i, j] += d_z * q
             out[ie, j] -= d_z * q
         for j in range(n_z - 1):
@@ -412,6 +438,52 @@ def _jacobian(
         _, dqa, dqh = _end_face(P[i, n_z - 1], H[i, n_z - 1], d_z)
         ca = _row_slots(i, n_z - 1, n_theta, n_z)[2]
         data[ca] += d_theta * (dqh if wrt_h else dqa)
+
+
+@njit(cache=True)
+def _jacobian_both(
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    data_p: FloatArray,
+    data_h: FloatArray,
+) -> None:
+    """:func:`jacobian_P` and :func:`jacobian_H` in one pass over the faces (same values)."""
+    n_theta, n_z = P.shape
+    data_p[:] = 0.0
+    data_h[:] = 0.0
+    for i in range(n_theta):
+        ie = i + 1 if i < n_theta - 1 else 0
+        for j in range(n_z):
+            _, dqa, dqb, dqh = _theta_face(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)
+            _, _, ca, _, ea = _row_slots(i, j, n_theta, n_z)
+            wb, _, cb, _, _ = _row_slots(ie, j, n_theta, n_z)
+            data_p[ca] += d_z * dqa
+            data_p[ea] += d_z * dqb
+            data_p[wb] -= d_z * dqa
+            data_p[cb] -= d_z * dqb
+            data_h[ca] += d_z * dqh
+            data_h[ea] += d_z * dqh
+            data_h[wb] -= d_z * dqh
+            data_h[cb] -= d_z * dqh
+        for j in range(n_z - 1):
+            _, dqa, dqb, dqh = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)
+            _, _, ca, na, _ = _row_slots(i, j, n_theta, n_z)
+            _, sb, cb, _, _ = _row_slots(i, j + 1, n_theta, n_z)
+            data_p[ca] += d_theta * dqa
+            data_p[na] += d_theta * dqb
+            data_p[sb] -= d_theta * dqa
+            data_p[cb] -= d_theta * dqb
+            data_h[ca] += d_theta * dqh
+            data_h[na] += d_theta * dqh
+            data_h[sb] -= d_theta * dqh
+            data_h[cb] -= d_theta * dqh
+        _, dqa, dqh = _end_face(P[i, n_z - 1], H[i, n_z - 1], d_z)
+        ca = _row_slots(i, n_z - 1, n_theta, n_z)[2]
+        data_p[ca] += d_theta * dqa
+        data_h[ca] += d_theta * dqh
 
 
 @njit(cache=True)
@@ -1346,6 +1418,226 @@ def transient_solve(
             acc += out[i * n_z + j]
         dq = active[i] * (acc / n_z)
         out[n + i] = (g[n + i] + rate * c_bump[i] * dq) / cu
+
+
+@njit(cache=True)
+def transient_jacobian(
+    y: FloatArray,
+    c0: float,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    diag_slots: IntArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    H: FloatArray,
+    jp: FloatArray,
+    jh: FloatArray,
+    active: FloatArray,
+    jc: FloatArray,
+    a_pe: FloatArray,
+) -> None:
+    """Blocks of the transient Newton matrix at y, all but the factorisation, in one pass.
+
+    Fills the film, the row-scaled Reynolds Jacobians ``c0·diag(H) − ∂R/∂P/(Aσ)``
+    and ``c0·diag(P) − ∂R/∂H/(Aσ)`` (pattern :func:`stencil_pattern`), the
+    engaged rows, the pressure block B on :func:`coupled_pattern` (bump and
+    actuator eliminated, :func:`coupled_jacobian`) and the border
+    ``a_pe = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂ε``. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientSystem.jacobian_blocks_py`
+    (same result up to rounding: the axial means are summed in another order).
+
+    Parameters
+    ----------
+    y : ndarray, shape (n + n_theta + 4,)
+        State (see :func:`transient_residual`), ``n = n_theta n_z``.
+    c0 : float
+        BDF leading coefficient α₀/Δt, 1/s.
+    lam, rate : float
+        Bearing number Λ(t) and ω/γ of the bump (0 for an elastic bump), 1/s.
+    preload, cos_t, sin_t, c_act, c_bump : ndarray, shape (n_theta,)
+        As in :func:`transient_residual`.
+    denom : float
+        ``A σ``, s.
+    d_theta, d_z : float
+        Cell sizes Δθ, ΔZ.
+    diag_slots : ndarray, shape (n,)
+        Position of the diagonal entry of each row in the stencil data.
+    jh_rows, jh_indptr : ndarray
+        θ-row of each stencil column and the stencil row pointers.
+    H : ndarray, shape (n_theta, n_z)
+        Filled with the film h/C.
+    jp, jh : ndarray, shape (nnz,)
+        Filled with the scaled pressure and film Jacobians (stencil data).
+    active : ndarray, shape (n_theta,)
+        Filled with 1.0 where the mean gauge pressure is engaged, else 0.0.
+    jc : ndarray, shape (3 n_z · n,)
+        Filled with the data of B.
+    a_pe : ndarray, shape (n, 2)
+        Filled with the border.
+    """
+    n_theta, n_z = H.shape
+    n = n_theta * n_z
+    q = np.empty(n_theta)
+    h_row = np.empty(n_theta)
+    _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    for i in range(n_theta):
+        for j in range(n_z):
+            H[i, j] = h_row[i]
+    P = y[:n].reshape((n_theta, n_z))
+    _jacobian_both(P, H, lam, d_theta, d_z, jp, jh)
+    m_scale = -(1.0 / denom)
+    for k in range(jp.shape[0]):
+        jp[k] = m_scale * jp[k]
+        jh[k] = m_scale * jh[k]
+    for k in range(n):
+        d = diag_slots[k]
+        jp[d] += c0 * h_row[k // n_z]
+        jh[d] += c0 * y[k]
+    s = np.empty(n_theta)
+    for i in range(n_theta):
+        acc = 0.0
+        for j in range(n_z):
+            acc += y[i * n_z + j]
+        active[i] = 1.0 if acc / n_z - 1.0 > 0.0 else 0.0
+        c_eff = c_act[i] + rate * c_bump[i] / (c0 + rate)
+        s[i] = c_eff * active[i] / n_z
+    coupled_jacobian(jp, jh, s, n_z, jc)
+    for r in range(n):
+        a0 = 0.0
+        a1 = 0.0
+        for k in range(jh_indptr[r], jh_indptr[r + 1]):
+            row = jh_rows[k]
+            a0 += jh[k] * cos_t[row]
+            a1 += jh[k] * sin_t[row]
+        a_pe[r, 0] = a0
+        a_pe[r, 1] = a1
+
+
+@njit(cache=True)
+def transient_border(
+    fac: FloatArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    c0: float,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+) -> None:
+    """Border solve and 2×2 Woodbury inverse of the transient Newton matrix.
+
+    ``y_border = B⁻¹ a_pe / c0²`` with the factors of :func:`block_cyclic_factor`
+    and ``small_inv = (I + s_vp y_border)⁻¹`` in closed form. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientSystem.border_py`.
+
+    Parameters
+    ----------
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Block cyclic factors of B.
+    a_pe : ndarray, shape (n, 2)
+        Border (:func:`transient_jacobian`).
+    s_vp : ndarray, shape (2, n)
+        Film force per unit P as an acceleration, 1/s².
+    c0 : float
+        BDF leading coefficient, 1/s.
+    y_border : ndarray, shape (n, 2)
+        Filled with ``B⁻¹ a_pe / c0²``.
+    small_inv : ndarray, shape (2, 2)
+        Filled with the inverse of the Woodbury matrix.
+    """
+    n = a_pe.shape[0]
+    c2 = c0**2
+    for r in range(n):
+        y_border[r, 0] = a_pe[r, 0] / c2
+        y_border[r, 1] = a_pe[r, 1] / c2
+    block_cyclic_solve(fac, y_border, y_border)
+    m00 = 1.0
+    m01 = 0.0
+    m10 = 0.0
+    m11 = 1.0
+    for r in range(n):
+        m00 += s_vp[0, r] * y_border[r, 0]
+        m01 += s_vp[0, r] * y_border[r, 1]
+        m10 += s_vp[1, r] * y_border[r, 0]
+        m11 += s_vp[1, r] * y_border[r, 1]
+    det = m00 * m11 - m01 * m10
+    small_inv[0, 0] = m11 / det
+    small_inv[0, 1] = -m01 / det
+    small_inv[1, 0] = -m10 / det
+    small_inv[1, 1] = m00 / det
+
+
+@njit(cache=True)
+def transient_newton_step(
+    y: FloatArray,
+    c0: float,
+    hist: FloatArray,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    force: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    w: FloatArray,
+    force_scale: float,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    H: FloatArray,
+    res: FloatArray,
+    g: FloatArray,
+    fac: FloatArray,
+    jh_data: FloatArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+    fac_c0: float,
+    fac_rate: float,
+    active: FloatArray,
+    work: FloatArray,
+    dy: FloatArray,
+    weights: FloatArray,
+) -> tuple[float, float, float]:
+    """One modified-Newton iteration: residual, solve and update of y, in one call.
+
+    :func:`transient_residual` into ``g``; if the film stays open (minimum
+    > 0), :func:`transient_solve` into ``dy`` with the factor (taken at
+    ``fac_c0``, ``fac_rate``) and :func:`newton_update` of y. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientFactor.newton_step_py`
+    (those three in sequence). Arguments as in those kernels.
+
+    Returns
+    -------
+    h_min : float
+        Minimum film of y before the update (NaN if the film holds a NaN).
+    err : float
+        Weighted max-norm of dy (NaN if y was not updated: ``h_min <= 0``).
+    p_min : float
+        Smallest pressure after the update (NaN if not updated).
+    """
+    h_min = transient_residual(
+        y, c0, hist, lam, rate, preload, force, cos_t, sin_t, c_act, c_bump, w,
+        force_scale, denom, d_theta, d_z, H, res, g,
+    )  # fmt: skip
+    if h_min <= 0.0:
+        return h_min, np.nan, np.nan
+    transient_solve(
+        g, fac, jh_data, jh_rows, jh_indptr, a_pe, s_vp, y_border, small_inv, fac_c0,
+        fac_rate, active, c_bump, work, dy,
+    )  # fmt: skip
+    err, p_min = newton_update(y, dy, weights, H.shape[0] * H.shape[1])
+    return h_min, err, p_min
 
 
 @njit(cache=True)

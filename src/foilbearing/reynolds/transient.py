@@ -23,6 +23,7 @@ the stingers. With γ = 0 the bump is purely elastic and joins c_a.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -122,6 +123,7 @@ class TransientSystem:
         self.diag_slots = kern.stencil_pattern(grid.n_theta, grid.n_z)[2][:, :, 2].ravel()
         self.c_indptr, self.c_indices = kern.coupled_pattern(grid.n_theta, grid.n_z)
         self._jc = np.empty(self.c_indices.size)
+        self._jp = np.empty(self.ws.jp.size)
 
     # ----------------------------------------------------------------- pieces
     def split(self, y: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -259,33 +261,103 @@ class TransientSystem:
         are eliminated, leaving the pressures with the foil-coupled pattern of
         the static solver (one sparse LU) plus a rank-2 Woodbury correction for
         the journal's film force. :meth:`TransientFactor.solve` equals a solve
-        with :meth:`jacobian` (tested).
+        with :meth:`jacobian` (tested). The blocks come from one compiled call
+        (:func:`~foilbearing.reynolds._kernels.transient_jacobian`, twin
+        :meth:`jacobian_blocks_py`), the border solve and the 2×2 Woodbury
+        inverse from another (:func:`~foilbearing.reynolds._kernels.transient_border`,
+        twin :meth:`border_py`, also the path of the SuperLU fallback).
+        """
+        g = self.grid
+        n = self.n
+        rate = self.rate(inputs)
+        jh = np.empty(self._jp.size)
+        active = np.empty(self.nt)
+        a_pe = np.empty((n, 2))
+        kern.transient_jacobian(
+            y,
+            c0,
+            inputs.lam,
+            rate,
+            inputs.preload,
+            self.cos_t,
+            self.sin_t,
+            self.c_act,
+            self.c_bump,
+            self.area * self.sigma,
+            g.d_theta,
+            g.d_z,
+            self.diag_slots,
+            self.jh_rows,
+            self.ws.indptr,
+            self._H,
+            self._jp,
+            jh,
+            active,
+            self._jc,
+            a_pe,
+        )
+        lu = _factor_coupled(self._jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
+        if isinstance(lu, BlockCyclicLU):
+            y_border = np.empty((n, 2))
+            small_inv = np.empty((2, 2))
+            kern.transient_border(lu._fac, a_pe, self.s_vp, c0, y_border, small_inv)
+        else:
+            y_border, small_inv = self.border_py(lu, a_pe, c0)
+        return TransientFactor(self, lu, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active)
+
+    def jacobian_blocks_py(
+        self, y: FloatArray, inputs: Inputs, c0: float
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        """NumPy twin of :func:`~foilbearing.reynolds._kernels.transient_jacobian`.
+
+        Returns
+        -------
+        H : ndarray, shape (n_theta, n_z)
+            Film h/C.
+        jp, jh : ndarray, shape (nnz,)
+            Scaled Reynolds Jacobians ``c0·diag(H) − ∂R/∂P/(Aσ)`` and
+            ``c0·diag(P) − ∂R/∂H/(Aσ)`` (stencil data).
+        active : ndarray, shape (n_theta,)
+            1.0 on engaged θ-rows, else 0.0.
+        jc : ndarray, shape (3 n_z · n,)
+            Data of the pressure block B on the coupled pattern.
+        a_pe : ndarray, shape (n, 2)
+            ``jh ∂H/∂ε``.
         """
         P, _U, _eps, _v = self.split(y)
         H, _q = self.film(y, inputs.preload)
         g = self.grid
         Pc = np.ascontiguousarray(P)
         ws = self.ws
-        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, ws.jp)
-        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, ws.jh)
+        jp_raw = np.empty(ws.jp.size)
+        jh_raw = np.empty(ws.jh.size)
+        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, jp_raw)
+        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, jh_raw)
         scale = 1.0 / (self.area * self.sigma)
         # Row scaling of the Reynolds block: c0·∂(PH) − ∂R/(Aσ).
-        jp = -scale * ws.jp
-        jh = -scale * ws.jh
+        jp = -scale * jp_raw
+        jh = -scale * jh_raw
         jp[self.diag_slots] += c0 * H.ravel()
         jh[self.diag_slots] += c0 * P.ravel()
-        rate = inputs.omega / self.gamma if self.dynamic_bump else 0.0
+        rate = self.rate(inputs)
         active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
         c_eff = self.c_act + rate * self.c_bump / (c0 + rate)
-        kern.coupled_jacobian(jp, jh, c_eff * active / g.n_z, g.n_z, self._jc)
+        jc = np.empty(self._jc.size)
+        kern.coupled_jacobian_py(jp, jh, c_eff * active / g.n_z, g.n_z, jc)
         n = self.n
-        lu = _factor_coupled(self._jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
         a_pe = jh_mat @ self.dh_de
-        s_vp = self.s_vp  # (2, n)
-        y_border = lu.solve(np.ascontiguousarray(a_pe / c0**2))
-        small = np.eye(2) + s_vp @ y_border  # Woodbury: I + V^T B^-1 U, V^T = S_vp
-        return TransientFactor(self, lu, jh_mat, a_pe, s_vp, y_border, small, c0, rate, active)
+        return H, jp, jh, active, jc, np.asarray(a_pe)
+
+    def border_py(self, lu: Any, a_pe: FloatArray, c0: float) -> tuple[FloatArray, FloatArray]:
+        """NumPy twin of :func:`~foilbearing.reynolds._kernels.transient_border`.
+
+        ``lu`` is any LU of B with a SuperLU-like ``solve``. Returns
+        ``y_border = B⁻¹ a_pe / c0²`` (n, 2) and ``(I + s_vp y_border)⁻¹`` (2, 2).
+        """
+        y_border = np.asarray(lu.solve(np.ascontiguousarray(a_pe / c0**2)), dtype=np.float64)
+        small = np.eye(2) + self.s_vp @ y_border  # Woodbury: I + V^T B^-1 U, V^T = S_vp
+        return y_border, np.linalg.inv(small).astype(np.float64)
 
     def min_film(self, y: FloatArray, preload: FloatArray) -> float:
         """Smallest film thickness h/C."""
@@ -369,21 +441,137 @@ class TransientFactor:
         self,
         system: TransientSystem,
         lu: object,
-        jh: sp.csr_matrix,
+        jh_data: FloatArray,
         a_pe: FloatArray,
         s_vp: FloatArray,
         y_border: FloatArray,
-        small: FloatArray,
+        small_inv: FloatArray,
         c0: float,
         rate: float,
         active: FloatArray,
     ) -> None:
-        self.sys, self.lu, self.jh, self.a_pe = system, lu, jh, a_pe
-        self.s_vp, self.y_border = s_vp, y_border
-        self.small_inv = np.linalg.inv(small).astype(np.float64)
+        self.sys, self.lu, self.jh_data, self.a_pe = system, lu, jh_data, a_pe
+        self.s_vp, self.y_border, self.small_inv = s_vp, y_border, small_inv
         self.c0, self.rate, self.active = c0, rate, active
+        self._jh: sp.csr_matrix | None = None
         # The compiled solve needs the block cyclic factors (not the SuperLU fallback).
         self._fac = lu._fac if isinstance(lu, BlockCyclicLU) else None
+        # Arguments of the compiled Newton iteration that do not change with the inputs.
+        s, g = system, system.grid
+        self._args_sys: tuple[Any, ...] = (
+            s.cos_t,
+            s.sin_t,
+            s.c_act,
+            s.c_bump,
+            s.w,
+            s.force_scale,
+            s.area * s.sigma,
+            g.d_theta,
+            g.d_z,
+            s._H,
+            s._res,
+        )
+        self._args_fac: tuple[Any, ...] = (
+            self._fac,
+            jh_data,
+            s.jh_rows,
+            s.ws.indptr,
+            a_pe,
+            s_vp,
+            y_border,
+            small_inv,
+            c0,
+            rate,
+            active,
+            s._work,
+        )
+
+    @property
+    def jh(self) -> sp.csr_matrix:
+        """The scaled film Jacobian ``c0·diag(P) − ∂R/∂H/(Aσ)`` as a CSR matrix (built lazily)."""
+        if self._jh is None:
+            s = self.sys
+            self._jh = sp.csr_matrix((self.jh_data, s.ws.indices, s.ws.indptr), shape=(s.n, s.n))
+        return self._jh
+
+    def newton_step(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        weights: FloatArray,
+        g: FloatArray,
+        dy: FloatArray,
+    ) -> tuple[float, float, float]:
+        """One modified-Newton iteration on the BDF equations, y updated in place.
+
+        Compiled (:func:`~foilbearing.reynolds._kernels.transient_newton_step`) on the
+        block cyclic factors; :meth:`newton_step_py` (its NumPy twin) with the
+        SuperLU fallback.
+
+        Parameters
+        ----------
+        y : ndarray, shape (size,)
+            Iterate (C-contiguous float64), ``y −= Δy`` unless the film is closed.
+        inputs : Inputs
+            Inputs at the new time.
+        c0 : float
+            BDF leading coefficient of the step (the factor may be older), 1/s.
+        hist : ndarray, shape (size,)
+            History part of the BDF equations.
+        weights : ndarray, shape (size,)
+            Error weights of the convergence norm.
+        g, dy : ndarray, shape (size,)
+            Buffers, filled with the residual G(y) and the update Δy.
+
+        Returns
+        -------
+        h_min : float
+            Minimum film of y before the update.
+        err : float
+            Weighted max-norm of Δy (NaN when ``h_min <= 0``: y is left as it was).
+        p_min : float
+            Smallest pressure after the update (NaN when not updated).
+        """
+        if self._fac is None:
+            return self.newton_step_py(y, inputs, c0, hist, weights, g, dy)
+        s = self.sys
+        args: tuple[Any, ...] = (
+            y,
+            c0,
+            hist,
+            inputs.lam,
+            s.rate(inputs),
+            inputs.preload,
+            inputs.force,
+            *self._args_sys,
+            g,
+            *self._args_fac,
+            dy,
+            weights,
+        )
+        h_min, err, p_min = kern.transient_newton_step(*args)
+        return float(h_min), float(err), float(p_min)
+
+    def newton_step_py(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        weights: FloatArray,
+        g: FloatArray,
+        dy: FloatArray,
+    ) -> tuple[float, float, float]:
+        """NumPy twin of :meth:`newton_step`: residual, solve and update in sequence."""
+        s = self.sys
+        g[:], h_min = s.newton_residual_py(y, inputs, c0, hist)
+        if h_min <= 0.0:
+            return h_min, math.nan, math.nan
+        dy[:] = self.solve_py(g)
+        err, p_min = kern.newton_update_py(y, dy, weights, s.n)
+        return h_min, err, p_min
 
     def solve(self, g: FloatArray, out: FloatArray | None = None) -> FloatArray:
         """Δy with J Δy = g (J the Newton matrix at factorisation).
@@ -416,7 +604,7 @@ class TransientFactor:
         kern.transient_solve(
             g,
             self._fac,
-            self.jh.data,
+            self.jh_data,
             s.jh_rows,
             s.ws.indptr,
             self.a_pe,
