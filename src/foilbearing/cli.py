@@ -17,6 +17,12 @@ from typing import Any
 
 from foilbearing.case import Case, default_case_path, load_case
 from foilbearing.errors import InputError, SolverError
+from foilbearing.figures import (
+    write_identification_figures,
+    write_static_figures,
+    write_structure_figures,
+)
+from foilbearing.summary import structure_summary, sweep_points
 from foilbearing.units import parse_quantity, parse_speed_range
 
 __all__ = ["main"]
@@ -231,38 +237,6 @@ def _cmd_case_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def structure_summary(case: Case, voltages: Sequence[float]) -> dict[str, Any]:
-    """k_b, k_assy and, per voltage, stack stroke and base preload (unit-named keys)."""
-    from foilbearing.structure import base_preload, stack_displacement
-
-    out: dict[str, Any] = {}
-    if case.foil is not None:
-        out["k_b_N_per_m3"] = case.foil.bump_stiffness
-    act = case.actuators
-    if act is not None:
-        out["k_p_N_per_m3"] = act.k_p
-        out["k_assy_N_per_m3"] = case.assembly_stiffness()
-        out["voltages_V"] = list(voltages)
-        out["stack_stroke_um"] = [
-            float(stack_displacement(v, act.d33_quadratic, act.d33_linear)) * 1e6 for v in voltages
-        ]
-        out["base_preload_um"] = [
-            float(
-                base_preload(
-                    v,
-                    act.d33_quadratic,
-                    act.d33_linear,
-                    act.k_p,
-                    act.holder_spring_stiffness,
-                    act.holder_pre_extension,
-                )
-            )
-            * 1e6
-            for v in voltages
-        ]
-    return out
-
-
 def _cmd_structure(args: argparse.Namespace) -> int:
     case = _load(args.case)
     voltages = parse_list(args.voltage, "voltage", "--voltage")
@@ -281,20 +255,6 @@ def _cmd_structure(args: argparse.Namespace) -> int:
         for key, value in out.items():
             print(f"  {key:<20} {value}")
     return 0
-
-
-def write_structure_figures(case: Case, folder: Path) -> list[Path]:
-    """Figs. 7 and 8 as PNG files in ``folder``; returns their paths."""
-    from foilbearing.io import save_figure
-    from foilbearing.plots.structure import plot_preloads, plot_stiffness_function
-
-    paths: list[Path] = []
-    if case.actuators is not None and case.foil is not None:
-        paths.append(
-            save_figure(plot_stiffness_function(case), folder / "fig07_stiffness_function.png")
-        )
-        paths.append(save_figure(plot_preloads(case), folder / "fig08_preloads.png"))
-    return paths
 
 
 def _cmd_identify(args: argparse.Namespace) -> int:
@@ -318,23 +278,6 @@ def _cmd_identify(args: argparse.Namespace) -> int:
         for key, value in out.items():
             print(f"  {key:<28} {value}")
     return 0
-
-
-def write_identification_figures(result: Any, folder: Path) -> list[Path]:
-    """Figs. 5b and 6b-c as PNG files in ``folder``."""
-    from foilbearing.io import save_figure
-    from foilbearing.plots.identification import plot_no_load, plot_stiffness
-
-    return [
-        save_figure(
-            plot_no_load(result.no_load_data, result.no_load),
-            folder / "fig05b_stack_displacement.png",
-        ),
-        save_figure(
-            plot_stiffness(result.stiffness_data, result.stiffness),
-            folder / "fig06_stack_stiffness.png",
-        ),
-    ]
 
 
 def _cmd_static(args: argparse.Namespace) -> int:
@@ -446,49 +389,6 @@ def _static_sweep_cli(
                 + " µm"
             )
     return 0 if all(p["converged"] for p in out["points"]) else 3
-
-
-def sweep_points(ds: Any) -> list[dict[str, Any]]:
-    """One dict per (bearing, voltage, speed) point of a static sweep, unit-named keys."""
-    points = []
-    for b in ds.bearing.values:
-        for v in ds.voltage.values:
-            for s in ds.speed.values:
-                row = ds.sel(bearing=b, voltage=v, speed=s)
-                ok = bool(row.converged)
-                points.append(
-                    {
-                        "bearing": str(b),
-                        "voltage_V": float(v),
-                        "speed_rpm": float(s) * 1e3,
-                        "converged": ok,
-                        "eccentricity": float(row.eccentricity) if ok else None,
-                        "attitude_deg": float(row.attitude) if ok else None,
-                        "min_film_um": float(row.min_film) if ok else None,
-                        "force_N": [float(row.force_x), float(row.force_y)] if ok else None,
-                        "preload_um": [float(x) for x in row.preload.values] if ok else [],
-                        "actuator_pressure_kPa": (
-                            [float(x) for x in row.actuator_pressure.values] if ok else []
-                        ),
-                        "drag_torque_Nm": float(row.drag_torque) if ok else None,
-                        "iterations": int(row.iterations) if ok else None,
-                    }
-                )
-    return points
-
-
-def write_static_figures(ds: Any, folder: Path) -> list[Path]:
-    """Figs. 9-12 from a static sweep dataset, as PNG files in ``folder``."""
-    from foilbearing.io import save_figure
-    from foilbearing.plots import static as sp
-
-    speed = 50.0 if 50.0 in ds.speed.values else float(ds.speed.values[len(ds.speed) // 2])
-    return [
-        save_figure(sp.plot_midplane(ds, speed), folder / "fig09_midplane.png"),
-        save_figure(sp.plot_actuator_pressure(ds), folder / "fig10_actuator_pressure.png"),
-        save_figure(sp.plot_preload(ds), folder / "fig11_preload.png"),
-        save_figure(sp.plot_eccentricity(ds), folder / "fig12_eccentricity.png"),
-    ]
 
 
 def _cmd_coefficients(args: argparse.Namespace) -> int:

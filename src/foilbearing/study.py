@@ -39,12 +39,8 @@ def run_study(
     -------
     The headline numbers of every stage, unit-named keys.
     """
-    from foilbearing.cli import (
-        structure_summary,
-        write_identification_figures,
-        write_structure_figures,
-    )
-    from foilbearing.summary import case_summary, format_summary
+    from foilbearing.figures import write_identification_figures, write_structure_figures
+    from foilbearing.summary import case_summary, format_summary, structure_summary
 
     out.mkdir(parents=True, exist_ok=True)
     results: dict[str, Any] = {}
@@ -129,9 +125,10 @@ def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) ->
     """Figs. 9-12: C-GFB and shimmed GFB, 10-90 krpm, 0/50/100/150 V."""
     import math
 
-    from foilbearing.cli import sweep_points, write_static_figures
+    from foilbearing.figures import write_static_figures
     from foilbearing.io import write_with
     from foilbearing.study_static import PAPER_SPEEDS_RPM, PAPER_VOLTAGES, static_sweep
+    from foilbearing.summary import sweep_points
 
     stage("static analysis: C-GFB and shimmed GFB, 10-90 krpm x 0/50/100/150 V (Figs. 9-12)")
     speeds = [s * math.pi / 30.0 for s in PAPER_SPEEDS_RPM]

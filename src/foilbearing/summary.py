@@ -6,12 +6,13 @@ Keys carry their units (``k_assy_N_per_m3``), so scripts can use the JSON.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 from foilbearing.case import Case
 from foilbearing.structure import walowit_anno_bump_stiffness
 
-__all__ = ["case_summary", "format_summary"]
+__all__ = ["case_summary", "format_summary", "structure_summary", "sweep_points"]
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 
@@ -89,3 +90,64 @@ def format_summary(summary: dict[str, Any]) -> str:
             text = str(value)
         lines.append(f"  {key:<28} {text}")
     return "\n".join(lines)
+
+
+def structure_summary(case: Case, voltages: Sequence[float]) -> dict[str, Any]:
+    """k_b, k_assy and, per voltage, stack stroke and base preload (unit-named keys)."""
+    from foilbearing.structure import base_preload, stack_displacement
+
+    out: dict[str, Any] = {}
+    if case.foil is not None:
+        out["k_b_N_per_m3"] = case.foil.bump_stiffness
+    act = case.actuators
+    if act is not None:
+        out["k_p_N_per_m3"] = act.k_p
+        out["k_assy_N_per_m3"] = case.assembly_stiffness()
+        out["voltages_V"] = list(voltages)
+        out["stack_stroke_um"] = [
+            float(stack_displacement(v, act.d33_quadratic, act.d33_linear)) * 1e6 for v in voltages
+        ]
+        out["base_preload_um"] = [
+            float(
+                base_preload(
+                    v,
+                    act.d33_quadratic,
+                    act.d33_linear,
+                    act.k_p,
+                    act.holder_spring_stiffness,
+                    act.holder_pre_extension,
+                )
+            )
+            * 1e6
+            for v in voltages
+        ]
+    return out
+
+
+def sweep_points(ds: Any) -> list[dict[str, Any]]:
+    """One dict per (bearing, voltage, speed) point of a static sweep, unit-named keys."""
+    points = []
+    for b in ds.bearing.values:
+        for v in ds.voltage.values:
+            for s in ds.speed.values:
+                row = ds.sel(bearing=b, voltage=v, speed=s)
+                ok = bool(row.converged)
+                points.append(
+                    {
+                        "bearing": str(b),
+                        "voltage_V": float(v),
+                        "speed_rpm": float(s) * 1e3,
+                        "converged": ok,
+                        "eccentricity": float(row.eccentricity) if ok else None,
+                        "attitude_deg": float(row.attitude) if ok else None,
+                        "min_film_um": float(row.min_film) if ok else None,
+                        "force_N": [float(row.force_x), float(row.force_y)] if ok else None,
+                        "preload_um": [float(x) for x in row.preload.values] if ok else [],
+                        "actuator_pressure_kPa": (
+                            [float(x) for x in row.actuator_pressure.values] if ok else []
+                        ),
+                        "drag_torque_Nm": float(row.drag_torque) if ok else None,
+                        "iterations": int(row.iterations) if ok else None,
+                    }
+                )
+    return points

@@ -1,0 +1,55 @@
+"""Figures of each stage written as PNG files: shared by the command line and the study."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from foilbearing.case import Case
+
+__all__ = ["write_identification_figures", "write_static_figures", "write_structure_figures"]
+
+
+def write_structure_figures(case: Case, folder: Path) -> list[Path]:
+    """Figs. 7 and 8 as PNG files in ``folder``; returns their paths."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots.structure import plot_preloads, plot_stiffness_function
+
+    paths: list[Path] = []
+    if case.actuators is not None and case.foil is not None:
+        paths.append(
+            save_figure(plot_stiffness_function(case), folder / "fig07_stiffness_function.png")
+        )
+        paths.append(save_figure(plot_preloads(case), folder / "fig08_preloads.png"))
+    return paths
+
+
+def write_identification_figures(result: Any, folder: Path) -> list[Path]:
+    """Figs. 5b and 6b-c as PNG files in ``folder``."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots.identification import plot_no_load, plot_stiffness
+
+    return [
+        save_figure(
+            plot_no_load(result.no_load_data, result.no_load),
+            folder / "fig05b_stack_displacement.png",
+        ),
+        save_figure(
+            plot_stiffness(result.stiffness_data, result.stiffness),
+            folder / "fig06_stack_stiffness.png",
+        ),
+    ]
+
+
+def write_static_figures(ds: Any, folder: Path) -> list[Path]:
+    """Figs. 9-12 from a static sweep dataset, as PNG files in ``folder``."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots import static as sp
+
+    speed = 50.0 if 50.0 in ds.speed.values else float(ds.speed.values[len(ds.speed) // 2])
+    return [
+        save_figure(sp.plot_midplane(ds, speed), folder / "fig09_midplane.png"),
+        save_figure(sp.plot_actuator_pressure(ds), folder / "fig10_actuator_pressure.png"),
+        save_figure(sp.plot_preload(ds), folder / "fig11_preload.png"),
+        save_figure(sp.plot_eccentricity(ds), folder / "fig12_eccentricity.png"),
+    ]
