@@ -263,8 +263,8 @@ def default_case() -> Case:
     return load_case(default_case_path())
 
 
-def load_case(path: str | Path) -> Case:
-    """Read and validate a TOML case file.
+def load_case(path: str | Path | None = None) -> Case:
+    """Read and validate a TOML case file (None: the built-in default case).
 
     Raises
     ------
@@ -273,7 +273,7 @@ def load_case(path: str | Path) -> Case:
         or a value outside its allowed range; the message names the file, the
         field, the value and what is allowed.
     """
-    path = Path(path)
+    path = default_case_path() if path is None else Path(path)
     source = str(path)
     try:
         text = path.read_text(encoding="utf-8")

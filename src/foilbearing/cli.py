@@ -15,7 +15,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from foilbearing.case import Case, default_case_path, load_case
+from foilbearing.case import Case, load_case
+from foilbearing.cli_common import add_case_arg
 from foilbearing.errors import InputError, SolverError
 from foilbearing.figures import (
     write_identification_figures,
@@ -60,12 +61,12 @@ def _parser() -> argparse.ArgumentParser:
     case_p = sub.add_parser("case", help="show a bearing case and its derived quantities")
     case_sub = case_p.add_subparsers(title="case commands", metavar="ACTION")
     show = case_sub.add_parser("show", help="print the case: inputs, k_b, k_assy, base preloads, Λ")
-    _add_case_arg(show)
+    add_case_arg(show)
     show.add_argument("--json", action="store_true", help="print one JSON object")
     show.set_defaults(func=_cmd_case_show)
 
     st = sub.add_parser("structure", help="structure models: k_b, k_assy, preloads; Figs. 7-8")
-    _add_case_arg(st)
+    add_case_arg(st)
     st.add_argument("--voltage", default="0,50,100,150V", help="voltages, e.g. 0,50,100,150V")
     st.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
     st.add_argument("--json", action="store_true", help="print one JSON object")
@@ -97,7 +98,7 @@ def _parser() -> argparse.ArgumentParser:
     stat = sub.add_parser(
         "static", help="static analysis: equilibrium, film, preloads (Figs. 9-12)"
     )
-    _add_case_arg(stat)
+    add_case_arg(stat)
     stat.add_argument(
         "--speed", default=None, help="speed(s), e.g. 50000rpm or 10000,50000,90000rpm"
     )
@@ -126,7 +127,7 @@ def _parser() -> argparse.ArgumentParser:
     stat.set_defaults(func=_cmd_static)
 
     coef = sub.add_parser("coefficients", help="dynamic stiffness and damping vs frequency")
-    _add_case_arg(coef)
+    add_case_arg(coef)
     coef.add_argument("--speed", default=None, help="rotor speed, e.g. 50000rpm")
     coef.add_argument("--voltage", default=None, help="actuator voltage, e.g. 150V")
     coef.add_argument("--shimmed", action="store_true", help="the shimmed GFB twin")
@@ -142,7 +143,7 @@ def _parser() -> argparse.ArgumentParser:
     coef.set_defaults(func=_cmd_coefficients)
 
     stab = sub.add_parser("stability", help="linear stability: onset speed and whirl frequency")
-    _add_case_arg(stab)
+    add_case_arg(stab)
     stab.add_argument("--voltage", default="0,50,100,150V", help="voltages, e.g. 0,50,100,150V")
     stab.add_argument("--shimmed", action="store_true", help="the shimmed GFB twins")
     stab.add_argument(
@@ -165,7 +166,7 @@ def _parser() -> argparse.ArgumentParser:
     register_optimize(sub)
 
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
-    _add_case_arg(study)
+    add_case_arg(study)
     study.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")
     study.add_argument(
         "--orbits",
@@ -176,20 +177,6 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=_cmd_study)
     return p
-
-
-def _add_case_arg(p: argparse.ArgumentParser) -> None:
-    p.add_argument(
-        "case",
-        nargs="?",
-        type=Path,
-        default=None,
-        help="case file (TOML); default: the paper's C-GFB",
-    )
-
-
-def _load(path: Path | None) -> Case:
-    return load_case(default_case_path() if path is None else path)
 
 
 def parse_list(text: str, kind: str, field: str) -> list[float]:
@@ -227,7 +214,7 @@ def _json_default(x: Any) -> Any:
 def _cmd_case_show(args: argparse.Namespace) -> int:
     from foilbearing.summary import case_summary, format_summary
 
-    case = _load(args.case)
+    case = load_case(args.case)
     summary = case_summary(case)
     if args.json:
         _emit(summary)
@@ -238,7 +225,7 @@ def _cmd_case_show(args: argparse.Namespace) -> int:
 
 
 def _cmd_structure(args: argparse.Namespace) -> int:
-    case = _load(args.case)
+    case = load_case(args.case)
     voltages = parse_list(args.voltage, "voltage", "--voltage")
     if case.actuators is not None:
         for v in voltages:
@@ -283,7 +270,7 @@ def _cmd_identify(args: argparse.Namespace) -> int:
 def _cmd_static(args: argparse.Namespace) -> int:
     from foilbearing.io import write_with
 
-    case = _load(args.case)
+    case = load_case(args.case)
     speeds = parse_list(args.speed, "speed", "--speed") if args.speed else [case.operation.speed]
     for s in speeds:
         if s <= 0.0:
@@ -398,7 +385,7 @@ def _cmd_coefficients(args: argparse.Namespace) -> int:
     from foilbearing.io import save_figure, write_with
     from foilbearing.static import solve_equilibrium
 
-    case = _load(args.case)
+    case = load_case(args.case)
     if args.speed is not None:
         (speed,) = parse_list(args.speed, "speed", "--speed")
         case = case.with_speed(speed)
@@ -441,7 +428,7 @@ def _cmd_stability(args: argparse.Namespace) -> int:
     from foilbearing.io import save_figure
     from foilbearing.stability import onset_speed, stability_map
 
-    case = _load(args.case)
+    case = load_case(args.case)
     speeds = parse_speed_range(args.speed_range, field="--speed-range")
     voltages = parse_list(args.voltage, "voltage", "--voltage")
     if case.actuators is None:
@@ -486,7 +473,7 @@ def _cmd_stability(args: argparse.Namespace) -> int:
 def _cmd_study(args: argparse.Namespace) -> int:
     from foilbearing.study import run_study
 
-    case = _load(args.case)
+    case = load_case(args.case)
     summary = run_study(case, args.out, progress=not args.json, orbits=args.orbits == "full")
     if args.json:
         _emit(summary)

@@ -13,9 +13,9 @@ import argparse
 import json
 import math
 import sys
-from pathlib import Path
 from typing import Any
 
+from foilbearing.cli_common import add_case_arg
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_optimize", "register"]
@@ -31,13 +31,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
         help="voltages per actuator: maximise the onset speed or minimise the drag",
         description=__doc__.split("\n\n")[1] if __doc__ else None,
     )
-    p.add_argument(
-        "case",
-        nargs="?",
-        type=Path,
-        default=None,
-        help="case file (TOML); default: the paper's C-GFB",
-    )
+    add_case_arg(p)
     p.add_argument(
         "--objective", default="onset", help="onset (maximise the onset speed) or drag (minimise)"
     )
@@ -77,7 +71,7 @@ def cmd_optimize(args: argparse.Namespace) -> int:
         ``onset``), a bad number, or a case without actuators; nothing is
         computed then.
     """
-    from foilbearing.case import default_case_path, load_case
+    from foilbearing.case import load_case
     from foilbearing.optimize import PAPER_VOLTAGES, maximize_onset, minimize_drag
     from foilbearing.units import parse_quantity, parse_speed_range
 
@@ -88,7 +82,7 @@ def cmd_optimize(args: argparse.Namespace) -> int:
             f"--max-evaluations {args.max_evaluations}: expected at least {len(PAPER_VOLTAGES)} "
             "(the paper's equal voltages are evaluated first)"
         )
-    case = load_case(default_case_path() if args.case is None else args.case)
+    case = load_case(args.case)
     if case.actuators is None:
         raise InputError("optimize needs a case with [actuators]: there are no voltages to choose")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from foilbearing.cli_common import add_case_arg
 from foilbearing.errors import InputError
 
 __all__ = ["register", "run_spec_from_args"]
@@ -26,13 +27,7 @@ RPM = math.pi / 30.0
 def register(sub: Any) -> None:
     """Add the ``orbit`` subcommand to the main parser's subparsers."""
     p = sub.add_parser("orbit", help="nonlinear orbit during a speed-up (Figs. 13-15)")
-    p.add_argument(
-        "case",
-        nargs="?",
-        type=Path,
-        default=None,
-        help="case file (TOML); default: the paper's C-GFB",
-    )
+    add_case_arg(p)
     p.add_argument(
         "--speed-ramp",
         default="3000rpm:90000rpm:500rad/s**2",
@@ -91,7 +86,7 @@ def _q(text: str, kind: str, field: str) -> float:
 
 
 def _build(spec: dict[str, Any]) -> tuple[Any, ...]:
-    from foilbearing.case import default_case_path, load_case
+    from foilbearing.case import load_case
     from foilbearing.control import (
         SubsyncController,
         constant_speed,
@@ -100,7 +95,7 @@ def _build(spec: dict[str, Any]) -> tuple[Any, ...]:
     )
     from foilbearing.orbit import OrbitSettings
 
-    case = load_case(spec["case"] or default_case_path())
+    case = load_case(spec["case"])
     if spec["speed"] is not None:
         profile = constant_speed(
             _q(spec["speed"], "speed", "--speed"), _q(spec["duration"], "time", "--duration")

@@ -25,7 +25,7 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
     """Read a saved run: the ``OrbitResult`` (with its checkpoint) and the run specification."""
     import xarray as xr
 
-    from foilbearing.case import default_case_path, load_case
+    from foilbearing.case import load_case
     from foilbearing.orbit import OrbitResult, OrbitSettings
 
     try:
@@ -37,7 +37,7 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
     if "run_spec" not in ds.attrs or "checkpoint_y" not in ds:
         raise InputError("not a foilbearing orbit file with a checkpoint", source=str(path))
     spec = json.loads(ds.attrs["run_spec"])
-    case = load_case(spec["case"] or default_case_path())
+    case = load_case(spec["case"])
     a = ds.attrs
     settings = OrbitSettings(
         steps_per_rev=int(a["steps_per_rev"]),
