@@ -710,7 +710,8 @@ def coupled_jacobian_py(
 #
 # from D_0 = A_0, G_0 = L_0, G_{N−2} = U_{N−2}, R_0 = U_{N−1},
 # R_{N−2} = L_{N−1}, S = A_{N−1} (other G, R zero); cost O(N n_z³). The pivot
-# blocks are inverted explicitly (from their LU): the solve is then five
+# blocks are inverted explicitly (Gauss-Jordan on [D_i | U_i | G_i | I], which
+# gives [V_i | W_i] in the same sweep): the solve is then five
 # independent n_z-long dot products per row and block, O(N n_z²).
 #
 # Factor storage ``fac`` of shape (N, n_z, 5 n_z): block row i holds the
@@ -733,59 +734,40 @@ def block_cyclic_alloc(n_theta: int, n_z: int) -> FloatArray:
 
 
 @njit(cache=True, fastmath={"contract"})
-def _lu_inverse(a: FloatArray, piv: IntArray, inv: FloatArray) -> int:
-    """Inverse of the n_z × n_z block ``a[:, :n_z]`` (LU with partial pivoting).
+def _gauss_jordan(aug: FloatArray, m: int, width: int, row: FloatArray) -> int:
+    """Gauss-Jordan elimination with partial pivoting of ``aug[:, :width]`` to ``[I | D⁻¹ X]``.
 
-    ``a`` (n_z, ≥ n_z) is overwritten by its LU factors (LAPACK getrf
-    layout), ``inv`` (n_z, n_z) receives the inverse. Returns −1, or the
-    column of the first exactly zero pivot (then ``inv`` is undefined).
+    ``aug`` (m, ≥ width) holds ``[D | X]`` with D the m × m pivot block; row
+    swaps act on whole rows, so ``[D | X | I]`` yields ``D⁻¹ X`` and ``D⁻¹``
+    together. ``row`` (≥ width) is scratch: the scaled pivot row is copied
+    there so that every update is one contiguous, vectorised row operation
+    (about 3× faster than an LU, its explicit inverse and a product). Returns
+    −1, or the column of the first exactly zero pivot (``aug`` is then
+    undefined).
     """
-    m = inv.shape[0]
     for k in range(m):
         p = k
-        best = abs(a[k, k])
+        best = abs(aug[k, k])
         for r in range(k + 1, m):
-            v = abs(a[r, k])
+            v = abs(aug[r, k])
             if v > best:
                 best = v
                 p = r
-        piv[k] = p
         if best == 0.0:
             return k
+        rk = 1.0 / aug[p, k]
+        for c in range(width):
+            row[c] = aug[p, c] * rk
         if p != k:
-            for c in range(m):
-                t = a[k, c]
-                a[k, c] = a[p, c]
-                a[p, c] = t
-        rk = 1.0 / a[k, k]
-        for r in range(k + 1, m):
-            lrk = a[r, k] * rk
-            a[r, k] = lrk
-            for c in range(k + 1, m):
-                a[r, c] -= lrk * a[k, c]
-    # inv = U⁻¹ L⁻¹ P (as LAPACK getri): L⁻¹ is unit lower triangular
-    inv[:, :] = 0.0
-    for r in range(m):
-        inv[r, r] = 1.0
-        for k in range(r):
-            lrk = a[r, k]
-            for c in range(k + 1):
-                inv[r, c] -= lrk * inv[k, c]
-    for r in range(m - 1, -1, -1):
-        for k in range(r + 1, m):
-            urk = a[r, k]
-            for c in range(m):
-                inv[r, c] -= urk * inv[k, c]
-        rr = 1.0 / a[r, r]
-        for c in range(m):
-            inv[r, c] *= rr
-    for k in range(m - 1, -1, -1):
-        p = piv[k]
-        if p != k:
-            for r in range(m):
-                t = inv[r, k]
-                inv[r, k] = inv[r, p]
-                inv[r, p] = t
+            for c in range(width):
+                aug[p, c] = aug[k, c]
+        for c in range(width):
+            aug[k, c] = row[c]
+        for r in range(m):
+            if r != k:
+                f = aug[r, k]
+                for c in range(width):
+                    aug[r, c] -= f * row[c]
     return -1
 
 
@@ -802,22 +784,30 @@ def _gemm_acc(
     """``c[:, c0:c0+w] += alpha · a @ b[:, :w]`` for ``a`` of shape (m, m).
 
     Column offset into full C-contiguous rows keeps the inner loop contiguous;
-    two rows at a time reuse each row of ``b``. ``a``, ``b`` must not overlap ``c``.
+    four rows at a time reuse each row of ``b`` (the register blocking that
+    lets the compiler vectorise it: 3× faster than two rows at a time).
+    ``a``, ``b`` must not overlap ``c``.
     """
-    for r in range(0, m - 1, 2):
+    r = 0
+    while r + 4 <= m:
         for k in range(m):
             a0 = alpha * a[r, k]
             a1 = alpha * a[r + 1, k]
+            a2 = alpha * a[r + 2, k]
+            a3 = alpha * a[r + 3, k]
             for q in range(w):
                 bq = b[k, q]
                 c[r, c0 + q] += a0 * bq
                 c[r + 1, c0 + q] += a1 * bq
-    if m % 2:
-        r = m - 1
+                c[r + 2, c0 + q] += a2 * bq
+                c[r + 3, c0 + q] += a3 * bq
+        r += 4
+    while r < m:
         for k in range(m):
             ark = alpha * a[r, k]
             for q in range(w):
                 c[r, c0 + q] += ark * b[k, q]
+        r += 1
 
 
 @njit(cache=True)
@@ -887,20 +877,21 @@ def block_cyclic_factor(
     m = n_z
     last = n_b - 1
     bmax = 0.0
+    nonfinite = 0.0  # v − v is 0 for finite v, NaN for inf or NaN (branch-free: vectorised)
     for v in data:
+        nonfinite += v - v
         av = abs(v)
-        if not av < np.inf:  # inf or NaN
-            return BC_NOT_FINITE, -1, 0.0, np.inf
-        bmax = max(bmax, av)
+        bmax = av if av > bmax else bmax
+    if nonfinite != 0.0:  # NaN
+        return BC_NOT_FINITE, -1, 0.0, np.inf
     d4 = data.reshape((n_b, m, 3, m))
     fac[:] = 0.0
     # G_i is kept in the V slot until block i is eliminated.
     t = np.zeros((m, 2 * m))  # [R_i | S], R_i of the block being eliminated
-    src = np.empty((m, 2 * m))  # [U_i | G_i]
-    vw = np.empty((m, 2 * m))  # [V_i | W_i]
-    inv = np.empty((m, m))
+    aug = np.empty((m, 4 * m))  # [D_i | U_i | G_i | I] → [I | V_i | W_i | D_i⁻¹]
+    row = np.empty(4 * m)
     lo = np.empty((m, m))
-    piv = np.empty(m, dtype=np.int64)
+    vw = np.empty((m, 2 * m))  # [V_i | W_i]
     for i in range(n_b):
         rw, rc, re = _block_ranks(i, n_b)
         x = fac[i]
@@ -922,32 +913,31 @@ def block_cyclic_factor(
     worst = 0
     for i in range(last):
         x = fac[i]
+        re = _block_ranks(i, n_b)[2]
         for r in range(m):
             for c in range(m):
-                dmax = max(dmax, abs(x[r, c]))
+                v = x[r, c]
+                dmax = max(dmax, abs(v))
+                aug[r, c] = v
+                # U_{N−2} is the border G_{N−2}
+                aug[r, m + c] = d4[i, r, re, c] if i < last - 1 else 0.0
+                aug[r, 2 * m + c] = x[r, m + c]
+                aug[r, 3 * m + c] = 1.0 if r == c else 0.0
         dnorm = _norm1(x, 0, m)
-        k = _lu_inverse(x, piv, inv)
+        k = _gauss_jordan(aug, m, 4 * m, row)
         if k >= 0:
             return BC_ZERO_PIVOT, i, 0.0, dmax / bmax
-        rc_i = 1.0 / (dnorm * _norm1(inv, 0, m))
+        rc_i = 1.0 / (dnorm * _norm1(aug, 3 * m, m))
         if not rc_i >= rcond:
             rcond = rc_i
             worst = i
         for r in range(m):
             for c in range(m):
-                x[r, c] = inv[r, c]
-                src[r, c] = 0.0  # U_{N−2} is the border G_{N−2}
-                src[r, m + c] = x[r, m + c]
-        if i < last - 1:
-            re = _block_ranks(i, n_b)[2]
-            for r in range(m):
-                for c in range(m):
-                    src[r, c] = d4[i, r, re, c]
-        vw[:, :] = 0.0
-        _gemm_acc(vw, 0, inv, src, m, 2 * m, 1.0)  # [V_i | W_i]
-        for r in range(m):
+                x[r, c] = aug[r, 3 * m + c]
             for c in range(2 * m):
-                x[r, m + c] = vw[r, c]
+                v = aug[r, m + c]
+                x[r, m + c] = v
+                vw[r, c] = v
         if i < last - 1:
             x1 = fac[i + 1]
             for r in range(m):
@@ -964,20 +954,19 @@ def block_cyclic_factor(
     for r in range(m):
         for c in range(m):
             dmax = max(dmax, abs(t[r, m + c]))
+            aug[r, c] = t[r, m + c]
+            aug[r, m + c] = 1.0 if r == c else 0.0
     snorm = _norm1(t, m, m)
-    for r in range(m):
-        for c in range(m):
-            t[r, c] = t[r, m + c]
-    k = _lu_inverse(t, piv, inv)
+    k = _gauss_jordan(aug, m, 2 * m, row)
     if k >= 0:
         return BC_ZERO_PIVOT, last, 0.0, dmax / bmax
-    rc_s = 1.0 / (snorm * _norm1(inv, 0, m))
+    rc_s = 1.0 / (snorm * _norm1(aug, m, m))
     if not rc_s >= rcond:
         rcond = rc_s
         worst = last
     for r in range(m):
         for c in range(m):
-            fac[last, r, c] = inv[r, c]
+            fac[last, r, c] = aug[r, m + c]
     return BC_OK, worst, rcond, dmax / bmax
 
 
