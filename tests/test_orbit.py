@@ -60,6 +60,23 @@ def test_time_step_convergence_is_second_order() -> None:
     assert all(1.5 < p < 2.8 for p in orders), (err, orders)
 
 
+def test_newton_error_is_well_below_the_time_step_error() -> None:
+    # The default Newton tolerances stop the iteration early (as BDF codes do); the error
+    # that leaves must stay well below the discretisation error of the default step.
+    case = coarse(100.0, imbalance=1e-6)
+    prof = constant_speed(20e3 * RPM, 0.01)
+    tight = {"newton_tol": 0.01, "newton_fraction": 1e-4, "max_newton": 10}
+    default = simulate(case, prof, settings=OrbitSettings(sample_rate=20_000))
+    exact16 = simulate(case, prof, settings=OrbitSettings(sample_rate=20_000, **tight))
+    exact32 = simulate(
+        case, prof, settings=OrbitSettings(steps_per_rev=32, sample_rate=20_000, **tight)
+    )
+    newton_error = np.max(np.abs(default.e_x - exact16.e_x))
+    step_error = np.max(np.abs(exact16.e_x - exact32.e_x)) * 4 / 3  # Richardson, order 2
+    assert newton_error < 0.2 * step_error, (newton_error, step_error)
+    assert default.newton_iterations < exact16.newton_iterations
+
+
 def test_settles_at_the_static_equilibrium() -> None:
     case = coarse(50.0, imbalance=0.0)
     prof = constant_speed(10e3 * RPM, 0.25)

@@ -61,18 +61,25 @@ class OrbitSettings:
         The Newton iteration also stops when its update is below this fraction of
         the first update (the predictor's miss), which scales with the step's
         truncation error.
+
+    The Newton defaults (``newton_tol = 3``, ``newton_fraction = 0.1``, as BDF
+    codes do: the Newton error a tenth of the step's error) leave an orbit error
+    about ten times below the time-step error at 16 steps per revolution
+    (``tests/test_orbit.py::test_newton_error_is_well_below_the_time_step_error``;
+    on the paper's speed-up, 0.6 % of the orbit against 6-8 % for the step),
+    and save a fifth of the run time against ten times tighter ones.
     """
 
     steps_per_rev: int = 16
     max_step: float = 1e-3
     sample_rate: float = 10_000.0
     contact_film: float = 0.005
-    newton_tol: float = 1.0
+    newton_tol: float = 3.0
     rtol: float = 1e-4
     atol_pressure: float = 1e-5
     atol_position: float = 1e-5
     max_newton: int = 6
-    newton_fraction: float = 0.01
+    newton_fraction: float = 0.1
 
     def check(self, max_speed: float) -> None:
         """Errors before any work for settings that cannot resolve the synchronous frequency."""
