@@ -832,7 +832,7 @@ def _norm1(a: FloatArray, c0: int, m: int) -> float:
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def block_cyclic_factor(
     data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
 ) -> tuple[int, int, float, float]:
@@ -970,7 +970,7 @@ def block_cyclic_factor(
     return BC_OK, worst, rcond, dmax / bmax
 
 
-@njit(cache=True, fastmath={"reassoc", "contract"})
+@njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
     """Solve ``B x = rhs`` with the factors of :func:`block_cyclic_factor`.
 
@@ -1168,7 +1168,7 @@ def _film_rows(
     return np.nan if bad else h_min
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def transient_residual(
     y: FloatArray,
     c0: float,
@@ -1264,7 +1264,7 @@ def transient_residual(
     return h_min
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def transient_storage(
     y: FloatArray,
     preload: FloatArray,
@@ -1309,7 +1309,7 @@ def transient_storage(
     return h_min
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def transient_solve(
     g: FloatArray,
     fac: FloatArray,
@@ -1409,7 +1409,7 @@ def transient_solve(
         out[n + i] = (g[n + i] + rate * c_bump[i] * dq) / cu
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def transient_jacobian(
     y: FloatArray,
     c0: float,
@@ -1510,7 +1510,7 @@ def transient_jacobian(
         a_pe[r, 1] = a1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def transient_border(
     fac: FloatArray,
     a_pe: FloatArray,
@@ -1562,7 +1562,7 @@ def transient_border(
     small_inv[1, 1] = m00 / det
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def transient_newton_step(
     y: FloatArray,
     c0: float,

@@ -122,7 +122,7 @@ class TransientSystem:
         self.s_vp = self.force_scale * self.w
         self.diag_slots = kern.stencil_pattern(grid.n_theta, grid.n_z)[2][:, :, 2].ravel()
         self.c_indptr, self.c_indices = kern.coupled_pattern(grid.n_theta, grid.n_z)
-        self._jc = np.empty(self.c_indices.size)
+        self._jc = np.empty(self.c_indices.size)  # sizes of the factorisation's buffers
         self._jp = np.empty(self.ws.jp.size)
 
     # ----------------------------------------------------------------- pieces
@@ -270,7 +270,11 @@ class TransientSystem:
         g = self.grid
         n = self.n
         rate = self.rate(inputs)
+        # Private buffers: a factorisation may run on another thread beside Newton steps.
+        film = np.empty(g.shape)
+        jp = np.empty(self._jp.size)
         jh = np.empty(self._jp.size)
+        jc = np.empty(self._jc.size)
         active = np.empty(self.nt)
         a_pe = np.empty((n, 2))
         kern.transient_jacobian(
@@ -289,21 +293,25 @@ class TransientSystem:
             self.diag_slots,
             self.jh_rows,
             self.ws.indptr,
-            self._H,
-            self._jp,
+            film,
+            jp,
             jh,
             active,
-            self._jc,
+            jc,
             a_pe,
         )
-        lu = _factor_coupled(self._jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
+        lu = _factor_coupled(jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         if isinstance(lu, BlockCyclicLU):
             y_border = np.empty((n, 2))
             small_inv = np.empty((2, 2))
             kern.transient_border(lu._fac, a_pe, self.s_vp, c0, y_border, small_inv)
         else:
             y_border, small_inv = self.border_py(lu, a_pe, c0)
-        return TransientFactor(self, lu, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active)
+        factor = TransientFactor(
+            self, lu, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active
+        )
+        factor.coupled_data = jc
+        return factor
 
     def jacobian_blocks_py(
         self, y: FloatArray, inputs: Inputs, c0: float
@@ -454,6 +462,8 @@ class TransientFactor:
         self.s_vp, self.y_border, self.small_inv = s_vp, y_border, small_inv
         self.c0, self.rate, self.active = c0, rate, active
         self._jh: sp.csr_matrix | None = None
+        #: CSR data of the factorised pressure block B (on the coupled pattern).
+        self.coupled_data: FloatArray | None = None
         # The compiled solve needs the block cyclic factors (not the SuperLU fallback).
         self._fac = lu._fac if isinstance(lu, BlockCyclicLU) else None
         # Arguments of the compiled Newton iteration that do not change with the inputs.
