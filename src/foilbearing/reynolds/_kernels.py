@@ -991,58 +991,73 @@ def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> Non
     m = fac.shape[1]
     ncol = rhs.shape[1]
     last = n_b - 1
-    # (block, column, n_z): block vectors contiguous for the dot products
-    z = np.empty((n_b, ncol, m))
-    y = np.empty(2 * m)
+    # (column, block, n_z): block vectors contiguous for the products
+    z = np.empty((ncol, n_b, m))
+    x = np.empty(2 * m)
     for i in range(n_b):
         for j in range(m):
             for q in range(ncol):
-                z[i, q, j] = rhs[i * m + j, q]
-    # forward: y_i = b_i − L_i z_{i−1}, z_i = D_i⁻¹ y_i, y_S −= R_i z_i
-    for i in range(last):
-        for q in range(ncol):
-            if i > 0:
-                for r in range(m):
-                    acc = 0.0
-                    for c in range(m):
-                        acc += fac[i, r, 3 * m + c] * z[i - 1, q, c]
-                    y[r] = z[i, q, r] - acc
-            else:
-                for r in range(m):
-                    y[r] = z[i, q, r]
-            for r in range(m):
-                acc = 0.0
-                for c in range(m):
-                    acc += fac[i, r, c] * y[c]
-                z[i, q, r] = acc
-            for r in range(m):
-                acc = 0.0
-                for c in range(m):
-                    acc += fac[i, r, 4 * m + c] * z[i, q, c]
-                z[last, q, r] -= acc
+                z[q, i, j] = rhs[i * m + j, q]
     for q in range(ncol):
-        for r in range(m):
-            y[r] = z[last, q, r]
-        for r in range(m):
-            acc = 0.0
+        zq = z[q]
+        # forward: y_i = b_i − L_i z_{i−1}, z_i = D_i⁻¹ y_i, y_S −= R_i z_i
+        for i in range(last):
+            if i > 0:
+                _gemv_acc(fac[i], 3 * m, m, m, zq[i - 1], zq[i], -1.0)
             for c in range(m):
-                acc += fac[last, r, c] * y[c]
-            z[last, q, r] = acc
-    # backward: x_i = z_i − [V_i | W_i] [x_{i+1}; x_S]  (V_{N−2} = 0)
-    for i in range(last - 1, -1, -1):
-        for q in range(ncol):
+                x[c] = zq[i, c]
+                zq[i, c] = 0.0
+            _gemv_acc(fac[i], 0, m, m, x, zq[i], 1.0)
+            _gemv_acc(fac[i], 4 * m, m, m, zq[i], zq[last], -1.0)
+        for c in range(m):
+            x[c] = zq[last, c]
+            zq[last, c] = 0.0
+        _gemv_acc(fac[last], 0, m, m, x, zq[last], 1.0)
+        # backward: x_i = z_i − [V_i | W_i] [x_{i+1}; x_S]  (V_{N−2} = 0)
+        for c in range(m):
+            x[m + c] = zq[last, c]
+        for i in range(last - 1, -1, -1):
             for c in range(m):
-                y[c] = z[i + 1, q, c] if i < last - 1 else 0.0
-                y[m + c] = z[last, q, c]
-            for r in range(m):
-                acc = 0.0
-                for c in range(2 * m):
-                    acc += fac[i, r, m + c] * y[c]
-                z[i, q, r] -= acc
+                x[c] = zq[i + 1, c] if i < last - 1 else 0.0
+            _gemv_acc(fac[i], m, m, 2 * m, x, zq[i], -1.0)
     for i in range(n_b):
         for j in range(m):
             for q in range(ncol):
-                out[i * m + j, q] = z[i, q, j]
+                out[i * m + j, q] = z[q, i, j]
+
+
+@njit(cache=True, inline="always", fastmath={"reassoc", "contract"})
+def _gemv_acc(
+    a: FloatArray, c0: int, m: int, w: int, x: FloatArray, y: FloatArray, alpha: float
+) -> None:
+    """``y[:m] += alpha · a[:, c0:c0+w] @ x[:w]``; ``x`` must not overlap ``y``.
+
+    Four rows at a time: four independent dot products share each load of x
+    (twice as fast as one row at a time on 12 × 12 blocks).
+    """
+    r = 0
+    while r + 4 <= m:
+        a0 = 0.0
+        a1 = 0.0
+        a2 = 0.0
+        a3 = 0.0
+        for c in range(w):
+            xc = x[c]
+            a0 += a[r, c0 + c] * xc
+            a1 += a[r + 1, c0 + c] * xc
+            a2 += a[r + 2, c0 + c] * xc
+            a3 += a[r + 3, c0 + c] * xc
+        y[r] += alpha * a0
+        y[r + 1] += alpha * a1
+        y[r + 2] += alpha * a2
+        y[r + 3] += alpha * a3
+        r += 4
+    while r < m:
+        acc = 0.0
+        for c in range(w):
+            acc += a[r, c0 + c] * x[c]
+        y[r] += alpha * acc
+        r += 1
 
 
 def block_cyclic_factor_py(
@@ -1309,7 +1324,7 @@ def transient_storage(
     return h_min
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 def transient_solve(
     g: FloatArray,
     fac: FloatArray,
