@@ -41,6 +41,10 @@ def test_kernel_matches_twin_and_spsolve(n_theta: int, n_z: int) -> None:
     assert res[1] == res_py[1]
     np.testing.assert_allclose(res[2:], res_py[2:], rtol=1e-12)
     assert _rel(fac, fac_py) < 1e-12
+    # The chains on two threads: the very same factors.
+    fac_par = kern.block_cyclic_alloc(n_theta, n_z)
+    assert kern.block_cyclic_factor_parallel(data, n_theta, n_z, fac_par) == res
+    np.testing.assert_array_equal(fac_par, fac)
     n = n_theta * n_z
     rng = np.random.default_rng(1)
     for ncol in (1, 2):
@@ -93,12 +97,17 @@ def test_singular_matrix_raises() -> None:
     n_theta, n_z = 6, 3
     data, _ = _random_coupled(n_theta, n_z, seed=5)
     d4 = data.reshape(n_theta, n_z, 3, n_z)
-    d4[2, 1, :, :] = 0.0  # an empty row: B is singular
+    d4[1, 1, :, :] = 0.0  # an empty row in a chain: B is singular
     with pytest.raises(FloatingPointError, match="singular"):
         BlockCyclicLU(data, n_theta, n_z)
     fac = kern.block_cyclic_alloc(n_theta, n_z)
-    assert kern.block_cyclic_factor(data, n_theta, n_z, fac)[:2] == (kern.BC_ZERO_PIVOT, 2)
-    assert kern.block_cyclic_factor_py(data, n_theta, n_z, fac)[:2] == (kern.BC_ZERO_PIVOT, 2)
+    assert kern.block_cyclic_factor(data, n_theta, n_z, fac)[:2] == (kern.BC_ZERO_PIVOT, 1)
+    assert kern.block_cyclic_factor_py(data, n_theta, n_z, fac)[:2] == (kern.BC_ZERO_PIVOT, 1)
+    d4[1, 1, :, :] = 1.0
+    d4[5, 0, :, :] = 0.0  # an empty row in a separator: S is singular
+    for factor in (kern.block_cyclic_factor, kern.block_cyclic_factor_py):
+        status, block = factor(data, n_theta, n_z, fac)[:2]
+        assert status == kern.BC_ZERO_PIVOT and block in (2, 5)
 
 
 def test_ill_conditioned_and_non_finite_raise() -> None:

@@ -59,7 +59,7 @@ each docstring), checked by ``tests/test_transient_kernels.py``.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 from numpy.typing import NDArray
 
 __all__ = [
@@ -697,28 +697,36 @@ def coupled_jacobian_py(
 # ---------------------------------------------------------------------------
 #
 # B (n = n_theta·n_z) on :func:`coupled_pattern` is block tridiagonal and
-# periodic in θ with dense n_z × n_z blocks. With N = n_theta, block row i
-# holds L_i = B[i, i−1], A_i = B[i, i], U_i = B[i, i+1] (indices mod N). Block
-# Gaussian elimination in θ order (no pivoting between blocks; partial
-# pivoting inside each pivot block) keeps the periodic fill in a border: the
-# last block column (G_i = current B[i, N−1]) and last block row
-# (R_i = current B[N−1, i]). For i = 0 … N−2, with D_i the pivot block:
+# periodic in θ with dense n_z × n_z blocks: block row i couples to the rows
+# i−1 and i+1 (indices mod N, N = n_theta). Two separator rows, p = (N−1)//2
+# and N−1, cut the ring into two chains, A = 0 … p−1 and B = p+1 … N−2, that
+# are eliminated independently (on two threads when numba has a fast
+# threading layer: :func:`block_cyclic_factor_parallel`); the separators are
+# then solved from their 2 n_z × 2 n_z Schur complement S.
 #
-#     [V_i | W_i] = D_i⁻¹ [U_i | G_i]          (U_{N−2} is G_{N−2}: V_{N−2} = 0)
-#     [D_{i+1} | G_{i+1}] −= L_{i+1} [V_i | W_i]          (i ≤ N−3)
-#     [R_{i+1} | S] −= R_i [V_i | W_i]
+# In a chain with first row f, last row e, left separator l (coupled to f)
+# and right separator r (coupled to e; r = e + 1), block Gaussian elimination
+# in θ order (no pivoting between blocks; partial pivoting inside each pivot
+# block) carries the fill to l in a column G_i and a row R_i. For i = f … e,
+# with D_i the current pivot block and U_i = B[i, i+1] (U_e couples to r):
 #
-# from D_0 = A_0, G_0 = L_0, G_{N−2} = U_{N−2}, R_0 = U_{N−1},
-# R_{N−2} = L_{N−1}, S = A_{N−1} (other G, R zero); cost O(N n_z³). The pivot
-# blocks are inverted explicitly (Gauss-Jordan on [D_i | U_i | G_i | I], which
-# gives [V_i | W_i] in the same sweep): the solve is then five
-# independent n_z-long dot products per row and block, O(N n_z²).
+#     [V_i | W_i] = D_i⁻¹ [U_i | G_i]
+#     [D_{i+1} | G_{i+1}] −= L_{i+1} [V_i | W_i]          (i < e, L_{i+1} = B[i+1, i])
+#     R_{i+1} = −R_i V_i,   S_ll −= R_i W_i                 (i < e)
+#     S_lr −= R_e V_e,  S_ll −= R_e W_e,  S_rl −= L_r W_e,  S_rr −= L_r V_e
 #
-# Factor storage ``fac`` of shape (N, n_z, 5 n_z): block row i holds the
-# five n_z × n_z slots [D_i⁻¹ | V_i | W_i | L_i | R_i] side by side
-# (column offsets 0, n_z, 2 n_z, 3 n_z, 4 n_z), so that [V_i | W_i] is one
-# n_z × 2 n_z matrix. fac[N−1, :, :n_z] holds S⁻¹; slots that do not exist
-# (L_0, V_{N−2}, the rest of row N−1) are zero.
+# from D_i = B[i, i], G_f = B[f, l], R_f = B[l, f], L_r = B[r, e]; cost
+# O(N n_z³). Chain A has l = N−1, r = p; chain B has l = p, r = N−1. S starts
+# from B[p, p] and B[N−1, N−1] (and B[p, N−1], B[N−1, p] when N = 3 and the
+# separators touch). The pivot blocks are inverted explicitly (Gauss-Jordan on
+# [D_i | U_i | G_i | I], which gives [V_i | W_i] in the same sweep): the solve
+# is then a handful of n_z-long dot products per row, O(N n_z²).
+#
+# Factor storage ``fac`` of shape (N, n_z, 5 n_z): chain row i holds the five
+# n_z × n_z slots [D_i⁻¹ | V_i | W_i | L_i | R_i] side by side (column
+# offsets 0, n_z, 2 n_z, 3 n_z, 4 n_z; L_f = 0). The separator rows hold S⁻¹
+# in their first 2 n_z columns (rows of p: the first n_z rows of S⁻¹, rows of
+# N−1: the last n_z) and the L_r of the chain that ends at them in slot 3.
 
 BC_OK, BC_ZERO_PIVOT, BC_NOT_FINITE = 0, 1, 2
 
@@ -731,6 +739,12 @@ def block_cyclic_alloc(n_theta: int, n_z: int) -> FloatArray:
     if n_theta < 3 or n_z < 1:
         raise ValueError(f"block cyclic LU needs n_theta >= 3 and n_z >= 1, got {n_theta}, {n_z}")
     return np.zeros((n_theta, n_z, 5 * n_z))
+
+
+def block_cyclic_chains(n_theta: int) -> tuple[int, tuple[tuple[int, int, int, int], ...]]:
+    """Separator p and the two chains ``(first, last, left separator, right separator)``."""
+    p = (n_theta - 1) // 2
+    return p, ((0, p - 1, n_theta - 1, p), (p + 1, n_theta - 2, p, n_theta - 1))
 
 
 @njit(cache=True, fastmath={"contract"})
@@ -810,222 +824,6 @@ def _gemm_acc(
         r += 1
 
 
-@njit(cache=True)
-def _block_ranks(i: int, n_theta: int) -> tuple[int, int, int]:
-    """Ranks (W, C, E) of blocks i−1, i, i+1 in block row i of the coupled data."""
-    if i == 0:
-        return 2, 0, 1
-    if i == n_theta - 1:
-        return 1, 2, 0
-    return 0, 1, 2
-
-
-@njit(cache=True)
-def _norm1(a: FloatArray, c0: int, m: int) -> float:
-    """1-norm (largest column sum) of the block ``a[:, c0:c0+m]``."""
-    best = 0.0
-    for c in range(m):
-        s = 0.0
-        for r in range(m):
-            s += abs(a[r, c0 + c])
-        best = max(best, s)
-    return best
-
-
-@njit(cache=True, nogil=True)
-def block_cyclic_factor(
-    data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
-) -> tuple[int, int, float, float]:
-    """Block LU of the periodic block-tridiagonal matrix on :func:`coupled_pattern`.
-
-    Block Gaussian elimination in θ order with the periodic fill kept in the
-    last block row and column (see the comment above :data:`BC_OK`); partial
-    pivoting inside each ``n_z × n_z`` pivot block, none between blocks, so
-    it is meant for block-diagonally dominant matrices such as the BDF Newton
-    matrix ``c0·diag(H) + …``. Cost ``O(n_theta n_z³)``. Replaces
-    ``scipy.sparse.linalg.splu`` of the CSR matrix; twin
-    :func:`block_cyclic_factor_py`.
-
-    Parameters
-    ----------
-    data : ndarray, shape (3 n_z · n_theta n_z,)
-        CSR data of B on :func:`coupled_pattern` (row ``k = i*n_z + j``,
-        ``3 n_z`` entries, θ-blocks in increasing column order).
-    n_theta, n_z : int
-        Grid size, ``n_theta >= 3``.
-    fac : ndarray, shape (n_theta, n_z, 5 n_z)
-        Overwritten with the factors (layout above; see :func:`block_cyclic_alloc`).
-
-    Returns
-    -------
-    status : int
-        :data:`BC_OK`; :data:`BC_ZERO_PIVOT` (a pivot block is exactly
-        singular, ``fac`` is incomplete); :data:`BC_NOT_FINITE` (``data``
-        holds inf or NaN, nothing done).
-    block : int
-        Block row of the worst-conditioned pivot block (the failing one for
-        ``BC_ZERO_PIVOT``; ``n_theta − 1`` is the border block S).
-    rcond : float
-        Smallest reciprocal 1-norm condition number ``1/(‖D‖₁ ‖D⁻¹‖₁)`` of
-        the pivot blocks (exact, from the explicit inverses; 0 if singular).
-    growth : float
-        Largest entry of the pivot blocks ``D_i`` and S after elimination over
-        the largest entry of B (about 1 for block diagonally dominant B;
-        large values mean that elimination without block pivoting is unstable).
-    """
-    n_b = n_theta
-    m = n_z
-    last = n_b - 1
-    bmax = 0.0
-    nonfinite = 0.0  # v − v is 0 for finite v, NaN for inf or NaN (branch-free: vectorised)
-    for v in data:
-        nonfinite += v - v
-        av = abs(v)
-        bmax = av if av > bmax else bmax
-    if nonfinite != 0.0:  # NaN
-        return BC_NOT_FINITE, -1, 0.0, np.inf
-    d4 = data.reshape((n_b, m, 3, m))
-    fac[:] = 0.0
-    # G_i is kept in the V slot until block i is eliminated.
-    t = np.zeros((m, 2 * m))  # [R_i | S], R_i of the block being eliminated
-    aug = np.empty((m, 4 * m))  # [D_i | U_i | G_i | I] → [I | V_i | W_i | D_i⁻¹]
-    row = np.empty(4 * m)
-    lo = np.empty((m, m))
-    vw = np.empty((m, 2 * m))  # [V_i | W_i]
-    for i in range(n_b):
-        rw, rc, re = _block_ranks(i, n_b)
-        x = fac[i]
-        for r in range(m):
-            for c in range(m):
-                x[r, c] = d4[i, r, rc, c]
-        if 0 < i < last:
-            for r in range(m):
-                for c in range(m):
-                    x[r, 3 * m + c] = d4[i, r, rw, c]
-    for r in range(m):
-        for c in range(m):
-            fac[0, r, m + c] = d4[0, r, _block_ranks(0, n_b)[0], c]  # G_0 = L_0
-            fac[last - 1, r, m + c] = d4[last - 1, r, 2, c]  # G_{N-2} = U_{N-2}
-            t[r, c] = d4[last, r, 0, c]  # R_0 = U_{N-1}
-            t[r, m + c] = d4[last, r, 2, c]  # S = A_{N-1}
-    dmax = 0.0
-    rcond = np.inf
-    worst = 0
-    for i in range(last):
-        x = fac[i]
-        re = _block_ranks(i, n_b)[2]
-        for r in range(m):
-            for c in range(m):
-                v = x[r, c]
-                dmax = max(dmax, abs(v))
-                aug[r, c] = v
-                # U_{N−2} is the border G_{N−2}
-                aug[r, m + c] = d4[i, r, re, c] if i < last - 1 else 0.0
-                aug[r, 2 * m + c] = x[r, m + c]
-                aug[r, 3 * m + c] = 1.0 if r == c else 0.0
-        dnorm = _norm1(x, 0, m)
-        k = _gauss_jordan(aug, m, 4 * m, row)
-        if k >= 0:
-            return BC_ZERO_PIVOT, i, 0.0, dmax / bmax
-        rc_i = 1.0 / (dnorm * _norm1(aug, 3 * m, m))
-        if not rc_i >= rcond:
-            rcond = rc_i
-            worst = i
-        for r in range(m):
-            for c in range(m):
-                x[r, c] = aug[r, 3 * m + c]
-            for c in range(2 * m):
-                v = aug[r, m + c]
-                x[r, m + c] = v
-                vw[r, c] = v
-        if i < last - 1:
-            x1 = fac[i + 1]
-            for r in range(m):
-                for c in range(m):
-                    lo[r, c] = x1[r, 3 * m + c]
-            _gemm_acc(x1, 0, lo, vw, m, 2 * m, -1.0)
-        # R_i moves into its slot; the border row then takes R_{i+1}
-        for r in range(m):
-            for c in range(m):
-                x[r, 4 * m + c] = t[r, c]
-                lo[r, c] = t[r, c]
-                t[r, c] = d4[last, r, 1, c] if i == last - 2 else 0.0
-        _gemm_acc(t, 0, lo, vw, m, 2 * m, -1.0)
-    for r in range(m):
-        for c in range(m):
-            dmax = max(dmax, abs(t[r, m + c]))
-            aug[r, c] = t[r, m + c]
-            aug[r, m + c] = 1.0 if r == c else 0.0
-    snorm = _norm1(t, m, m)
-    k = _gauss_jordan(aug, m, 2 * m, row)
-    if k >= 0:
-        return BC_ZERO_PIVOT, last, 0.0, dmax / bmax
-    rc_s = 1.0 / (snorm * _norm1(aug, m, m))
-    if not rc_s >= rcond:
-        rcond = rc_s
-        worst = last
-    for r in range(m):
-        for c in range(m):
-            fac[last, r, c] = aug[r, m + c]
-    return BC_OK, worst, rcond, dmax / bmax
-
-
-@njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
-def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
-    """Solve ``B x = rhs`` with the factors of :func:`block_cyclic_factor`.
-
-    Cost ``O(n_theta n_z²)`` per right-hand side; twin
-    :func:`block_cyclic_solve_py`. Dot products may be reassociated
-    (vectorised), which changes results only at rounding level.
-
-    Parameters
-    ----------
-    fac : ndarray, shape (n_theta, n_z, 5 n_z)
-        Output of a successful :func:`block_cyclic_factor`.
-    rhs : ndarray, shape (n, k)
-        Right-hand sides, ``n = n_theta n_z``, row ``i*n_z + j``.
-    out : ndarray, shape (n, k)
-        Filled with the solutions (may be ``rhs`` itself).
-    """
-    n_b = fac.shape[0]
-    m = fac.shape[1]
-    ncol = rhs.shape[1]
-    last = n_b - 1
-    # (column, block, n_z): block vectors contiguous for the products
-    z = np.empty((ncol, n_b, m))
-    x = np.empty(2 * m)
-    for i in range(n_b):
-        for j in range(m):
-            for q in range(ncol):
-                z[q, i, j] = rhs[i * m + j, q]
-    for q in range(ncol):
-        zq = z[q]
-        # forward: y_i = b_i − L_i z_{i−1}, z_i = D_i⁻¹ y_i, y_S −= R_i z_i
-        for i in range(last):
-            if i > 0:
-                _gemv_acc(fac[i], 3 * m, m, m, zq[i - 1], zq[i], -1.0)
-            for c in range(m):
-                x[c] = zq[i, c]
-                zq[i, c] = 0.0
-            _gemv_acc(fac[i], 0, m, m, x, zq[i], 1.0)
-            _gemv_acc(fac[i], 4 * m, m, m, zq[i], zq[last], -1.0)
-        for c in range(m):
-            x[c] = zq[last, c]
-            zq[last, c] = 0.0
-        _gemv_acc(fac[last], 0, m, m, x, zq[last], 1.0)
-        # backward: x_i = z_i − [V_i | W_i] [x_{i+1}; x_S]  (V_{N−2} = 0)
-        for c in range(m):
-            x[m + c] = zq[last, c]
-        for i in range(last - 1, -1, -1):
-            for c in range(m):
-                x[c] = zq[i + 1, c] if i < last - 1 else 0.0
-            _gemv_acc(fac[i], m, m, 2 * m, x, zq[i], -1.0)
-    for i in range(n_b):
-        for j in range(m):
-            for q in range(ncol):
-                out[i * m + j, q] = z[q, i, j]
-
-
 @njit(cache=True, inline="always", fastmath={"reassoc", "contract"})
 def _gemv_acc(
     a: FloatArray, c0: int, m: int, w: int, x: FloatArray, y: FloatArray, alpha: float
@@ -1060,6 +858,401 @@ def _gemv_acc(
         r += 1
 
 
+@njit(cache=True)
+def _block_ranks(i: int, n_theta: int) -> tuple[int, int, int]:
+    """Ranks (W, C, E) of blocks i−1, i, i+1 in block row i of the coupled data."""
+    if i == 0:
+        return 2, 0, 1
+    if i == n_theta - 1:
+        return 1, 2, 0
+    return 0, 1, 2
+
+
+@njit(cache=True)
+def _rank(i: int, j: int, n_theta: int) -> int:
+    """Rank of block column j (i−1, i or i+1 mod N) in block row i of the coupled data."""
+    j = j % n_theta
+    rw, rc, re = _block_ranks(i, n_theta)
+    if j == i:
+        return rc
+    if j == (i + 1) % n_theta:
+        return re
+    return rw
+
+
+@njit(cache=True)
+def _norm1(a: FloatArray, c0: int, m: int) -> float:
+    """1-norm (largest column sum) of the m × m block ``a[:m, c0:c0+m]``."""
+    best = 0.0
+    for c in range(m):
+        s = 0.0
+        for r in range(m):
+            s += abs(a[r, c0 + c])
+        best = max(best, s)
+    return best
+
+
+@njit(cache=True, nogil=True)
+def _chain_factor(
+    d4: FloatArray,
+    fac: FloatArray,
+    first: int,
+    last: int,
+    left: int,
+    right: int,
+    sc: FloatArray,
+    stats: FloatArray,
+) -> int:
+    """Eliminate the chain rows ``first … last`` (see the comment above :data:`BC_OK`).
+
+    Fills their factor rows, the chain's contribution ``sc`` (2 m × 2 m, in
+    the order [left, right]) to the separators' Schur complement, and
+    ``stats = [largest pivot-block entry, smallest rcond, its block row]``.
+    Returns a ``BC_*`` status (``stats[2]`` is then the failing row).
+    """
+    n_b, m = d4.shape[0], d4.shape[1]
+    sc[:, :] = 0.0
+    stats[0] = 0.0
+    stats[1] = np.inf
+    stats[2] = first
+    if last < first:
+        return BC_OK
+    aug = np.empty((m, 4 * m))  # [D_i | U_i | G_i | I] → [I | V_i | W_i | D_i⁻¹]
+    row = np.empty(4 * m)
+    lo = np.empty((m, m))
+    vw = np.empty((m, 2 * m))  # [V_i | W_i]
+    t = np.zeros((m, 2 * m))  # [R_i | S_ll]
+    tmp = np.empty((m, 2 * m))
+    for i in range(first, last + 1):
+        x = fac[i]
+        rc = _rank(i, i, n_b)
+        rw = _rank(i, i - 1, n_b)
+        for r in range(m):
+            for c in range(m):
+                x[r, c] = d4[i, r, rc, c]  # D_i
+                x[r, m + c] = 0.0  # G_i
+                x[r, 3 * m + c] = d4[i, r, rw, c] if i > first else 0.0  # L_i
+    rg = _rank(first, left, n_b)
+    rr = _rank(left, first, n_b)
+    for r in range(m):
+        for c in range(m):
+            fac[first, r, m + c] = d4[first, r, rg, c]  # G_f = B[f, l]
+            t[r, c] = d4[left, r, rr, c]  # R_f = B[l, f]
+    for i in range(first, last + 1):
+        x = fac[i]
+        re = _rank(i, i + 1, n_b)
+        dmax = stats[0]
+        for r in range(m):
+            for c in range(m):
+                v = x[r, c]
+                dmax = max(dmax, abs(v))
+                aug[r, c] = v
+                aug[r, m + c] = d4[i, r, re, c]
+                aug[r, 2 * m + c] = x[r, m + c]
+                aug[r, 3 * m + c] = 1.0 if r == c else 0.0
+        stats[0] = dmax
+        dnorm = _norm1(x, 0, m)
+        if _gauss_jordan(aug, m, 4 * m, row) >= 0:
+            stats[2] = i
+            return BC_ZERO_PIVOT
+        rc_i = 1.0 / (dnorm * _norm1(aug, 3 * m, m))
+        if not rc_i >= stats[1]:
+            stats[1] = rc_i
+            stats[2] = i
+        for r in range(m):
+            for c in range(m):
+                x[r, c] = aug[r, 3 * m + c]
+            for c in range(2 * m):
+                v = aug[r, m + c]
+                x[r, m + c] = v
+                vw[r, c] = v
+        if i < last:
+            x1 = fac[i + 1]
+            for r in range(m):
+                for c in range(m):
+                    lo[r, c] = x1[r, 3 * m + c]
+            _gemm_acc(x1, 0, lo, vw, m, 2 * m, -1.0)
+        for r in range(m):
+            for c in range(m):
+                x[r, 4 * m + c] = t[r, c]
+                lo[r, c] = t[r, c]
+        if i < last:
+            for r in range(m):
+                for c in range(m):
+                    t[r, c] = 0.0
+            _gemm_acc(t, 0, lo, vw, m, 2 * m, -1.0)  # R_{i+1}, S_ll
+        else:
+            tmp[:, :] = 0.0
+            _gemm_acc(tmp, 0, lo, vw, m, 2 * m, -1.0)  # −R_e [V_e | W_e]
+            for r in range(m):
+                for c in range(m):
+                    sc[r, m + c] = tmp[r, c]  # S_lr
+                    sc[r, c] = t[r, m + c] + tmp[r, m + c]  # S_ll
+    rl = _rank(right, last, n_b)
+    for r in range(m):
+        for c in range(m):
+            lo[r, c] = d4[right, r, rl, c]  # L_r = B[r, e]
+    tmp[:, :] = 0.0
+    _gemm_acc(tmp, 0, lo, vw, m, 2 * m, -1.0)  # −L_r [V_e | W_e]
+    for r in range(m):
+        for c in range(m):
+            sc[m + r, m + c] = tmp[r, c]  # S_rr
+            sc[m + r, c] = tmp[r, m + c]  # S_rl
+    return BC_OK
+
+
+@njit(cache=True, nogil=True)
+def _separator_factor(
+    d4: FloatArray,
+    fac: FloatArray,
+    sc: FloatArray,
+    stats: FloatArray,
+    status: IntArray,
+    bmax: float,
+) -> tuple[int, int, float, float]:
+    """Assemble and invert the separators' Schur complement; the result of the factorisation."""
+    n_b, m = d4.shape[0], d4.shape[1]
+    p = (n_b - 1) // 2
+    s_idx = (p, n_b - 1)
+    dmax = max(stats[0, 0], stats[1, 0])
+    for k in range(2):
+        if status[k] != BC_OK:
+            return int(status[k]), int(stats[k, 2]), 0.0, dmax / bmax
+    rcond = stats[0, 1]
+    worst = int(stats[0, 2])
+    if not stats[1, 1] >= rcond:
+        rcond = stats[1, 1]
+        worst = int(stats[1, 2])
+    m2 = 2 * m
+    aug = np.zeros((m2, 2 * m2))  # [S | I] → [I | S⁻¹]
+    row = np.empty(2 * m2)
+    for a in range(2):
+        for b in range(2):
+            i, j = s_idx[a], s_idx[b]
+            if i == j or j == (i + 1) % n_b or j == (i - 1) % n_b:
+                rk = _rank(i, j, n_b)
+                for r in range(m):
+                    for c in range(m):
+                        aug[a * m + r, b * m + c] = d4[i, r, rk, c]
+    for k in range(2):
+        # chain A: [left, right] = [N−1, p] → S indices (1, 0); chain B: (0, 1)
+        il, ir = (1, 0) if k == 0 else (0, 1)
+        for r in range(m):
+            for c in range(m):
+                aug[il * m + r, il * m + c] += sc[k, r, c]
+                aug[il * m + r, ir * m + c] += sc[k, r, m + c]
+                aug[ir * m + r, il * m + c] += sc[k, m + r, c]
+                aug[ir * m + r, ir * m + c] += sc[k, m + r, m + c]
+    for r in range(m2):
+        for c in range(m2):
+            dmax = max(dmax, abs(aug[r, c]))
+        aug[r, m2 + r] = 1.0
+    snorm = 0.0
+    for c in range(m2):
+        col = 0.0
+        for r in range(m2):
+            col += abs(aug[r, c])
+        snorm = max(snorm, col)
+    k = _gauss_jordan(aug, m2, 2 * m2, row)
+    if k >= 0:
+        return BC_ZERO_PIVOT, s_idx[0] if k < m else s_idx[1], 0.0, dmax / bmax
+    inorm = 0.0
+    for c in range(m2):
+        col = 0.0
+        for r in range(m2):
+            col += abs(aug[r, m2 + c])
+        inorm = max(inorm, col)
+    rc_s = 1.0 / (snorm * inorm)
+    if not rc_s >= rcond:
+        rcond = rc_s
+        worst = s_idx[1]
+    for a in range(2):
+        x = fac[s_idx[a]]
+        x[:, :] = 0.0
+        for r in range(m):
+            for c in range(m2):
+                x[r, c] = aug[a * m + r, m2 + c]
+    for k in range(2):
+        first, last, right = (0, p - 1, p) if k == 0 else (p + 1, n_b - 2, n_b - 1)
+        if last >= first:
+            rl = _rank(right, last, n_b)
+            for r in range(m):
+                for c in range(m):
+                    fac[right, r, 3 * m + c] = d4[right, r, rl, c]  # L_r of the chain
+    return BC_OK, worst, rcond, dmax / bmax
+
+
+@njit(cache=True)
+def _check_data(data: FloatArray) -> float:
+    """Largest |entry| of the matrix data, or NaN if it holds inf or NaN (branch-free loop)."""
+    bmax = 0.0
+    nonfinite = 0.0  # v − v is 0 for finite v, NaN for inf or NaN
+    for v in data:
+        nonfinite += v - v
+        av = abs(v)
+        bmax = av if av > bmax else bmax
+    return bmax if nonfinite == 0.0 else np.nan
+
+
+@njit(cache=True, nogil=True)
+def block_cyclic_factor(
+    data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
+) -> tuple[int, int, float, float]:
+    """Block LU of the periodic block-tridiagonal matrix on :func:`coupled_pattern`.
+
+    Two chains eliminated in turn and their separators (see the comment above
+    :data:`BC_OK`); partial pivoting inside each ``n_z × n_z`` pivot block,
+    none between blocks, so it is meant for block-diagonally dominant
+    matrices such as the BDF Newton matrix ``c0·diag(H) + …``. Cost
+    ``O(n_theta n_z³)``. Replaces ``scipy.sparse.linalg.splu`` of the CSR
+    matrix; twin :func:`block_cyclic_factor_py`;
+    :func:`block_cyclic_factor_parallel` gives the same factors with the
+    chains on two threads.
+
+    Parameters
+    ----------
+    data : ndarray, shape (3 n_z · n_theta n_z,)
+        CSR data of B on :func:`coupled_pattern` (row ``k = i*n_z + j``,
+        ``3 n_z`` entries, θ-blocks in increasing column order).
+    n_theta, n_z : int
+        Grid size, ``n_theta >= 3``.
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Overwritten with the factors (layout above; see :func:`block_cyclic_alloc`).
+
+    Returns
+    -------
+    status : int
+        :data:`BC_OK`; :data:`BC_ZERO_PIVOT` (a pivot block or S is exactly
+        singular, ``fac`` is incomplete); :data:`BC_NOT_FINITE` (``data``
+        holds inf or NaN, nothing done).
+    block : int
+        Block row of the worst-conditioned pivot block (the failing one for
+        ``BC_ZERO_PIVOT``; a separator row for S).
+    rcond : float
+        Smallest reciprocal 1-norm condition number ``1/(‖D‖₁ ‖D⁻¹‖₁)`` of
+        the pivot blocks and S (exact, from the explicit inverses; 0 if singular).
+    growth : float
+        Largest entry of the pivot blocks and S after elimination over the
+        largest entry of B (about 1 for block diagonally dominant B; large
+        values mean that elimination without block pivoting is unstable).
+    """
+    bmax = _check_data(data)
+    if bmax != bmax:
+        return BC_NOT_FINITE, -1, 0.0, np.inf
+    d4 = data.reshape((n_theta, n_z, 3, n_z))
+    p = (n_theta - 1) // 2
+    firsts = (0, p + 1)
+    lasts = (p - 1, n_theta - 2)
+    lefts = (n_theta - 1, p)
+    rights = (p, n_theta - 1)
+    sc = np.empty((2, 2 * n_z, 2 * n_z))
+    stats = np.empty((2, 3))
+    status = np.empty(2, dtype=np.int64)
+    for k in range(2):
+        status[k] = _chain_factor(
+            d4, fac, firsts[k], lasts[k], lefts[k], rights[k], sc[k], stats[k]
+        )
+    return _separator_factor(d4, fac, sc, stats, status, bmax)
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def block_cyclic_factor_parallel(
+    data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
+) -> tuple[int, int, float, float]:
+    """:func:`block_cyclic_factor` with its two chains on two threads (identical results).
+
+    Only worth it with a fast numba threading layer (OpenMP or TBB: a fork-join
+    of ~2 µs); :class:`~foilbearing.reynolds.blocksolve.BlockCyclicLU` picks it then.
+    """
+    bmax = _check_data(data)
+    if bmax != bmax:
+        return BC_NOT_FINITE, -1, 0.0, np.inf
+    d4 = data.reshape((n_theta, n_z, 3, n_z))
+    p = (n_theta - 1) // 2
+    firsts = (0, p + 1)
+    lasts = (p - 1, n_theta - 2)
+    lefts = (n_theta - 1, p)
+    rights = (p, n_theta - 1)
+    sc = np.empty((2, 2 * n_z, 2 * n_z))
+    stats = np.empty((2, 3))
+    status = np.empty(2, dtype=np.int64)
+    for k in prange(2):
+        status[k] = _chain_factor(
+            d4, fac, firsts[k], lasts[k], lefts[k], rights[k], sc[k], stats[k]
+        )
+    return _separator_factor(d4, fac, sc, stats, status, bmax)
+
+
+@njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
+def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
+    """Solve ``B x = rhs`` with the factors of :func:`block_cyclic_factor`.
+
+    Cost ``O(n_theta n_z²)`` per right-hand side; twin
+    :func:`block_cyclic_solve_py`. Dot products may be reassociated
+    (vectorised), which changes results only at rounding level.
+
+    Parameters
+    ----------
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Output of a successful :func:`block_cyclic_factor`.
+    rhs : ndarray, shape (n, k)
+        Right-hand sides, ``n = n_theta n_z``, row ``i*n_z + j``.
+    out : ndarray, shape (n, k)
+        Filled with the solutions (may be ``rhs`` itself).
+    """
+    n_b = fac.shape[0]
+    m = fac.shape[1]
+    ncol = rhs.shape[1]
+    last_b = n_b - 1
+    p = (n_b - 1) // 2
+    # (column, block, n_z): block vectors contiguous for the products
+    z = np.empty((ncol, n_b, m))
+    x = np.empty(2 * m)
+    acc = np.empty((2, 2, m))  # per chain: right-hand side updates of [left, right]
+    for i in range(n_b):
+        for j in range(m):
+            for q in range(ncol):
+                z[q, i, j] = rhs[i * m + j, q]
+    for q in range(ncol):
+        zq = z[q]
+        acc[:, :, :] = 0.0
+        for k in range(2):
+            first, last, right = (0, p - 1, p) if k == 0 else (p + 1, n_b - 2, last_b)
+            if last < first:
+                continue
+            # forward: y_i = b_i − L_i z_{i−1}, z_i = D_i⁻¹ y_i, b_l −= R_i z_i, b_r −= L_r z_e
+            for i in range(first, last + 1):
+                if i > first:
+                    _gemv_acc(fac[i], 3 * m, m, m, zq[i - 1], zq[i], -1.0)
+                for c in range(m):
+                    x[c] = zq[i, c]
+                    zq[i, c] = 0.0
+                _gemv_acc(fac[i], 0, m, m, x, zq[i], 1.0)
+                _gemv_acc(fac[i], 4 * m, m, m, zq[i], acc[k, 0], -1.0)
+            _gemv_acc(fac[right], 3 * m, m, m, zq[last], acc[k, 1], -1.0)
+        # separators p (chain A's right, chain B's left) and N−1 (A's left, B's right)
+        for c in range(m):
+            x[c] = zq[p, c] + acc[0, 1, c] + acc[1, 0, c]
+            x[m + c] = zq[last_b, c] + acc[0, 0, c] + acc[1, 1, c]
+            zq[p, c] = 0.0
+            zq[last_b, c] = 0.0
+        _gemv_acc(fac[p], 0, m, 2 * m, x, zq[p], 1.0)
+        _gemv_acc(fac[last_b], 0, m, 2 * m, x, zq[last_b], 1.0)
+        # backward: x_i = z_i − [V_i | W_i] [x_{i+1}; x_l]
+        for k in range(2):
+            first, last, left = (0, p - 1, last_b) if k == 0 else (p + 1, n_b - 2, p)
+            for c in range(m):
+                x[m + c] = zq[left, c]
+            for i in range(last, first - 1, -1):
+                for c in range(m):
+                    x[c] = zq[i + 1, c]
+                _gemv_acc(fac[i], m, m, 2 * m, x, zq[i], -1.0)
+    for i in range(n_b):
+        for j in range(m):
+            for q in range(ncol):
+                out[i * m + j, q] = z[q, i, j]
+
+
 def block_cyclic_factor_py(
     data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
 ) -> tuple[int, int, float, float]:
@@ -1068,73 +1261,118 @@ def block_cyclic_factor_py(
 
     import scipy.linalg as sla
 
-    n_b, m, last = n_theta, n_z, n_theta - 1
+    n_b, m = n_theta, n_z
     if not np.all(np.isfinite(data)):
         return BC_NOT_FINITE, -1, 0.0, np.inf
     bmax = float(np.abs(data).max())
     d4 = data.reshape(n_b, m, 3, m)
-    ranks = np.array([[0, 1, 2]] * n_b)
-    ranks[0] = [2, 0, 1]
-    ranks[last] = [1, 2, 0]
-    idx = np.arange(n_b)
-    blk_w = d4[idx, :, ranks[:, 0], :]  # L_i, shape (n_b, m, m)
-    blk_c = d4[idx, :, ranks[:, 1], :]  # A_i
-    blk_e = d4[idx, :, ranks[:, 2], :]  # U_i
-    fac[:] = 0.0
-    dinv, v, w, lo, rr = (fac[:, :, s * m : (s + 1) * m] for s in range(5))
-    d = blk_c.copy()
-    g = np.zeros((n_b, m, m))
-    g[0], g[last - 1] = blk_w[0], blk_e[last - 1]
-    lo[1:last] = blk_w[1:last]
-    r_cur, s_cur = blk_e[last].copy(), blk_c[last].copy()
-    dmax, rcond, worst = 0.0, np.inf, 0
-    for i in range(n_b):
-        blk = s_cur if i == last else d[i]
-        dmax = max(dmax, float(np.abs(blk).max()))
+
+    def blk(i: int, j: int) -> FloatArray:
+        ranks = (2, 0, 1) if i == 0 else (1, 2, 0) if i == n_b - 1 else (0, 1, 2)
+        rank = ranks[1] if j == i else ranks[2] if j == (i + 1) % n_b else ranks[0]
+        return d4[i, :, rank, :]
+
+    def invert(a: FloatArray) -> FloatArray | None:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", sla.LinAlgWarning)
-            lu = sla.lu_factor(blk, check_finite=False)[0]
-        if np.any(np.diag(lu) == 0.0):
-            return BC_ZERO_PIVOT, i, 0.0, dmax / bmax
-        inv = np.linalg.inv(blk)
-        rc_i = 1.0 / (np.abs(blk).sum(axis=0).max() * np.abs(inv).sum(axis=0).max())
-        if not rc_i >= rcond:
-            rcond, worst = float(rc_i), i
-        dinv[i] = inv
-        if i == last:
-            break
-        if i < last - 1:
-            v[i] = inv @ blk_e[i]
-        w[i] = inv @ g[i]
-        vw = np.concatenate([v[i], w[i]], axis=1)
-        if i < last - 1:
-            upd = lo[i + 1] @ vw
-            d[i + 1] -= upd[:, :m]
-            g[i + 1] -= upd[:, m:]
-        rr[i] = r_cur
-        r_next = blk_w[last] if i == last - 2 else np.zeros((m, m))
-        upd = r_cur @ vw
-        r_cur = r_next - upd[:, :m]
-        s_cur = s_cur - upd[:, m:]
+            lu = sla.lu_factor(a, check_finite=False)[0]
+        return None if np.any(np.diag(lu) == 0.0) else np.linalg.inv(a)
+
+    def rcond_of(a: FloatArray, inv: FloatArray) -> float:
+        return float(1.0 / (np.abs(a).sum(axis=0).max() * np.abs(inv).sum(axis=0).max()))
+
+    fac[:] = 0.0
+    p, chains = block_cyclic_chains(n_b)
+    dmax, rcond, worst = 0.0, np.inf, 0
+    sc = []
+    for first, last, left, right in chains:
+        contrib = np.zeros((2 * m, 2 * m))
+        sc.append(contrib)
+        if last < first:
+            continue
+        d = blk(first, first).copy()
+        g = blk(first, left).copy()
+        r_cur = blk(left, first).copy()
+        s_ll = np.zeros((m, m))
+        for i in range(first, last + 1):
+            dmax = max(dmax, float(np.abs(d).max()))
+            inv = invert(d)
+            if inv is None:
+                return BC_ZERO_PIVOT, i, 0.0, dmax / bmax
+            rc_i = rcond_of(d, inv)
+            if not rc_i >= rcond:
+                rcond, worst = rc_i, i
+            vw = inv @ np.concatenate([blk(i, i + 1), g], axis=1)
+            fac[i, :, :m], fac[i, :, m : 3 * m], fac[i, :, 4 * m :] = inv, vw, r_cur
+            if i > first:
+                fac[i, :, 3 * m : 4 * m] = blk(i, i - 1)
+            upd = r_cur @ vw
+            if i < last:
+                low = blk(i + 1, i)
+                d = blk(i + 1, i + 1) - low @ vw[:, :m]
+                g = -low @ vw[:, m:]
+                r_cur = -upd[:, :m]
+                s_ll -= upd[:, m:]
+            else:
+                contrib[:m, m:] = -upd[:, :m]
+                contrib[:m, :m] = s_ll - upd[:, m:]
+                upd_r = blk(right, last) @ vw
+                contrib[m:, m:] = -upd_r[:, :m]
+                contrib[m:, :m] = -upd_r[:, m:]
+    s_idx = (p, n_b - 1)
+    s = np.zeros((2 * m, 2 * m))
+    for a in range(2):
+        for b in range(2):
+            i, j = s_idx[a], s_idx[b]
+            if i == j or j in ((i + 1) % n_b, (i - 1) % n_b):
+                s[a * m : (a + 1) * m, b * m : (b + 1) * m] = blk(i, j)
+    for k, (il, ir) in enumerate(((1, 0), (0, 1))):
+        for a, sa in ((0, il), (1, ir)):
+            for b, sb in ((0, il), (1, ir)):
+                s[sa * m : (sa + 1) * m, sb * m : (sb + 1) * m] += sc[k][
+                    a * m : (a + 1) * m, b * m : (b + 1) * m
+                ]
+    dmax = max(dmax, float(np.abs(s).max()))
+    inv = invert(s)
+    if inv is None:
+        # the failing column as Gauss-Jordan finds it: the first zero pivot of an LU
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", sla.LinAlgWarning)
+            col = int(np.flatnonzero(np.diag(sla.lu_factor(s, check_finite=False)[0]) == 0)[0])
+        return BC_ZERO_PIVOT, s_idx[0] if col < m else s_idx[1], 0.0, dmax / bmax
+    rc_s = rcond_of(s, inv)
+    if not rc_s >= rcond:
+        rcond, worst = rc_s, s_idx[1]
+    fac[p, :, : 2 * m] = inv[:m]
+    fac[n_b - 1, :, : 2 * m] = inv[m:]
+    for first, last, _left, right in chains:
+        if last >= first:
+            fac[right, :, 3 * m : 4 * m] = blk(right, last)
     return BC_OK, worst, rcond, dmax / bmax
 
 
 def block_cyclic_solve_py(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
     """NumPy twin of :func:`block_cyclic_solve`."""
     n_b, m = fac.shape[0], fac.shape[1]
-    last = n_b - 1
-    dinv, v, w, lo, rr = (fac[:, :, s * m : (s + 1) * m] for s in range(5))
+    dinv, vw, lo, rr = fac[:, :, :m], fac[:, :, m : 3 * m], fac[:, :, 3 * m : 4 * m], fac[:, :, 4 * m :]
+    p, chains = block_cyclic_chains(n_b)
     z = rhs.reshape(n_b, m, -1).copy()
-    for i in range(last):
-        if i > 0:
-            z[i] -= lo[i] @ z[i - 1]
-        z[i] = dinv[i] @ z[i]
-        z[last] -= rr[i] @ z[i]
-    z[last] = dinv[last] @ z[last]
-    for i in range(last - 1, -1, -1):
-        z[i] -= w[i] @ z[last]
-        if i < last - 1:
-            z[i] -= v[i] @ z[i + 1]
+    sep = np.zeros((2, 2) + z.shape[1:])  # per chain: updates of [left, right]
+    for k, (first, last, _left, right) in enumerate(chains):
+        if last < first:
+            continue
+        for i in range(first, last + 1):
+            if i > first:
+                z[i] -= lo[i] @ z[i - 1]
+            z[i] = dinv[i] @ z[i]
+            sep[k, 0] -= rr[i] @ z[i]
+        sep[k, 1] -= lo[right] @ z[last]
+    x = np.concatenate([z[p] + sep[0, 1] + sep[1, 0], z[n_b - 1] + sep[0, 0] + sep[1, 1]])
+    z[p] = fac[p, :, : 2 * m] @ x
+    z[n_b - 1] = fac[n_b - 1, :, : 2 * m] @ x
+    for first, last, left, _right in chains:
+        for i in range(last, first - 1, -1):
+            z[i] -= vw[i] @ np.concatenate([z[i + 1], z[left]])
     out[:] = z.reshape(out.shape)
 
 
