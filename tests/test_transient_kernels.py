@@ -224,3 +224,62 @@ def test_fused_jacobians_equal_the_separate_kernels() -> None:
         kern._jacobian_both(P, H, lam, 0.2, 0.1, jp2, jh2)
         np.testing.assert_array_equal(jp2, jp)
         np.testing.assert_array_equal(jh2, jh)
+
+
+def test_newton_solve_matches_twin(setup) -> None:
+    # The compiled Newton loop and its NumPy twin: same outcome, iterations and iterate.
+    sim, y, inp = setup
+    sys_ = sim.system
+    c0 = 3000.0
+    factor = sys_.factorize(y, inp, c0)
+    hist = -c0 * sys_.storage(y, inp)  # BDF1 from y: the step's own change is small
+    w = sim.weights(y)
+    controls = (3.0, 0.1, 6)
+    results = []
+    for solve in (factor.newton_solve, factor.newton_solve_py):
+        y_k = y.copy()
+        work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
+        out = solve(y_k, inp, c0, hist, w, work, controls, True, math.inf)
+        results.append((out, y_k, work[2]))
+    (a, y_a, q_a), (b, y_b, q_b) = results
+    assert a[0] == b[0] == transient.NEWTON_CONVERGED
+    assert a[1] == b[1] >= 2
+    assert a[3] == pytest.approx(b[3], rel=1e-12)
+    assert _rel(y_a, y_b) < 1e-10
+    assert _rel(q_a, sys_.storage(y_a, inp)) < 1e-12
+    # The error left (weighted, against a tightly converged iterate) is within the tolerance.
+    y_t = y.copy()
+    work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
+    tight = factor.newton_solve(y_t, inp, c0, hist, w, work, (1e-6, 1e-9, 40), True, math.inf)
+    assert tight[0] == transient.NEWTON_CONVERGED
+    tol = max(controls[0], controls[1] * a[2])
+    assert np.max(np.abs(y_a - y_t) * w) < 2 * tol
+
+
+@pytest.mark.parametrize(("h1", "h2"), [(math.nan, math.nan), (2e-4, math.nan), (2e-4, 3e-4)])
+def test_bdf2_setup_matches_twin_and_extrapolates_a_parabola(h1: float, h2: float) -> None:
+    rng = np.random.default_rng(8)
+    n, h = 7, 1e-4
+    a, b, c = rng.standard_normal((3, n))
+
+    def f(t: float) -> np.ndarray:
+        return a + b * t + c * t * t
+
+    y, y1, y2 = f(0.0), f(-h1 if h1 == h1 else 0.0), f(-h1 - h2 if h2 == h2 else 0.0)
+    q_now, q_prev = rng.standard_normal((2, n))
+    atol = np.full(n, 1e-5)
+    outs = [np.empty((3, n)) for _ in range(2)]
+    c0s = [
+        setup_(y, y1, y2, q_now, q_prev, h, h1, h2, atol, 1e-4, *out)
+        for setup_, out in zip((kern.bdf2_setup, kern.bdf2_setup_py), outs, strict=True)
+    ]
+    assert c0s[0] == pytest.approx(c0s[1], rel=1e-15)
+    np.testing.assert_allclose(outs[0], outs[1], rtol=1e-13)
+    guess = outs[0][0]
+    if h2 == h2:  # three points: a parabola is extrapolated exactly
+        np.testing.assert_allclose(guess, f(h), rtol=1e-9, atol=1e-12)
+    if h1 == h1:  # BDF2 with ρ = h/h1: c0 = (1 + 2ρ)/((1 + ρ) h)
+        rho = h / h1
+        assert c0s[0] == pytest.approx((1 + 2 * rho) / ((1 + rho) * h), rel=1e-14)
+    else:
+        assert c0s[0] == pytest.approx(1 / h, rel=1e-15)

@@ -27,7 +27,13 @@ from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
 from foilbearing.errors import InputError
 from foilbearing.film import film_model
-from foilbearing.reynolds.transient import Inputs, TransientSystem
+from foilbearing.reynolds.transient import (
+    NEWTON_CONVERGED,
+    NEWTON_REFRESH,
+    Inputs,
+    TransientSystem,
+    bdf2_setup,
+)
 from foilbearing.static import solve_equilibrium
 from foilbearing.structure import base_preload, preload_shape
 
@@ -288,8 +294,8 @@ class OrbitSimulation:
         u = sys_.c_bump * q if sys_.dynamic_bump else np.zeros(sys_.nt)
         return np.concatenate([st.P.ravel(), u, [st.eps_x, st.eps_y, 0.0, 0.0]])
 
-    def weights(self, y: FloatArray) -> FloatArray:
-        """Error weights 1/(atol + rtol |y|) of the Newton convergence test."""
+    def atol(self) -> FloatArray:
+        """Absolute tolerances of the state (P; U and ε in C; v in C/s)."""
         s, sys_ = self.settings, self.system
         atol = self._atol
         if atol is None:
@@ -298,7 +304,11 @@ class OrbitSimulation:
             atol[sys_.n : -2] = s.atol_position
             atol[-2:] = s.atol_position * max(self.profile.speeds.max(), 1.0)
             self._atol = atol
-        return 1.0 / (atol + s.rtol * np.abs(y))
+        return atol
+
+    def weights(self, y: FloatArray) -> FloatArray:
+        """Error weights 1/(atol + rtol |y|) of the Newton convergence test."""
+        return 1.0 / (self.atol() + self.settings.rtol * np.abs(y))
 
 
 @dataclass
@@ -413,6 +423,8 @@ def _run(
         out.add(st.t, st.y, sim, volts, inp)
     lu, lu_c0 = None, math.nan
     work = (np.empty(sys_.size), np.empty(sys_.size))  # Newton residual and update buffers
+    guess, hist, weights = np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size)
+    atol = sim.atol()
     counters = [0, 0, 0]  # steps, factorizations, Newton iterations
     status, message, contact = "completed", "", None
 
@@ -444,15 +456,17 @@ def _run(
                 t_new = t + h
                 volts = sim.volts(t_new)
                 inp = sim.inputs(t_new, volts)
-                if st.h_prev is None or st.y_prev is None or q_prev is None:
-                    c0, hist, guess = 1.0 / h, -q_now / h, y.copy()
-                else:
-                    rho = h / st.h_prev
-                    c0 = (1 + 2 * rho) / ((1 + rho) * h)
-                    hist = (-(1 + rho) * q_now + rho * rho / (1 + rho) * q_prev) / h
-                    guess = _predict(y, st.y_prev, st.y_prev2, h, st.h_prev, st.h_prev2)
+                y1, h1, y2, h2 = y, math.nan, y, math.nan
+                if st.h_prev is not None and st.y_prev is not None and q_prev is not None:
+                    y1, h1 = st.y_prev, st.h_prev
+                    if st.h_prev2 is not None and st.y_prev2 is not None:
+                        y2, h2 = st.y_prev2, st.h_prev2
+                c0 = bdf2_setup(
+                    y, y1, y2, q_now, q_now if q_prev is None else q_prev, h, h1, h2,
+                    atol, s.rtol, guess, hist, weights,
+                )  # fmt: skip
                 ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _newton(
-                    sim, guess, inp, c0, hist, lu, lu_c0, work
+                    sim, guess, inp, c0, hist, weights, lu, lu_c0, work
                 )
                 counters[2] += its
                 counters[1] += nf
@@ -508,52 +522,38 @@ def _run(
     return result(status, message)
 
 
-def _predict(
-    y: FloatArray,
-    y1: FloatArray,
-    y2: FloatArray | None,
-    h: float,
-    h1: float,
-    h2: float | None,
-) -> FloatArray:
-    """Extrapolate the state to t + h through the last two or three accepted states."""
-    if y2 is None or h2 is None:
-        return y + (h / h1) * (y - y1)
-    # Lagrange extrapolation on the nodes 0, −h1, −h1 − h2 (relative to the last step).
-    t0, t1, t2, x = 0.0, -h1, -h1 - h2, h
-    l0 = (x - t1) * (x - t2) / ((t0 - t1) * (t0 - t2))
-    l1 = (x - t0) * (x - t2) / ((t1 - t0) * (t1 - t2))
-    l2 = (x - t0) * (x - t1) / ((t2 - t0) * (t2 - t1))
-    return l0 * y + l1 * y1 + l2 * y2
-
-
 def _newton(
     sim: OrbitSimulation,
-    y: FloatArray,
+    y0: FloatArray,
     inp: Inputs,
     c0: float,
     hist: FloatArray,
+    weights: FloatArray,
     lu: Any,
     lu_c0: float,
     work: tuple[FloatArray, FloatArray],
 ) -> tuple[bool, FloatArray, int, Any, float, int, FloatArray, float]:
-    """Modified Newton on c0·Q(y) + hist − f(y) = 0, reusing the factor while it converges.
+    """Modified Newton on c0·Q(y) + hist − f(y) = 0 from the guess y0, reusing the factor.
 
-    A stale factor that converges too slowly is refreshed at the current
+    The iterations with one factor are compiled
+    (:meth:`~foilbearing.reynolds.transient.TransientFactor.newton_solve`). A
+    stale factor that converges too slowly is refreshed at the current
     iterate and the iteration goes on from there; a fresh factor that fails
     (or a stale one whose iterate closes the film) restarts from the guess
-    with a fresh factor, then gives up (the caller halves the step).
-    ``work`` holds two state-sized buffers (residual, update) reused across
-    iterations. Returns ``(converged, y, iterations, factor, factor_c0,
-    factorisations, Q(y), min film)``; on failure y is the guess and Q is empty.
+    with a fresh factor, then gives up (the caller halves the step). The
+    iteration stops at a fraction of the step's own change (predictor to
+    corrector), as BDF codes do: the Newton error then stays well below the
+    truncation error of the step. ``work`` holds two state-sized buffers
+    (residual, update) reused across iterations. Returns ``(converged, y,
+    iterations, factor, factor_c0, factorisations, Q(y), min film)``; on
+    failure y is the guess and Q is empty.
     """
     s, sys_ = sim.settings, sim.system
-    g_buf, dy_buf = work
-    y0 = y
+    controls = (s.newton_tol, s.newton_fraction, s.max_newton)
+    q_new = np.empty(sys_.size)
+    buffers = (work[0], work[1], q_new)
     factorizations = 0
     its = 0
-    # Both attempts start from the same guess: one set of error weights per step.
-    w = sim.weights(y0)
     for attempt in range(2):
         y = y0.copy()
         fresh = lu is None or attempt == 1 or abs(c0 - lu_c0) > 0.2 * c0
@@ -561,44 +561,21 @@ def _newton(
             lu = sys_.factorize(y, inp, c0)
             lu_c0 = c0
             factorizations += 1
-        prev = math.inf
-        # Solve to a fraction of the step's own change (predictor to corrector), as BDF codes
-        # do: the Newton error then stays well below the truncation error of the step.
         first_change = math.inf
-        k = 0  # iterations with the current factor
         while True:
-            its += 1
-            k += 1
-            # Residual, solve and y -= dy in one compiled call.
-            h_min, err, p_min = lu.newton_step(y, inp, c0, hist, w, g_buf, dy_buf)
-            if h_min <= 0.0:
-                break  # the iterate closed the film: retry with a fresh matrix or a shorter step
-            if not math.isfinite(err) or p_min <= 0.0:
-                break
-            if first_change == math.inf:
-                first_change = err
-            tol = max(s.newton_tol, s.newton_fraction * first_change)
-            # Contraction rate of this factor; the error left in y is about rate/(1−rate)·err.
-            rate = err / prev if k > 1 else math.nan
-            if err <= tol or (rate < 1.0 and rate / (1.0 - rate) * err <= tol):
-                q_new, h_new = sys_.storage_min_film(y, inp.preload)
-                if h_new > 0.0:
-                    return True, y, its, lu, lu_c0, factorizations, q_new, h_new
-            if fresh:
-                if k >= s.max_newton or rate > 0.5:
-                    break
-            elif k >= s.max_newton or rate >= 1.0:
-                break  # diverging on a stale factor: restart from the guess with a fresh one
-            elif rate ** (s.max_newton - k) / (1.0 - rate) * err > tol:
-                # A stale factor that will not converge in time: refresh it here, go on from y.
-                lu = sys_.factorize(y, inp, c0)
-                lu_c0 = c0
-                factorizations += 1
-                fresh = True
-                prev = math.inf
-                k = 0
-                continue
-            prev = err
+            outcome, k, first_change, h_new = lu.newton_solve(
+                y, inp, c0, hist, weights, buffers, controls, fresh, first_change
+            )
+            its += k
+            if outcome == NEWTON_CONVERGED:
+                return True, y, its, lu, lu_c0, factorizations, q_new, h_new
+            if outcome != NEWTON_REFRESH:
+                break  # closed film, NaN, too slow or diverging: restart fresh, or give up
+            # A stale factor that will not converge in time: refresh it here, go on from y.
+            lu = sys_.factorize(y, inp, c0)
+            lu_c0 = c0
+            factorizations += 1
+            fresh = True
         if fresh:
             break
     return False, y0, its, None, math.nan, factorizations, np.empty(0), math.nan

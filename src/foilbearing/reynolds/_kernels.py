@@ -58,6 +58,8 @@ each docstring), checked by ``tests/test_transient_kernels.py``.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit, prange
 from numpy.typing import NDArray
@@ -90,6 +92,9 @@ __all__ = [
     "transient_border",
     "transient_jacobian",
     "transient_newton_step",
+    "transient_newton_solve",
+    "bdf2_setup",
+    "bdf2_setup_py",
     "transient_residual",
     "transient_solve",
     "transient_storage",
@@ -1880,6 +1885,206 @@ def transient_newton_step(
     )  # fmt: skip
     err, p_min = newton_update(y, dy, weights, H.shape[0] * H.shape[1])
     return h_min, err, p_min
+
+
+#: Outcomes of :func:`transient_newton_solve`.
+NEWTON_CONVERGED, NEWTON_FILM_CLOSED, NEWTON_NOT_FINITE, NEWTON_TOO_SLOW = 0, 1, 2, 3
+NEWTON_DIVERGED, NEWTON_REFRESH = 4, 5
+
+
+@njit(cache=True, nogil=True)
+def transient_newton_solve(
+    y: FloatArray,
+    c0: float,
+    hist: FloatArray,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    force: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    w: FloatArray,
+    force_scale: float,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    H: FloatArray,
+    res: FloatArray,
+    g: FloatArray,
+    fac: FloatArray,
+    jh_data: FloatArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+    fac_c0: float,
+    fac_rate: float,
+    active: FloatArray,
+    work: FloatArray,
+    dy: FloatArray,
+    weights: FloatArray,
+    q_out: FloatArray,
+    newton_tol: float,
+    newton_fraction: float,
+    max_newton: int,
+    fresh: bool,
+    first_change: float,
+) -> tuple[int, int, float, float]:
+    """Modified-Newton iterations with one factor until they converge or must stop.
+
+    Repeats :func:`transient_newton_step`. Converged when the weighted update
+    ``err <= tol = max(newton_tol, newton_fraction · first update)`` or when the
+    error left, ``rate/(1 − rate)·err`` with the measured contraction rate, is
+    below tol; the storage ``Q(y)`` then goes to ``q_out``
+    (:func:`transient_storage`). A fresh factor (``fresh``) stops after
+    ``max_newton`` iterations or at a rate above 0.5; a stale one when it
+    diverges (rate >= 1, or ``max_newton``), or asks for a refresh when it
+    would not converge within ``max_newton`` iterations. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientFactor.newton_solve_py`.
+
+    Returns
+    -------
+    outcome : int
+        ``NEWTON_CONVERGED``, ``NEWTON_FILM_CLOSED`` (y not updated),
+        ``NEWTON_NOT_FINITE`` (NaN update or a pressure <= 0),
+        ``NEWTON_TOO_SLOW`` (fresh factor), ``NEWTON_DIVERGED`` or
+        ``NEWTON_REFRESH`` (stale factor; y is the last iterate).
+    iterations : int
+        Iterations done.
+    first_change : float
+        The first update of the step (carried over a refresh).
+    h_min : float
+        Minimum film of the converged y (NaN otherwise).
+    """
+    prev = np.inf
+    k = 0
+    while True:
+        k += 1
+        h_min, err, p_min = transient_newton_step(
+            y, c0, hist, lam, rate, preload, force, cos_t, sin_t, c_act, c_bump, w,
+            force_scale, denom, d_theta, d_z, H, res, g, fac, jh_data, jh_rows, jh_indptr,
+            a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, work, dy, weights,
+        )  # fmt: skip
+        if h_min <= 0.0:
+            return NEWTON_FILM_CLOSED, k, first_change, np.nan
+        if not np.isfinite(err) or p_min <= 0.0:
+            return NEWTON_NOT_FINITE, k, first_change, np.nan
+        if first_change == np.inf:
+            first_change = err
+        tol = max(newton_tol, newton_fraction * first_change)
+        # Contraction rate of this factor; the error left in y is about rate/(1−rate)·err.
+        conv = err / prev if k > 1 else np.nan
+        if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
+            h_new = transient_storage(y, preload, cos_t, sin_t, c_act, H.shape[1], q_out)
+            if h_new > 0.0:
+                return NEWTON_CONVERGED, k, first_change, h_new
+        if fresh:
+            if k >= max_newton or conv > 0.5:
+                return NEWTON_TOO_SLOW, k, first_change, np.nan
+        elif k >= max_newton or conv >= 1.0:
+            return NEWTON_DIVERGED, k, first_change, np.nan
+        elif conv ** (max_newton - k) / (1.0 - conv) * err > tol:
+            return NEWTON_REFRESH, k, first_change, np.nan
+        prev = err
+
+
+@njit(cache=True, nogil=True)
+def bdf2_setup(
+    y: FloatArray,
+    y1: FloatArray,
+    y2: FloatArray,
+    q_now: FloatArray,
+    q_prev: FloatArray,
+    h: float,
+    h1: float,
+    h2: float,
+    atol: FloatArray,
+    rtol: float,
+    guess: FloatArray,
+    hist: FloatArray,
+    weights: FloatArray,
+) -> float:
+    """Variable-step BDF2 coefficient, history, predictor and error weights of one step.
+
+    With the last step h1 (NaN: none, BDF1 from y) and the one before, h2
+    (NaN: none, linear extrapolation): ``c0 = (1 + 2ρ)/((1 + ρ) h)``,
+    ``hist = (−(1 + ρ) Q_n + ρ²/(1 + ρ) Q_{n−1})/h`` (ρ = h/h1), the predictor
+    extrapolates through y (t_n), y1 (t_n − h1) and y2 (t_n − h1 − h2), and
+    ``weights = 1/(atol + rtol |guess|)``. Twin: :func:`bdf2_setup_py`.
+
+    Returns
+    -------
+    float
+        c0, 1/s.
+    """
+    n = y.shape[0]
+    if h1 != h1:
+        c0 = 1.0 / h
+        for k in range(n):
+            hist[k] = -q_now[k] / h
+            guess[k] = y[k]
+    else:
+        rho = h / h1
+        c0 = (1.0 + 2.0 * rho) / ((1.0 + rho) * h)
+        a = -(1.0 + rho) / h
+        b = rho * rho / (1.0 + rho) / h
+        for k in range(n):
+            hist[k] = a * q_now[k] + b * q_prev[k]
+        if h2 != h2:
+            for k in range(n):
+                guess[k] = y[k] + rho * (y[k] - y1[k])
+        else:
+            # Lagrange extrapolation on the nodes 0, −h1, −h1 − h2 to +h
+            t1 = -h1
+            t2 = -h1 - h2
+            l0 = (h - t1) * (h - t2) / (t1 * t2)
+            l1 = h * (h - t2) / (t1 * (t1 - t2))
+            l2 = h * (h - t1) / (t2 * (t2 - t1))
+            for k in range(n):
+                guess[k] = l0 * y[k] + l1 * y1[k] + l2 * y2[k]
+    for k in range(n):
+        weights[k] = 1.0 / (atol[k] + rtol * abs(guess[k]))
+    return c0
+
+
+def bdf2_setup_py(
+    y: FloatArray,
+    y1: FloatArray,
+    y2: FloatArray,
+    q_now: FloatArray,
+    q_prev: FloatArray,
+    h: float,
+    h1: float,
+    h2: float,
+    atol: FloatArray,
+    rtol: float,
+    guess: FloatArray,
+    hist: FloatArray,
+    weights: FloatArray,
+) -> float:
+    """NumPy twin of :func:`bdf2_setup`."""
+    if math.isnan(h1):
+        c0 = 1.0 / h
+        hist[:] = -q_now / h
+        guess[:] = y
+    else:
+        rho = h / h1
+        c0 = (1 + 2 * rho) / ((1 + rho) * h)
+        hist[:] = (-(1 + rho) * q_now + rho * rho / (1 + rho) * q_prev) / h
+        if math.isnan(h2):
+            guess[:] = y + rho * (y - y1)
+        else:
+            t1, t2 = -h1, -h1 - h2
+            l0 = (h - t1) * (h - t2) / (t1 * t2)
+            l1 = h * (h - t2) / (t1 * (t1 - t2))
+            l2 = h * (h - t1) / (t2 * (t2 - t1))
+            guess[:] = l0 * y + l1 * y1 + l2 * y2
+    weights[:] = 1.0 / (atol + rtol * np.abs(guess))
+    return c0
 
 
 @njit(cache=True)

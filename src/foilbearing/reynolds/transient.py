@@ -37,7 +37,19 @@ from foilbearing.reynolds.blocksolve import BlockCyclicLU
 from foilbearing.reynolds.grid import Grid
 from foilbearing.reynolds.steady import Workspace
 
-__all__ = ["Inputs", "TransientFactor", "TransientSystem"]
+__all__ = [
+    "NEWTON_CONVERGED",
+    "NEWTON_REFRESH",
+    "Inputs",
+    "TransientFactor",
+    "TransientSystem",
+    "bdf2_setup",
+]
+
+#: Newton outcomes of :meth:`TransientFactor.newton_solve` (see the kernel).
+NEWTON_CONVERGED, NEWTON_REFRESH = kern.NEWTON_CONVERGED, kern.NEWTON_REFRESH
+#: Variable-step BDF2 coefficient, history, predictor and weights (compiled).
+bdf2_setup = kern.bdf2_setup
 
 FloatArray = NDArray[np.float64]
 
@@ -563,6 +575,112 @@ class TransientFactor:
         )
         h_min, err, p_min = kern.transient_newton_step(*args)
         return float(h_min), float(err), float(p_min)
+
+    def newton_solve(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        weights: FloatArray,
+        work: tuple[FloatArray, FloatArray, FloatArray],
+        controls: tuple[float, float, int],
+        fresh: bool,
+        first_change: float,
+    ) -> tuple[int, int, float, float]:
+        """Modified-Newton iterations with this factor until they converge or must stop.
+
+        Compiled (:func:`~foilbearing.reynolds._kernels.transient_newton_solve`, which
+        documents the outcomes) on the block cyclic factors; :meth:`newton_solve_py`
+        (its twin) with the SuperLU fallback.
+
+        Parameters
+        ----------
+        y : ndarray, shape (size,)
+            Iterate, updated in place.
+        inputs, c0, hist, weights
+            As in :meth:`newton_step`.
+        work : tuple of three ndarrays, shape (size,)
+            Buffers for the residual, the update and Q(y) of the converged y.
+        controls : tuple
+            ``(newton_tol, newton_fraction, max_newton)`` (see ``OrbitSettings``).
+        fresh : bool
+            Whether the factor was taken at this step.
+        first_change : float
+            The step's first update so far (``inf`` at the start of a step).
+
+        Returns
+        -------
+        tuple
+            ``(outcome, iterations, first_change, h_min)``.
+        """
+        if self._fac is None:
+            return self.newton_solve_py(
+                y, inputs, c0, hist, weights, work, controls, fresh, first_change
+            )
+        s = self.sys
+        g, dy, q_out = work
+        args: tuple[Any, ...] = (
+            y,
+            c0,
+            hist,
+            inputs.lam,
+            s.rate(inputs),
+            inputs.preload,
+            inputs.force,
+            *self._args_sys,
+            g,
+            *self._args_fac,
+            dy,
+            weights,
+            q_out,
+            *controls,
+            fresh,
+            first_change,
+        )
+        outcome, its, first, h_min = kern.transient_newton_solve(*args)
+        return int(outcome), int(its), float(first), float(h_min)
+
+    def newton_solve_py(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        weights: FloatArray,
+        work: tuple[FloatArray, FloatArray, FloatArray],
+        controls: tuple[float, float, int],
+        fresh: bool,
+        first_change: float,
+    ) -> tuple[int, int, float, float]:
+        """NumPy twin of :meth:`newton_solve` (:meth:`newton_step_py` in a loop)."""
+        g, dy, q_out = work
+        newton_tol, newton_fraction, max_newton = controls
+        prev = math.inf
+        k = 0
+        while True:
+            k += 1
+            h_min, err, p_min = self.newton_step_py(y, inputs, c0, hist, weights, g, dy)
+            if h_min <= 0.0:
+                return kern.NEWTON_FILM_CLOSED, k, first_change, math.nan
+            if not math.isfinite(err) or p_min <= 0.0:
+                return kern.NEWTON_NOT_FINITE, k, first_change, math.nan
+            if first_change == math.inf:
+                first_change = err
+            tol = max(newton_tol, newton_fraction * first_change)
+            conv = err / prev if k > 1 else math.nan
+            if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
+                _q, h_new = self.sys.storage_min_film(y, inputs.preload, q_out)
+                if h_new > 0.0:
+                    return kern.NEWTON_CONVERGED, k, first_change, h_new
+            if fresh:
+                if k >= max_newton or conv > 0.5:
+                    return kern.NEWTON_TOO_SLOW, k, first_change, math.nan
+            elif k >= max_newton or conv >= 1.0:
+                return kern.NEWTON_DIVERGED, k, first_change, math.nan
+            elif conv ** (max_newton - k) / (1.0 - conv) * err > tol:
+                return kern.NEWTON_REFRESH, k, first_change, math.nan
+            prev = err
 
     def newton_step_py(
         self,
