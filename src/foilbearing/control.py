@@ -8,6 +8,7 @@ never the future (no look-ahead).
 
 from __future__ import annotations
 
+import bisect
 import math
 from collections import deque
 from dataclasses import dataclass, field
@@ -57,6 +58,8 @@ class SpeedProfile:
         # Angle at each breakpoint (trapezoid is exact for a piecewise-linear ω).
         phase = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])
         object.__setattr__(self, "_phase", phase)
+        # Python floats for state(): called once per time step, it avoids NumPy's per-call cost.
+        object.__setattr__(self, "_knots", (t.tolist(), w.tolist(), phase.tolist()))
 
     @property
     def duration(self) -> float:
@@ -66,6 +69,22 @@ class SpeedProfile:
     def _segment(self, t: float) -> int:
         k = int(np.searchsorted(self.times, t, side="right")) - 1
         return min(max(k, 0), self.times.size - 2)
+
+    def state(self, t: float) -> tuple[float, float, float]:
+        """(ω, dω/dt, φ) at t: rad/s, rad/s², rad (the values of :meth:`omega`,
+        :meth:`omega_dot` and :meth:`phase`, from one search of the breakpoints)."""
+        times, speeds, phases = self._knots  # type: ignore[attr-defined]
+        k = min(max(bisect.bisect_right(times, t) - 1, 0), len(times) - 2)
+        t0, w0 = times[k], speeds[k]
+        a = (speeds[k + 1] - w0) / (times[k + 1] - t0)
+        dt = t - t0
+        if t <= times[0]:
+            w = speeds[0]
+        elif t >= times[-1]:
+            w = speeds[-1]
+        else:
+            w = w0 + a * dt
+        return w, a, phases[k] + w0 * dt + 0.5 * a * dt * dt
 
     def omega(self, t: float) -> float:
         """ω(t), rad/s."""

@@ -232,6 +232,7 @@ class OrbitSimulation:
             self.lobes = np.zeros((0, g.n_theta))
         self.static_preload = self.model.preload if act is None else None
         self._preload_cache: tuple[FloatArray, FloatArray] | None = None
+        self._lambda_per_speed = case.bearing_number(1.0)  # Λ ∝ ω
         self._atol: FloatArray | None = None
 
     # ------------------------------------------------------------------ inputs
@@ -272,13 +273,15 @@ class OrbitSimulation:
 
     def inputs(self, t: float, volts: FloatArray, imbalance: bool = True) -> Inputs:
         """Inputs of the system at time t."""
-        w, wd, phi = self.profile.omega(t), self.profile.omega_dot(t), self.profile.phase(t)
+        w, wd, phi = self.profile.state(t)
         case = self.case
         c, m = case.bearing.clearance, case.rotor.mass
         u = case.rotor.imbalance_radius if imbalance else 0.0
-        fx = case.operation.load / m + u * (w * w * math.cos(phi) + wd * math.sin(phi))
-        fy = u * (w * w * math.sin(phi) - wd * math.cos(phi))
-        return Inputs(case.bearing_number(w), w, self.preload(volts), np.array([fx, fy]) / c)
+        cos_phi, sin_phi = math.cos(phi), math.sin(phi)
+        fx = case.operation.load / m + u * (w * w * cos_phi + wd * sin_phi)
+        fy = u * (w * w * sin_phi - wd * cos_phi)
+        force = np.array([fx / c, fy / c])
+        return Inputs(self._lambda_per_speed * w, w, self.preload(volts), force)
 
     # ------------------------------------------------------------ start state
     def initial_state(self) -> FloatArray:
@@ -419,8 +422,7 @@ def _run(
         if (st.y_prev is not None and st.h_prev is not None)
         else None
     )
-    if not out.rows:
-        out.add(st.t, st.y, sim, volts, inp)
+    out.add(st.t, st.y, sim, volts, inp)
     lu, lu_c0 = None, math.nan
     work = (np.empty(sys_.size), np.empty(sys_.size))  # Newton residual and update buffers
     guess, hist, weights = np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size)
@@ -450,7 +452,7 @@ def _run(
     try:
         while st.t < t_end - 1e-12:
             t, y = st.t, st.y
-            omega = sim.profile.omega(t)
+            omega = sim.profile.state(t)[0]
             h = min(s.max_step, 2 * math.pi / (omega * s.steps_per_rev), t_end - t)
             while True:
                 t_new = t + h
@@ -480,7 +482,7 @@ def _run(
             st.y_prev, st.h_prev = y, h
             st.y, st.t = y_new, t_new
             q_prev, q_now = q_now, q_new
-            out.add(t_new, y_new, sim, volts, inp, previous=(t, y), min_film=h_min)
+            out.add(t_new, y_new, sim, volts, inp, min_film=h_min)
             if isinstance(sim.voltage, SubsyncController):
                 for ts, ex in out.new_samples():
                     sim.voltage.observe(ts, ex, sim.profile.phase(ts))
@@ -582,15 +584,25 @@ def _newton(
 
 
 class _Samples:
-    """Uniformly sampled output, by linear interpolation between accepted steps."""
+    """Uniformly sampled output, by linear interpolation between accepted steps.
+
+    The accepted states are recorded (time, journal position, minimum film,
+    voltages); the uniform samples are interpolated from them at once when the
+    result is made (vectorised), and one step at a time only for a controller
+    that watches the signal as it comes (:meth:`new_samples`). A sample takes
+    the minimum film and voltages of the first step at or after it.
+    """
 
     def __init__(self, dt: float) -> None:
         self.dt = dt
-        self.next = 0.0
-        self.rows: list[tuple[float, ...]] = []
-        self.lazy_from = 0  # rows from here on have their speed and phase still to fill
+        self.start = 0.0  # time of the first sample to come from the recorded steps
+        self.next = 0.0  # next sample for new_samples()
+        self.done: tuple[FloatArray, ...] | None = None  # samples of the run resumed
+        self.t: list[float] = []
+        self.ex: list[float] = []
+        self.ey: list[float] = []
+        self.h_min: list[float] = []
         self.volts: list[FloatArray] = []
-        self._fresh: list[tuple[float, float]] = []
 
     def add(
         self,
@@ -599,62 +611,73 @@ class _Samples:
         sim: OrbitSimulation,
         volts: FloatArray,
         inp: Inputs,
-        previous: tuple[float, FloatArray] | None = None,
         min_film: float | None = None,
     ) -> None:
-        """Samples up to t (interpolated from ``previous``); ``min_film`` (h/C of y) if known."""
+        """Record the accepted state y at t; ``min_film`` (h/C of y) if known."""
         sys_ = sim.system
         c = sim.case.bearing.clearance
         k = sys_.n + sys_.nt
         if min_film is None:
             min_film = sys_.min_film(y, inp.preload)
-        h_min = min_film * c
-        while self.next <= t + 1e-12:
-            ts = self.next
-            if previous is None or t == previous[0]:
-                ex, ey = y[k], y[k + 1]
-            else:
-                t0, y0 = previous
-                w = (ts - t0) / (t - t0)
-                ex, ey = (1 - w) * y0[k] + w * y[k], (1 - w) * y0[k + 1] + w * y[k + 1]
-            # Speed and phase are filled in by arrays() (vectorised, same values).
-            self.rows.append((ts, ex * c, ey * c, math.nan, math.nan, h_min))
-            self.volts.append(volts)
-            self._fresh.append((ts, ex * c))
-            self.next = ts + self.dt
+        self.t.append(t)
+        self.ex.append(float(y[k]) * c)
+        self.ey.append(float(y[k + 1]) * c)
+        self.h_min.append(min_film * c)
+        self.volts.append(volts)
 
     @classmethod
     def from_result(cls, res: OrbitResult) -> _Samples:
         """Continue the samples of a stopped run."""
         out = cls(1.0 / res.settings.sample_rate)
-        for k in range(res.time.size):
-            out.rows.append(
-                (
-                    float(res.time[k]),
-                    float(res.e_x[k]),
-                    float(res.e_y[k]),
-                    float(res.speed[k]),
-                    float(res.phase[k]),
-                    float(res.min_film[k]),
-                )
-            )
-            out.volts.append(np.asarray(res.voltages[k], float))
-        out.next = float(res.time[-1]) + out.dt if res.time.size else 0.0
-        out.lazy_from = len(out.rows)
+        out.done = (
+            res.time,
+            res.e_x,
+            res.e_y,
+            res.speed,
+            res.phase,
+            res.min_film,
+            np.asarray(res.voltages, float),
+        )
+        out.start = float(res.time[-1]) + out.dt if res.time.size else 0.0
+        out.next = out.start
         return out
 
     def new_samples(self) -> list[tuple[float, float]]:
-        fresh, self._fresh = self._fresh, []
+        """(time, e_X) of the samples between the last two recorded steps (for a controller)."""
+        fresh: list[tuple[float, float]] = []
+        t1, x1 = self.t[-1], self.ex[-1]
+        t0, x0 = (self.t[-2], self.ex[-2]) if len(self.t) > 1 else (t1, x1)
+        while self.next <= t1 + 1e-12:
+            ts = self.next
+            w = (ts - t0) / (t1 - t0) if t1 > t0 else 1.0
+            fresh.append((ts, (1 - w) * x0 + w * x1))
+            self.next = ts + self.dt
         return fresh
 
     def arrays(
         self, n_act: int, profile: SpeedProfile
     ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
-        a = np.array(self.rows, dtype=float).reshape(-1, 6)
-        k = self.lazy_from
-        a[k:, 3], a[k:, 4] = _speed_phase(profile, a[k:, 0])
-        v = np.array(self.volts, dtype=float).reshape(-1, n_act)
-        return a[:, 0], a[:, 1], a[:, 2], a[:, 3], a[:, 4], a[:, 5], v
+        t = np.asarray(self.t, dtype=float)
+        if t.size and t[-1] + 1e-12 >= self.start:
+            count = int(math.floor((t[-1] + 1e-12 - self.start) / self.dt)) + 1
+        else:
+            count = 0
+        ts = self.start + self.dt * np.arange(count)
+        ex = np.interp(ts, t, np.asarray(self.ex)) if count else np.empty(0)
+        ey = np.interp(ts, t, np.asarray(self.ey)) if count else np.empty(0)
+        at = np.searchsorted(t, ts - 1e-12, side="left")
+        h_min = np.asarray(self.h_min, dtype=float)[at] if count else np.empty(0)
+        volts = (
+            np.asarray(self.volts, dtype=float).reshape(len(self.volts), n_act)[at]
+            if n_act
+            else np.zeros((count, 0))
+        )
+        speed, phase = _speed_phase(profile, ts)
+        new = (ts, ex, ey, speed, phase, h_min, volts)
+        if self.done is None:
+            return new
+        cols = [np.concatenate([old, fresh]) for old, fresh in zip(self.done, new, strict=True)]
+        return cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], cols[6]
 
 
 def _speed_phase(profile: SpeedProfile, t: FloatArray) -> tuple[FloatArray, FloatArray]:
