@@ -743,7 +743,7 @@ def block_cyclic_alloc(n_theta: int, n_z: int) -> FloatArray:
     """
     if n_theta < 3 or n_z < 1:
         raise ValueError(f"block cyclic LU needs n_theta >= 3 and n_z >= 1, got {n_theta}, {n_z}")
-    return np.zeros((n_theta, n_z, 5 * n_z))
+    return np.empty((n_theta, n_z, 5 * n_z))  # every entry is written by the factorisation
 
 
 def block_cyclic_chains(n_theta: int) -> tuple[int, tuple[tuple[int, int, int, int], ...]]:
