@@ -41,10 +41,6 @@ def test_kernel_matches_twin_and_spsolve(n_theta: int, n_z: int) -> None:
     assert res[1] == res_py[1]
     np.testing.assert_allclose(res[2:], res_py[2:], rtol=1e-12)
     assert _rel(fac, fac_py) < 1e-12
-    # The chains on two threads: the very same factors.
-    fac_par = kern.block_cyclic_alloc(n_theta, n_z)
-    assert kern.block_cyclic_factor_parallel(data, n_theta, n_z, fac_par) == res
-    np.testing.assert_array_equal(fac_par, fac)
     n = n_theta * n_z
     rng = np.random.default_rng(1)
     for ncol in (1, 2):

@@ -241,7 +241,7 @@ def test_newton_solve_matches_twin(setup) -> None:
         work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
         out = solve(y_k, inp, c0, hist, w, work, controls, True, math.inf)
         results.append((out, y_k, work[2]))
-    (a, y_a, q_a), (b, y_b, q_b) = results
+    (a, y_a, q_a), (b, y_b, _q_b) = results
     assert a[0] == b[0] == transient.NEWTON_CONVERGED
     assert a[1] == b[1] >= 2
     assert a[3] == pytest.approx(b[3], rel=1e-12)

@@ -666,10 +666,10 @@ class _Samples:
     ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
         t = np.asarray(self.t, dtype=float)
         if t.size and t[-1] + 1e-12 >= self.start:
-            count = int(math.floor((t[-1] + 1e-12 - self.start) / self.dt)) + 1
+            count = math.floor((t[-1] + 1e-12 - self.start) / self.dt) + 1
         else:
             count = 0
-        ts = self.start + self.dt * np.arange(count)
+        ts: FloatArray = self.start + self.dt * np.arange(count, dtype=np.float64)
         ex = np.interp(ts, t, np.asarray(self.ex)) if count else np.empty(0)
         ey = np.interp(ts, t, np.asarray(self.ey)) if count else np.empty(0)
         at = np.searchsorted(t, ts - 1e-12, side="left")

@@ -61,13 +61,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 from numpy.typing import NDArray
 
 __all__ = [
     "BC_NOT_FINITE",
     "BC_OK",
     "BC_ZERO_PIVOT",
+    "bdf2_setup",
+    "bdf2_setup_py",
     "bernoulli",
     "bernoulli_deriv",
     "bernoulli_deriv_py",
@@ -91,10 +93,8 @@ __all__ = [
     "stencil_pattern",
     "transient_border",
     "transient_jacobian",
-    "transient_newton_step",
     "transient_newton_solve",
-    "bdf2_setup",
-    "bdf2_setup_py",
+    "transient_newton_step",
     "transient_residual",
     "transient_solve",
     "transient_storage",
@@ -705,9 +705,11 @@ def coupled_jacobian_py(
 # periodic in θ with dense n_z × n_z blocks: block row i couples to the rows
 # i−1 and i+1 (indices mod N, N = n_theta). Two separator rows, p = (N−1)//2
 # and N−1, cut the ring into two chains, A = 0 … p−1 and B = p+1 … N−2, that
-# are eliminated independently (on two threads when numba has a fast
-# threading layer: :func:`block_cyclic_factor_parallel`); the separators are
-# then solved from their 2 n_z × 2 n_z Schur complement S.
+# are eliminated independently; the separators are then solved from their
+# 2 n_z × 2 n_z Schur complement S. (The chains could go to two threads: with
+# numba's OpenMP layer that halves the factorisation in isolation, but it
+# gained nothing measurable inside the orbit on a 2-core machine, and GNU
+# OpenMP is not fork-safe for the study's process pool, so it is not done.)
 #
 # In a chain with first row f, last row e, left separator l (coupled to f)
 # and right separator r (coupled to e; r = e + 1), block Gaussian elimination
@@ -1110,9 +1112,7 @@ def block_cyclic_factor(
     none between blocks, so it is meant for block-diagonally dominant
     matrices such as the BDF Newton matrix ``c0·diag(H) + …``. Cost
     ``O(n_theta n_z³)``. Replaces ``scipy.sparse.linalg.splu`` of the CSR
-    matrix; twin :func:`block_cyclic_factor_py`;
-    :func:`block_cyclic_factor_parallel` gives the same factors with the
-    chains on two threads.
+    matrix; twin :func:`block_cyclic_factor_py`.
 
     Parameters
     ----------
@@ -1153,35 +1153,7 @@ def block_cyclic_factor(
     sc = np.empty((2, 2 * n_z, 2 * n_z))
     stats = np.empty((2, 3))
     status = np.empty(2, dtype=np.int64)
-    for k in range(2):
-        status[k] = _chain_factor(
-            d4, fac, firsts[k], lasts[k], lefts[k], rights[k], sc[k], stats[k]
-        )
-    return _separator_factor(d4, fac, sc, stats, status, bmax)
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def block_cyclic_factor_parallel(
-    data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
-) -> tuple[int, int, float, float]:
-    """:func:`block_cyclic_factor` with its two chains on two threads (identical results).
-
-    Only worth it with a fast numba threading layer (OpenMP or TBB: a fork-join
-    of ~2 µs); :class:`~foilbearing.reynolds.blocksolve.BlockCyclicLU` picks it then.
-    """
-    bmax = _check_data(data)
-    if bmax != bmax:
-        return BC_NOT_FINITE, -1, 0.0, np.inf
-    d4 = data.reshape((n_theta, n_z, 3, n_z))
-    p = (n_theta - 1) // 2
-    firsts = (0, p + 1)
-    lasts = (p - 1, n_theta - 2)
-    lefts = (n_theta - 1, p)
-    rights = (p, n_theta - 1)
-    sc = np.empty((2, 2 * n_z, 2 * n_z))
-    stats = np.empty((2, 3))
-    status = np.empty(2, dtype=np.int64)
-    for k in prange(2):
+    for k in range(2):  # independent: the place for two threads (not worth it on 2 cores)
         status[k] = _chain_factor(
             d4, fac, firsts[k], lasts[k], lefts[k], rights[k], sc[k], stats[k]
         )
@@ -1281,7 +1253,7 @@ def block_cyclic_factor_py(
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", sla.LinAlgWarning)
             lu = sla.lu_factor(a, check_finite=False)[0]
-        return None if np.any(np.diag(lu) == 0.0) else np.linalg.inv(a)
+        return None if np.any(np.diag(lu) == 0.0) else np.asarray(np.linalg.inv(a), np.float64)
 
     def rcond_of(a: FloatArray, inv: FloatArray) -> float:
         return float(1.0 / (np.abs(a).sum(axis=0).max() * np.abs(inv).sum(axis=0).max()))
@@ -1359,10 +1331,15 @@ def block_cyclic_factor_py(
 def block_cyclic_solve_py(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
     """NumPy twin of :func:`block_cyclic_solve`."""
     n_b, m = fac.shape[0], fac.shape[1]
-    dinv, vw, lo, rr = fac[:, :, :m], fac[:, :, m : 3 * m], fac[:, :, 3 * m : 4 * m], fac[:, :, 4 * m :]
+    dinv, vw, lo, rr = (
+        fac[:, :, :m],
+        fac[:, :, m : 3 * m],
+        fac[:, :, 3 * m : 4 * m],
+        fac[:, :, 4 * m :],
+    )
     p, chains = block_cyclic_chains(n_b)
     z = rhs.reshape(n_b, m, -1).copy()
-    sep = np.zeros((2, 2) + z.shape[1:])  # per chain: updates of [left, right]
+    sep = np.zeros((2, 2, *z.shape[1:]))  # per chain: updates of [left, right]
     for k, (first, last, _left, right) in enumerate(chains):
         if last < first:
             continue

@@ -16,42 +16,19 @@ data raise :class:`FloatingPointError`, on which a caller falls back to
 ``splu``.
 
 The ring of θ-blocks is cut by two separator rows into two chains that are
-eliminated independently: on two threads when numba has a fast threading
-layer (OpenMP or TBB, a fork-join of about 2 µs) and more than one thread,
-else one after the other. Both give the same factors to the last bit.
+eliminated independently, then the separators (see the kernels' comment).
 """
 
 from __future__ import annotations
 
-import importlib
-from functools import cache
-
-import numba
 import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
 
-__all__ = ["BlockCyclicLU", "parallel_factorisation"]
+__all__ = ["BlockCyclicLU"]
 
 FloatArray = NDArray[np.float64]
-
-
-@cache
-def _fast_threading_layer() -> bool:
-    """Whether numba can use OpenMP or TBB (its fallback, workqueue, costs ~100 µs a fork-join)."""
-    for pool in ("omppool", "tbbpool"):
-        try:
-            importlib.import_module(f"numba.np.ufunc.{pool}")
-        except (ImportError, OSError):
-            continue
-        return True
-    return False
-
-
-def parallel_factorisation() -> bool:
-    """Whether :class:`BlockCyclicLU` factorises its two chains on two threads."""
-    return _fast_threading_layer() and numba.get_num_threads() > 1
 
 
 class BlockCyclicLU:
@@ -110,12 +87,7 @@ class BlockCyclicLU:
         self.n_theta, self.n_z = n_theta, n_z
         self.shape = (n, n)
         self._fac = kern.block_cyclic_alloc(n_theta, n_z)
-        factor = (
-            kern.block_cyclic_factor_parallel
-            if parallel_factorisation()
-            else kern.block_cyclic_factor
-        )
-        status, block, rcond, growth = factor(data, n_theta, n_z, self._fac)
+        status, block, rcond, growth = kern.block_cyclic_factor(data, n_theta, n_z, self._fac)
         self.rcond, self.growth = float(rcond), float(growth)
         p = (n_theta - 1) // 2
         where = f"θ-block {block} of {n_theta} ({p} and {n_theta - 1} are the separators)"
