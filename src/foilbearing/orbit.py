@@ -71,10 +71,10 @@ class OrbitSettings:
     The Newton defaults (``newton_tol = 0.3``, ``newton_fraction = 0.001``,
     ``max_newton = 10``) converge the iteration far below the step's truncation
     error, because a partly converged step is biased towards its predictor (an
-    extrapolation, which feeds energy into a whirl): on the default 0 V
-    speed-up (8.5 g·mm) the divergence speed is 24.21 krpm with these, 24.24
-    with ten times tighter ones, 24.40 at 24 steps per revolution, but 23.67
-    with ``(1, 0.01)`` (the defaults before 2026-11-22) and 22.6-22.9 with
+    extrapolation, which feeds energy into a whirl). On the default 0 V speed-up
+    (8.5 g·mm) the divergence speed is 24.21 krpm with these, 24.24 and 24.37 with
+    ten and a hundred times tighter ones, 24.40 at 24 steps per revolution; but
+    23.67 with ``(1, 0.01)`` (the defaults before 2026-11-22) and 22.6-22.9 with
     ``(1-3, 0.1-0.2)``
     (``tests/test_orbit.py::test_newton_tolerance_does_not_move_the_divergence``).
     The orbit error left at constant speed is below 1 % of the time-step error
