@@ -79,8 +79,8 @@ def test_newton_error_is_well_below_the_time_step_error() -> None:
 
 def test_newton_tolerance_does_not_move_the_divergence() -> None:
     # The paper's 0 V speed-up on the default case: the divergence speed must not depend on
-    # the Newton tolerance (a partly converged step leans towards its predictor and feeds
-    # the whirl: with newton_tol = 1 and newton_fraction = 0.01 it came 2.4 % early).
+    # the Newton tolerance (what a partly converged iteration leaves seeds the whirl: with
+    # newton_tol = 1 and newton_fraction = 0.01 it came 2.4 % early).
     case = default_case().with_voltages(0.0)
     prof = linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0)
     default = simulate(case, prof)

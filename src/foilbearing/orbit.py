@@ -70,8 +70,9 @@ class OrbitSettings:
 
     The Newton defaults (``newton_tol = 0.3``, ``newton_fraction = 0.001``,
     ``max_newton = 10``) converge the iteration far below the step's truncation
-    error, because a partly converged step is biased towards its predictor (an
-    extrapolation, which feeds energy into a whirl). On the default 0 V speed-up
+    error: what a partly converged iteration leaves acts as a small forcing that
+    seeds a weakly growing whirl (correcting the last update for the measured
+    contraction, Aitken-style, does not remove it). On the default 0 V speed-up
     (8.5 g·mm) the divergence speed is 24.21 krpm with these, 24.24 and 24.37 with
     ten and a hundred times tighter ones, 24.40 at 24 steps per revolution; but
     23.67 with ``(1, 0.01)`` (the defaults before 2026-11-22) and 22.6-22.9 with
