@@ -74,9 +74,9 @@ class OrbitSettings:
     seeds a weakly growing whirl (correcting the last update for the measured
     contraction, Aitken-style, does not remove it). On the default 0 V speed-up
     (8.5 g·mm) the divergence speed is 24.21 krpm with these, 24.24 and 24.37 with
-    ten and a hundred times tighter ones, 24.40 at 24 steps per revolution; but
-    23.67 with ``(1, 0.01)`` (the defaults before 2026-11-22) and 22.6-22.9 with
-    ``(1-3, 0.1-0.2)``
+    ten and a hundred times tighter ones, 24.40 at 24 steps per revolution; looser
+    ones give 22.6-23.7 (``newton_tol`` 0.5 to 3; the defaults before 2026-11-22,
+    ``(1, 0.01)``, gave 23.67)
     (``tests/test_orbit.py::test_newton_tolerance_does_not_move_the_divergence``).
     The orbit error left at constant speed is below 1 % of the time-step error
     (``test_newton_error_is_well_below_the_time_step_error``).
