@@ -1,0 +1,153 @@
+"""Compiled kernels of the finite-volume Reynolds equation (the only numba code).
+
+Discretisation of the steady, dimensionless, isothermal Reynolds equation
+(Eq. (4) of the paper, MODEL.md §4, written in conservative flux form)::
+
+    ∂q_θ/∂θ + ∂q_Z/∂Z = 0,
+    q_θ = P H³ ∂P/∂θ − Λ P H,      q_Z = P H³ ∂P/∂Z,
+
+on the cell-centred grid of :class:`foilbearing.reynolds.grid.Grid` (fields of
+shape ``(n_theta, n_z)``, unknown ``k = i*n_z + j``).
+
+Scaling of the residual
+-----------------------
+``R[i, j]`` is the left side integrated over cell ``(i, j)``, i.e. the net
+outflow of the flux ``q`` through its four faces::
+
+    R[i, j] = ΔZ (q_θ[i+1/2, j] − q_θ[i−1/2, j]) + Δθ (q_Z[i, j+1/2] − q_Z[i, j−1/2])
+
+so ``R/(Δθ ΔZ)`` is the cell average of the left side of Eq. (4).
+
+Face fluxes
+-----------
+θ-face ``i+1/2`` between cells ``a = (i, j)`` and ``b = (i+1, j)`` (periodic):
+``D = P_f H_f³``, ``V = Λ H_f``, with arithmetic face means ``P_f``, ``H_f``;
+grid Péclet number ``Pe = V Δθ / D = Λ Δθ / (P_f H_f²)``; exponentially fitted
+(Scharfetter–Gummel / Il'in–Allen–Southwell) flux::
+
+    q_θ = (D/Δθ) [B(Pe) P_b − B(−Pe) P_a]  =  (D/Δθ) B(Pe) (P_b − P_a) − V P_a,
+
+``B(x) = x/(eˣ − 1)`` (Bernoulli function; ``B(−x) = B(x) + x``). It is exact
+for constant coefficients, reduces to central differences for ``Pe → 0`` and
+to upwinding for ``|Pe| → ∞``, so no oscillation appears at the grid Péclet
+numbers reached when the local bearing number Λ/H² is 50 or more.
+
+Z-faces: pure diffusion, ``q_Z = P_f H_f³ (P_b − P_a)/ΔZ``; zero flux on the
+mid-plane face ``j = −1/2``; on the end face ``P = 1`` at ``ΔZ/2`` from the
+last centre, ``q_Z = P_f H³ (1 − P)/(ΔZ/2)`` with ``P_f = (P + 1)/2`` and the
+last cell's ``H``.
+
+Jacobians
+---------
+``dR/dP`` and ``dR/dH`` share one fixed CSR pattern (5-point stencil, periodic
+in θ, column indices sorted within rows), built once per grid by
+:func:`stencil_pattern`; the kernels fill only the ``data`` array. The coupled
+foil Jacobian has dense ``n_z × n_z`` blocks on three θ block-diagonals
+(:func:`coupled_pattern`, :func:`coupled_jacobian`); that matrix is
+factorised by block cyclic elimination (:func:`block_cyclic_factor`,
+:func:`block_cyclic_solve`; wrapped by :mod:`foilbearing.reynolds.blocksolve`).
+
+Every kernel has a plain-NumPy twin (suffix ``_py``) with the same signature;
+``tests/test_kernels.py`` checks each kernel against its twin. The kernels of
+the transient Newton iteration (:func:`transient_residual`,
+:func:`transient_storage`, :func:`transient_solve`, :func:`transient_jacobian`,
+:func:`transient_border`, :func:`transient_newton_step`) have their twins in
+:mod:`foilbearing.reynolds.transient` (the methods they replace, named in
+each docstring), checked by ``tests/test_transient_kernels.py``.
+
+Modules: :mod:`.flux` (Bernoulli function, face fluxes, patterns, residual and
+Jacobians), :mod:`.blockcyclic` (the block cyclic LU) and :mod:`.bdf` (the
+transient Newton iteration); their names are all here.
+"""
+
+from foilbearing.reynolds._kernels.bdf import (
+    NEWTON_CONVERGED,
+    NEWTON_DIVERGED,
+    NEWTON_FILM_CLOSED,
+    NEWTON_NOT_FINITE,
+    NEWTON_REFRESH,
+    NEWTON_TOO_SLOW,
+    bdf2_setup,
+    bdf2_setup_py,
+    newton_update,
+    newton_update_py,
+    transient_border,
+    transient_jacobian,
+    transient_newton_solve,
+    transient_newton_step,
+    transient_residual,
+    transient_solve,
+    transient_storage,
+)
+from foilbearing.reynolds._kernels.blockcyclic import (
+    BC_NOT_FINITE,
+    BC_OK,
+    BC_ZERO_PIVOT,
+    block_cyclic_alloc,
+    block_cyclic_chains,
+    block_cyclic_factor,
+    block_cyclic_factor_py,
+    block_cyclic_solve,
+    block_cyclic_solve_py,
+)
+from foilbearing.reynolds._kernels.flux import (
+    _jacobian_both,
+    bernoulli,
+    bernoulli_deriv,
+    bernoulli_deriv_py,
+    bernoulli_py,
+    coupled_jacobian,
+    coupled_jacobian_py,
+    coupled_pattern,
+    jacobian_H,
+    jacobian_H_py,
+    jacobian_P,
+    jacobian_P_py,
+    residual,
+    residual_py,
+    stencil_pattern,
+)
+
+__all__ = [
+    "BC_NOT_FINITE",
+    "BC_OK",
+    "BC_ZERO_PIVOT",
+    "NEWTON_CONVERGED",
+    "NEWTON_DIVERGED",
+    "NEWTON_FILM_CLOSED",
+    "NEWTON_NOT_FINITE",
+    "NEWTON_REFRESH",
+    "NEWTON_TOO_SLOW",
+    "_jacobian_both",
+    "bdf2_setup",
+    "bdf2_setup_py",
+    "bernoulli",
+    "bernoulli_deriv",
+    "bernoulli_deriv_py",
+    "bernoulli_py",
+    "block_cyclic_alloc",
+    "block_cyclic_chains",
+    "block_cyclic_factor",
+    "block_cyclic_factor_py",
+    "block_cyclic_solve",
+    "block_cyclic_solve_py",
+    "coupled_jacobian",
+    "coupled_jacobian_py",
+    "coupled_pattern",
+    "jacobian_H",
+    "jacobian_H_py",
+    "jacobian_P",
+    "jacobian_P_py",
+    "newton_update",
+    "newton_update_py",
+    "residual",
+    "residual_py",
+    "stencil_pattern",
+    "transient_border",
+    "transient_jacobian",
+    "transient_newton_solve",
+    "transient_newton_step",
+    "transient_residual",
+    "transient_solve",
+    "transient_storage",
+]

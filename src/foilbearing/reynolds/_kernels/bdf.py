@@ -1,0 +1,767 @@
+"""The transient (BDF) Newton iteration: residual, storage, Jacobian blocks, border,
+solve and the compiled Newton loop (twins in :mod:`foilbearing.reynolds.transient`)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from numpy.typing import NDArray
+
+from foilbearing.reynolds._kernels.blockcyclic import block_cyclic_solve
+from foilbearing.reynolds._kernels.flux import _jacobian_both, coupled_jacobian, residual
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+# ---------------------------------------------------------------------------
+# Transient Newton iteration (compiled; NumPy twins in reynolds.transient)
+# ---------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _film_rows(
+    y: FloatArray,
+    preload: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    n_z: int,
+    q: FloatArray,
+    h_row: FloatArray,
+) -> float:
+    """Engaged mean gauge pressure q and film H per θ-row of a transient state.
+
+    Fills ``q[i] = max(mean_j P[i, j] − 1, 0)`` and
+    ``h_row[i] = 1 + ε_X cos θ_i + ε_Y sin θ_i − r_p,i/C + U_i + c_a,i q_i``;
+    returns ``min_i h_row[i]`` (NaN if any row is NaN).
+    """
+    n_theta = q.shape[0]
+    n = n_theta * n_z
+    e_x = y[n + n_theta]
+    e_y = y[n + n_theta + 1]
+    h_min = np.inf
+    bad = False
+    for i in range(n_theta):
+        acc = 0.0
+        for j in range(n_z):
+            acc += y[i * n_z + j]
+        qi = acc / n_z - 1.0
+        if qi < 0.0:
+            qi = 0.0
+        q[i] = qi
+        h = 1.0 + e_x * cos_t[i] + e_y * sin_t[i] - preload[i] + y[n + i] + c_act[i] * qi
+        h_row[i] = h
+        if h != h:
+            bad = True
+        elif h < h_min:
+            h_min = h
+    return np.nan if bad else h_min
+
+
+@njit(cache=True, nogil=True)
+def transient_residual(
+    y: FloatArray,
+    c0: float,
+    hist: FloatArray,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    force: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    w: FloatArray,
+    force_scale: float,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    H: FloatArray,
+    res: FloatArray,
+    out: FloatArray,
+) -> float:
+    """BDF equations ``G = c0·Q(y) + hist − f(y)`` and the minimum film, in one pass.
+
+    Twin: :meth:`foilbearing.reynolds.transient.TransientSystem.newton_residual_py`
+    (same result up to rounding: dot products are summed in another order).
+
+    Parameters
+    ----------
+    y : ndarray, shape (n + n_theta + 4,)
+        State ``[P (n), U (n_theta), ε_X, ε_Y, v_X, v_Y]``, ``n = n_theta n_z``,
+        P cell ``k = i*n_z + j``.
+    c0 : float
+        BDF leading coefficient α₀/Δt, 1/s.
+    hist : ndarray, shape (n + n_theta + 4,)
+        History part of the BDF equations.
+    lam : float
+        Bearing number Λ(t).
+    rate : float
+        ω/γ of the viscoelastic bump, 1/s (0 for a purely elastic bump).
+    preload : ndarray, shape (n_theta,)
+        r_p(θ_i, t)/C.
+    force : ndarray, shape (2,)
+        External force on the journal in units of m·C, 1/s².
+    cos_t, sin_t : ndarray, shape (n_theta,)
+        cos θ_i, sin θ_i.
+    c_act, c_bump : ndarray, shape (n_theta,)
+        Actuator and bump compliances per θ-row, p_a/(C k).
+    w : ndarray, shape (2, n)
+        Force weights (X, Y) of the cells.
+    force_scale : float
+        p_a R²/(m C), 1/s².
+    denom : float
+        ``A σ = ΔθΔZ · 12 μ R²/(p_a C²)``, s.
+    d_theta, d_z : float
+        Cell sizes Δθ, ΔZ.
+    H, res : ndarray, shape (n_theta, n_z)
+        Filled with the film h/C and the finite-volume residual :func:`residual`.
+    out : ndarray, shape (n + n_theta + 4,)
+        Filled with G.
+
+    Returns
+    -------
+    float
+        Minimum film ``min H`` (NaN if the film holds a NaN).
+    """
+    n_theta, n_z = H.shape
+    n = n_theta * n_z
+    q = np.empty(n_theta)
+    h_row = np.empty(n_theta)
+    h_min = _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    for i in range(n_theta):
+        for j in range(n_z):
+            H[i, j] = h_row[i]
+    P = y[:n].reshape((n_theta, n_z))
+    residual(P, H, lam, d_theta, d_z, res)
+    fx = 0.0
+    fy = 0.0
+    for i in range(n_theta):
+        h = h_row[i]
+        for j in range(n_z):
+            k = i * n_z + j
+            p = y[k]
+            out[k] = c0 * (p * h) - res[i, j] / denom + hist[k]
+            fx += w[0, k] * (p - 1.0)
+            fy += w[1, k] * (p - 1.0)
+        u = y[n + i]
+        out[n + i] = c0 * u - rate * (c_bump[i] * q[i] - u) + hist[n + i]
+    m = n + n_theta
+    for k in range(2):
+        out[m + k] = c0 * y[m + k] - y[m + 2 + k] + hist[m + k]
+    out[m + 2] = c0 * y[m + 2] - force_scale * fx - force[0] + hist[m + 2]
+    out[m + 3] = c0 * y[m + 3] - force_scale * fy - force[1] + hist[m + 3]
+    return h_min
+
+
+@njit(cache=True, nogil=True)
+def transient_storage(
+    y: FloatArray,
+    preload: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    n_z: int,
+    out: FloatArray,
+) -> float:
+    """Stored quantities ``Q(y) = [P·H, U, ε, v]`` and the minimum film, in one pass.
+
+    Twin: :meth:`foilbearing.reynolds.transient.TransientSystem.storage` and
+    :meth:`~foilbearing.reynolds.transient.TransientSystem.min_film`.
+
+    Parameters
+    ----------
+    y : ndarray, shape (n + n_theta + 4,)
+        State (see :func:`transient_residual`).
+    preload, cos_t, sin_t, c_act : ndarray, shape (n_theta,)
+        As in :func:`transient_residual`.
+    n_z : int
+        Cells per θ-row.
+    out : ndarray, shape (n + n_theta + 4,)
+        Filled with Q(y).
+
+    Returns
+    -------
+    float
+        Minimum film ``min H`` (NaN if the film holds a NaN).
+    """
+    n_theta = preload.shape[0]
+    q = np.empty(n_theta)
+    h_row = np.empty(n_theta)
+    h_min = _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    for i in range(n_theta):
+        h = h_row[i]
+        for j in range(n_z):
+            k = i * n_z + j
+            out[k] = y[k] * h
+    for k in range(n_theta * n_z, y.shape[0]):
+        out[k] = y[k]
+    return h_min
+
+
+@njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
+def transient_solve(
+    g: FloatArray,
+    fac: FloatArray,
+    jh_data: FloatArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+    c0: float,
+    rate: float,
+    active: FloatArray,
+    c_bump: FloatArray,
+    work: FloatArray,
+    out: FloatArray,
+) -> None:
+    """Newton update ``Δy`` with ``J Δy = g`` by block elimination (factors of the transient matrix).
+
+    Eliminates the bump states U and the journal (ε, v), solves the pressure
+    block with :func:`block_cyclic_solve` and applies the rank-2 Woodbury
+    correction of the film force. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientFactor.solve_py` (same result
+    up to rounding).
+
+    Parameters
+    ----------
+    g : ndarray, shape (n + n_theta + 4,)
+        Right-hand side (the BDF residual), ``n = n_theta n_z``.
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Block cyclic factors of the pressure block B (:func:`block_cyclic_factor`).
+    jh_data, jh_rows, jh_indptr : ndarray
+        CSR arrays of the scaled film Jacobian ``c0·diag(P) − ∂R/∂H/(Aσ)``, (n, n),
+        with the θ-row ``indices // n_z`` of each column in place of its index
+        (the mat-vec is with ``repeat(x, n_z)``).
+    a_pe : ndarray, shape (n, 2)
+        Its product with ``∂H/∂ε`` (columns cos θ, sin θ per cell).
+    s_vp : ndarray, shape (2, n)
+        Film force per unit P as an acceleration, 1/s².
+    y_border : ndarray, shape (n, 2)
+        ``B⁻¹ a_pe / c0²``.
+    small_inv : ndarray, shape (2, 2)
+        Inverse of the Woodbury matrix ``I + s_vp y_border``.
+    c0 : float
+        BDF leading coefficient at factorisation, 1/s.
+    rate : float
+        ω/γ of the bump (0 for an elastic bump), 1/s.
+    active : ndarray, shape (n_theta,)
+        1.0 on θ-rows where the mean gauge pressure is engaged, else 0.0.
+    c_bump : ndarray, shape (n_theta,)
+        Bump compliance per θ-row.
+    work : ndarray, shape (n, 1)
+        Scratch (the pressure right-hand side).
+    out : ndarray, shape (n + n_theta + 4,)
+        Filled with Δy.
+    """
+    n_theta = active.shape[0]
+    n = work.shape[0]
+    n_z = n // n_theta
+    m = n + n_theta
+    cu = c0 + rate
+    c2 = c0**2
+    b0 = (g[m + 2] + c0 * g[m]) / c2
+    b1 = (g[m + 3] + c0 * g[m + 1]) / c2
+    g_u = np.empty(n_theta)
+    for i in range(n_theta):
+        g_u[i] = g[n + i] / cu
+    for r in range(n):
+        acc = 0.0
+        for s in range(jh_indptr[r], jh_indptr[r + 1]):
+            acc += jh_data[s] * g_u[jh_rows[s]]
+        work[r, 0] = g[r] - acc - (a_pe[r, 0] * b0 + a_pe[r, 1] * b1)
+    block_cyclic_solve(fac, work, work)
+    t0 = 0.0
+    t1 = 0.0
+    for r in range(n):
+        t0 += s_vp[0, r] * work[r, 0]
+        t1 += s_vp[1, r] * work[r, 0]
+    u0 = small_inv[0, 0] * t0 + small_inv[0, 1] * t1
+    u1 = small_inv[1, 0] * t0 + small_inv[1, 1] * t1
+    f0 = 0.0
+    f1 = 0.0
+    for r in range(n):
+        d = work[r, 0] - (y_border[r, 0] * u0 + y_border[r, 1] * u1)
+        out[r] = d
+        f0 += s_vp[0, r] * d
+        f1 += s_vp[1, r] * d
+    for k in range(2):
+        d_e = ((f0 if k == 0 else f1) + g[m + 2 + k] + c0 * g[m + k]) / c2
+        out[m + k] = d_e
+        out[m + 2 + k] = c0 * d_e - g[m + k]
+    for i in range(n_theta):
+        acc = 0.0
+        for j in range(n_z):
+            acc += out[i * n_z + j]
+        dq = active[i] * (acc / n_z)
+        out[n + i] = (g[n + i] + rate * c_bump[i] * dq) / cu
+
+
+@njit(cache=True, nogil=True)
+def transient_jacobian(
+    y: FloatArray,
+    c0: float,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    diag_slots: IntArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    H: FloatArray,
+    jp: FloatArray,
+    jh: FloatArray,
+    active: FloatArray,
+    jc: FloatArray,
+    a_pe: FloatArray,
+) -> None:
+    """Blocks of the transient Newton matrix at y, all but the factorisation, in one pass.
+
+    Fills the film, the row-scaled Reynolds Jacobians ``c0·diag(H) − ∂R/∂P/(Aσ)``
+    and ``c0·diag(P) − ∂R/∂H/(Aσ)`` (pattern :func:`stencil_pattern`), the
+    engaged rows, the pressure block B on :func:`coupled_pattern` (bump and
+    actuator eliminated, :func:`coupled_jacobian`) and the border
+    ``a_pe = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂ε``. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientSystem.jacobian_blocks_py`
+    (same result up to rounding: the axial means are summed in another order).
+
+    Parameters
+    ----------
+    y : ndarray, shape (n + n_theta + 4,)
+        State (see :func:`transient_residual`), ``n = n_theta n_z``.
+    c0 : float
+        BDF leading coefficient α₀/Δt, 1/s.
+    lam, rate : float
+        Bearing number Λ(t) and ω/γ of the bump (0 for an elastic bump), 1/s.
+    preload, cos_t, sin_t, c_act, c_bump : ndarray, shape (n_theta,)
+        As in :func:`transient_residual`.
+    denom : float
+        ``A σ``, s.
+    d_theta, d_z : float
+        Cell sizes Δθ, ΔZ.
+    diag_slots : ndarray, shape (n,)
+        Position of the diagonal entry of each row in the stencil data.
+    jh_rows, jh_indptr : ndarray
+        θ-row of each stencil column and the stencil row pointers.
+    H : ndarray, shape (n_theta, n_z)
+        Filled with the film h/C.
+    jp, jh : ndarray, shape (nnz,)
+        Filled with the scaled pressure and film Jacobians (stencil data).
+    active : ndarray, shape (n_theta,)
+        Filled with 1.0 where the mean gauge pressure is engaged, else 0.0.
+    jc : ndarray, shape (3 n_z · n,)
+        Filled with the data of B.
+    a_pe : ndarray, shape (n, 2)
+        Filled with the border.
+    """
+    n_theta, n_z = H.shape
+    n = n_theta * n_z
+    q = np.empty(n_theta)
+    h_row = np.empty(n_theta)
+    _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    for i in range(n_theta):
+        for j in range(n_z):
+            H[i, j] = h_row[i]
+    P = y[:n].reshape((n_theta, n_z))
+    _jacobian_both(P, H, lam, d_theta, d_z, jp, jh)
+    m_scale = -(1.0 / denom)
+    for k in range(jp.shape[0]):
+        jp[k] = m_scale * jp[k]
+        jh[k] = m_scale * jh[k]
+    for k in range(n):
+        d = diag_slots[k]
+        jp[d] += c0 * h_row[k // n_z]
+        jh[d] += c0 * y[k]
+    s = np.empty(n_theta)
+    for i in range(n_theta):
+        acc = 0.0
+        for j in range(n_z):
+            acc += y[i * n_z + j]
+        active[i] = 1.0 if acc / n_z - 1.0 > 0.0 else 0.0
+        c_eff = c_act[i] + rate * c_bump[i] / (c0 + rate)
+        s[i] = c_eff * active[i] / n_z
+    coupled_jacobian(jp, jh, s, n_z, jc)
+    for r in range(n):
+        a0 = 0.0
+        a1 = 0.0
+        for k in range(jh_indptr[r], jh_indptr[r + 1]):
+            row = jh_rows[k]
+            a0 += jh[k] * cos_t[row]
+            a1 += jh[k] * sin_t[row]
+        a_pe[r, 0] = a0
+        a_pe[r, 1] = a1
+
+
+@njit(cache=True, nogil=True)
+def transient_border(
+    fac: FloatArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    c0: float,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+) -> None:
+    """Border solve and 2×2 Woodbury inverse of the transient Newton matrix.
+
+    ``y_border = B⁻¹ a_pe / c0²`` with the factors of :func:`block_cyclic_factor`
+    and ``small_inv = (I + s_vp y_border)⁻¹`` in closed form. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientSystem.border_py`.
+
+    Parameters
+    ----------
+    fac : ndarray, shape (n_theta, n_z, 5 n_z)
+        Block cyclic factors of B.
+    a_pe : ndarray, shape (n, 2)
+        Border (:func:`transient_jacobian`).
+    s_vp : ndarray, shape (2, n)
+        Film force per unit P as an acceleration, 1/s².
+    c0 : float
+        BDF leading coefficient, 1/s.
+    y_border : ndarray, shape (n, 2)
+        Filled with ``B⁻¹ a_pe / c0²``.
+    small_inv : ndarray, shape (2, 2)
+        Filled with the inverse of the Woodbury matrix.
+    """
+    n = a_pe.shape[0]
+    c2 = c0**2
+    for r in range(n):
+        y_border[r, 0] = a_pe[r, 0] / c2
+        y_border[r, 1] = a_pe[r, 1] / c2
+    block_cyclic_solve(fac, y_border, y_border)
+    m00 = 1.0
+    m01 = 0.0
+    m10 = 0.0
+    m11 = 1.0
+    for r in range(n):
+        m00 += s_vp[0, r] * y_border[r, 0]
+        m01 += s_vp[0, r] * y_border[r, 1]
+        m10 += s_vp[1, r] * y_border[r, 0]
+        m11 += s_vp[1, r] * y_border[r, 1]
+    det = m00 * m11 - m01 * m10
+    small_inv[0, 0] = m11 / det
+    small_inv[0, 1] = -m01 / det
+    small_inv[1, 0] = -m10 / det
+    small_inv[1, 1] = m00 / det
+
+
+@njit(cache=True, nogil=True)
+def transient_newton_step(
+    y: FloatArray,
+    c0: float,
+    hist: FloatArray,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    force: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    w: FloatArray,
+    force_scale: float,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    H: FloatArray,
+    res: FloatArray,
+    g: FloatArray,
+    fac: FloatArray,
+    jh_data: FloatArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+    fac_c0: float,
+    fac_rate: float,
+    active: FloatArray,
+    work: FloatArray,
+    dy: FloatArray,
+    weights: FloatArray,
+) -> tuple[float, float, float]:
+    """One modified-Newton iteration: residual, solve and update of y, in one call.
+
+    :func:`transient_residual` into ``g``; if the film stays open (minimum
+    > 0), :func:`transient_solve` into ``dy`` with the factor (taken at
+    ``fac_c0``, ``fac_rate``) and :func:`newton_update` of y. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientFactor.newton_step_py`
+    (those three in sequence). Arguments as in those kernels.
+
+    Returns
+    -------
+    h_min : float
+        Minimum film of y before the update (NaN if the film holds a NaN).
+    err : float
+        Weighted max-norm of dy (NaN if y was not updated: ``h_min <= 0``).
+    p_min : float
+        Smallest pressure after the update (NaN if not updated).
+    """
+    h_min = transient_residual(
+        y, c0, hist, lam, rate, preload, force, cos_t, sin_t, c_act, c_bump, w,
+        force_scale, denom, d_theta, d_z, H, res, g,
+    )  # fmt: skip
+    if h_min <= 0.0:
+        return h_min, np.nan, np.nan
+    transient_solve(
+        g, fac, jh_data, jh_rows, jh_indptr, a_pe, s_vp, y_border, small_inv, fac_c0,
+        fac_rate, active, c_bump, work, dy,
+    )  # fmt: skip
+    err, p_min = newton_update(y, dy, weights, H.shape[0] * H.shape[1])
+    return h_min, err, p_min
+
+
+#: Outcomes of :func:`transient_newton_solve`.
+NEWTON_CONVERGED, NEWTON_FILM_CLOSED, NEWTON_NOT_FINITE, NEWTON_TOO_SLOW = 0, 1, 2, 3
+NEWTON_DIVERGED, NEWTON_REFRESH = 4, 5
+
+
+@njit(cache=True, nogil=True)
+def transient_newton_solve(
+    y: FloatArray,
+    c0: float,
+    hist: FloatArray,
+    lam: float,
+    rate: float,
+    preload: FloatArray,
+    force: FloatArray,
+    cos_t: FloatArray,
+    sin_t: FloatArray,
+    c_act: FloatArray,
+    c_bump: FloatArray,
+    w: FloatArray,
+    force_scale: float,
+    denom: float,
+    d_theta: float,
+    d_z: float,
+    H: FloatArray,
+    res: FloatArray,
+    g: FloatArray,
+    fac: FloatArray,
+    jh_data: FloatArray,
+    jh_rows: IntArray,
+    jh_indptr: IntArray,
+    a_pe: FloatArray,
+    s_vp: FloatArray,
+    y_border: FloatArray,
+    small_inv: FloatArray,
+    fac_c0: float,
+    fac_rate: float,
+    active: FloatArray,
+    work: FloatArray,
+    dy: FloatArray,
+    weights: FloatArray,
+    q_out: FloatArray,
+    newton_tol: float,
+    newton_fraction: float,
+    max_newton: int,
+    fresh: bool,
+    first_change: float,
+) -> tuple[int, int, float, float]:
+    """Modified-Newton iterations with one factor until they converge or must stop.
+
+    Repeats :func:`transient_newton_step`. Converged when the weighted update
+    ``err <= tol = max(newton_tol, newton_fraction · first update)`` or when the
+    error left, ``rate/(1 − rate)·err`` with the measured contraction rate, is
+    below tol; the storage ``Q(y)`` then goes to ``q_out``
+    (:func:`transient_storage`). A fresh factor (``fresh``) stops after
+    ``max_newton`` iterations or at a rate above 0.5; a stale one when it
+    diverges (rate >= 1, or ``max_newton``), or asks for a refresh when it
+    would not converge within ``max_newton`` iterations. Twin:
+    :meth:`foilbearing.reynolds.transient.TransientFactor.newton_solve_py`.
+
+    Returns
+    -------
+    outcome : int
+        ``NEWTON_CONVERGED``, ``NEWTON_FILM_CLOSED`` (y not updated),
+        ``NEWTON_NOT_FINITE`` (NaN update or a pressure <= 0),
+        ``NEWTON_TOO_SLOW`` (fresh factor), ``NEWTON_DIVERGED`` or
+        ``NEWTON_REFRESH`` (stale factor; y is the last iterate).
+    iterations : int
+        Iterations done.
+    first_change : float
+        The first update of the step (carried over a refresh).
+    h_min : float
+        Minimum film of the converged y (NaN otherwise).
+    """
+    prev = np.inf
+    k = 0
+    while True:
+        k += 1
+        h_min, err, p_min = transient_newton_step(
+            y, c0, hist, lam, rate, preload, force, cos_t, sin_t, c_act, c_bump, w,
+            force_scale, denom, d_theta, d_z, H, res, g, fac, jh_data, jh_rows, jh_indptr,
+            a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, work, dy, weights,
+        )  # fmt: skip
+        if h_min <= 0.0:
+            return NEWTON_FILM_CLOSED, k, first_change, np.nan
+        if not np.isfinite(err) or p_min <= 0.0:
+            return NEWTON_NOT_FINITE, k, first_change, np.nan
+        if first_change == np.inf:
+            first_change = err
+        tol = max(newton_tol, newton_fraction * first_change)
+        # Contraction rate of this factor; the error left in y is about rate/(1−rate)·err.
+        conv = err / prev if k > 1 else np.nan
+        if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
+            h_new = transient_storage(y, preload, cos_t, sin_t, c_act, H.shape[1], q_out)
+            if h_new > 0.0:
+                return NEWTON_CONVERGED, k, first_change, h_new
+        if fresh:
+            if k >= max_newton or conv > 0.5:
+                return NEWTON_TOO_SLOW, k, first_change, np.nan
+        elif k >= max_newton or conv >= 1.0:
+            return NEWTON_DIVERGED, k, first_change, np.nan
+        elif conv ** (max_newton - k) / (1.0 - conv) * err > tol:
+            return NEWTON_REFRESH, k, first_change, np.nan
+        prev = err
+
+
+@njit(cache=True, nogil=True)
+def bdf2_setup(
+    y: FloatArray,
+    y1: FloatArray,
+    y2: FloatArray,
+    q_now: FloatArray,
+    q_prev: FloatArray,
+    h: float,
+    h1: float,
+    h2: float,
+    atol: FloatArray,
+    rtol: float,
+    guess: FloatArray,
+    hist: FloatArray,
+    weights: FloatArray,
+) -> float:
+    """Variable-step BDF2 coefficient, history, predictor and error weights of one step.
+
+    With the last step h1 (NaN: none, BDF1 from y) and the one before, h2
+    (NaN: none, linear extrapolation): ``c0 = (1 + 2ρ)/((1 + ρ) h)``,
+    ``hist = (−(1 + ρ) Q_n + ρ²/(1 + ρ) Q_{n−1})/h`` (ρ = h/h1), the predictor
+    extrapolates through y (t_n), y1 (t_n − h1) and y2 (t_n − h1 − h2), and
+    ``weights = 1/(atol + rtol |guess|)``. Twin: :func:`bdf2_setup_py`.
+
+    Returns
+    -------
+    float
+        c0, 1/s.
+    """
+    n = y.shape[0]
+    if h1 != h1:
+        c0 = 1.0 / h
+        for k in range(n):
+            hist[k] = -q_now[k] / h
+            guess[k] = y[k]
+    else:
+        rho = h / h1
+        c0 = (1.0 + 2.0 * rho) / ((1.0 + rho) * h)
+        a = -(1.0 + rho) / h
+        b = rho * rho / (1.0 + rho) / h
+        for k in range(n):
+            hist[k] = a * q_now[k] + b * q_prev[k]
+        if h2 != h2:
+            for k in range(n):
+                guess[k] = y[k] + rho * (y[k] - y1[k])
+        else:
+            # Lagrange extrapolation on the nodes 0, −h1, −h1 − h2 to +h
+            t1 = -h1
+            t2 = -h1 - h2
+            l0 = (h - t1) * (h - t2) / (t1 * t2)
+            l1 = h * (h - t2) / (t1 * (t1 - t2))
+            l2 = h * (h - t1) / (t2 * (t2 - t1))
+            for k in range(n):
+                guess[k] = l0 * y[k] + l1 * y1[k] + l2 * y2[k]
+    for k in range(n):
+        weights[k] = 1.0 / (atol[k] + rtol * abs(guess[k]))
+    return c0
+
+
+def bdf2_setup_py(
+    y: FloatArray,
+    y1: FloatArray,
+    y2: FloatArray,
+    q_now: FloatArray,
+    q_prev: FloatArray,
+    h: float,
+    h1: float,
+    h2: float,
+    atol: FloatArray,
+    rtol: float,
+    guess: FloatArray,
+    hist: FloatArray,
+    weights: FloatArray,
+) -> float:
+    """NumPy twin of :func:`bdf2_setup`."""
+    if math.isnan(h1):
+        c0 = 1.0 / h
+        hist[:] = -q_now / h
+        guess[:] = y
+    else:
+        rho = h / h1
+        c0 = (1 + 2 * rho) / ((1 + rho) * h)
+        hist[:] = (-(1 + rho) * q_now + rho * rho / (1 + rho) * q_prev) / h
+        if math.isnan(h2):
+            guess[:] = y + rho * (y - y1)
+        else:
+            t1, t2 = -h1, -h1 - h2
+            l0 = (h - t1) * (h - t2) / (t1 * t2)
+            l1 = h * (h - t2) / (t1 * (t1 - t2))
+            l2 = h * (h - t1) / (t2 * (t2 - t1))
+            guess[:] = l0 * y + l1 * y1 + l2 * y2
+    weights[:] = 1.0 / (atol + rtol * np.abs(guess))
+    return c0
+
+
+@njit(cache=True)
+def newton_update(
+    y: FloatArray, dy: FloatArray, weights: FloatArray, n: int
+) -> tuple[float, float]:
+    """``y −= dy`` in place; the weighted max-norm of dy and the smallest new pressure.
+
+    Twin :func:`newton_update_py`.
+
+    Parameters
+    ----------
+    y, dy, weights : ndarray, shape (m,)
+        Iterate (updated in place), Newton update and error weights.
+    n : int
+        Number of pressure unknowns (the first n entries of y).
+
+    Returns
+    -------
+    err : float
+        ``max |dy| · weights`` (NaN if any term is NaN).
+    p_min : float
+        ``min y[:n]`` after the update.
+    """
+    err = 0.0
+    bad = False
+    p_min = np.inf
+    for k in range(y.shape[0]):
+        y[k] -= dy[k]
+        e = abs(dy[k]) * weights[k]
+        if e != e:
+            bad = True
+        elif e > err:
+            err = e
+        if k < n and y[k] < p_min:
+            p_min = y[k]
+    return (np.nan if bad else err), p_min
+
+
+def newton_update_py(
+    y: FloatArray, dy: FloatArray, weights: FloatArray, n: int
+) -> tuple[float, float]:
+    """NumPy twin of :func:`newton_update`."""
+    y -= dy
+    return float(np.max(np.abs(dy) * weights)), float(y[:n].min())

@@ -1,0 +1,604 @@
+"""Finite-volume Reynolds residual and Jacobians: Bernoulli function, face fluxes,
+sparsity patterns, the compiled kernels and their NumPy twins (see the package docstring)."""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+# Below this |x| the Bernoulli function and its derivative use their Taylor
+# series: x/expm1(x) loses digits to cancellation in B'(x) = B(1−B)/x − B.
+_SERIES_X = 1e-2
+
+# Stencil directions, in the order of the slot maps: W = (i−1, j),
+# S = (i, j−1), C = (i, j), N = (i, j+1), E = (i+1, j).
+W, S, C, N, E = 0, 1, 2, 3, 4
+
+
+# ---------------------------------------------------------------------------
+# Bernoulli function
+# ---------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _bern_pos(x: float) -> tuple[float, float]:
+    """B(x) and B'(x) for x >= 0."""
+    if x < _SERIES_X:
+        x2 = x * x
+        b = 1.0 - 0.5 * x + x2 / 12.0 - x2 * x2 / 720.0
+        db = -0.5 + x / 6.0 - x2 * x / 180.0 + x2 * x2 * x / 5040.0
+        return b, db
+    b = x / np.expm1(x)  # → 0 (not NaN) when expm1 overflows to inf
+    return b, b * (1.0 - b) / x - b
+
+
+@njit(cache=True)
+def bernoulli(x: float) -> float:
+    """Bernoulli function ``B(x) = x/(eˣ − 1)``, robust for all real x.
+
+    Twin: :func:`bernoulli_py`. Negative arguments use ``B(x) = B(−x) − x``,
+    which is exact and free of overflow.
+    """
+    if x >= 0.0:
+        return _bern_pos(x)[0]
+    return _bern_pos(-x)[0] - x
+
+
+@njit(cache=True)
+def bernoulli_deriv(x: float) -> float:
+    """Derivative ``B'(x)``; twin :func:`bernoulli_deriv_py`.
+
+    Negative arguments use ``B'(x) = −B'(−x) − 1``.
+    """
+    if x >= 0.0:
+        return _bern_pos(x)[1]
+    return -_bern_pos(-x)[1] - 1.0
+
+
+def bernoulli_py(x: FloatArray | float) -> FloatArray:
+    """NumPy twin of :func:`bernoulli` (vectorised)."""
+    x = np.asarray(x, dtype=np.float64)
+    a = np.abs(x)
+    a2 = a * a
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        big = a / np.expm1(np.where(a < _SERIES_X, 1.0, a))
+    series = 1.0 - 0.5 * a + a2 / 12.0 - a2 * a2 / 720.0
+    b_pos = np.where(a < _SERIES_X, series, big)
+    return np.where(x >= 0.0, b_pos, b_pos - x)
+
+
+def bernoulli_deriv_py(x: FloatArray | float) -> FloatArray:
+    """NumPy twin of :func:`bernoulli_deriv` (vectorised)."""
+    x = np.asarray(x, dtype=np.float64)
+    a = np.abs(x)
+    a2 = a * a
+    safe = np.where(a < _SERIES_X, 1.0, a)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        b = safe / np.expm1(safe)
+    big = b * (1.0 - b) / safe - b
+    series = -0.5 + a / 6.0 - a2 * a / 180.0 + a2 * a2 * a / 5040.0
+    d_pos = np.where(a < _SERIES_X, series, big)
+    return np.where(x >= 0.0, d_pos, -d_pos - 1.0)
+
+
+# ---------------------------------------------------------------------------
+# Sparsity patterns
+# ---------------------------------------------------------------------------
+
+
+def stencil_pattern(n_theta: int, n_z: int) -> tuple[IntArray, IntArray, IntArray]:
+    """CSR pattern of the 5-point stencil, periodic in θ, columns sorted.
+
+    Parameters
+    ----------
+    n_theta, n_z : int
+        Grid size (``n_theta >= 3`` so that W, C, E are distinct; ``n_z >= 2``).
+
+    Returns
+    -------
+    indptr : ndarray, shape (n_theta*n_z + 1,)
+    indices : ndarray, shape (nnz,), ``nnz = n_theta (5 n_z − 2)``
+    slots : ndarray, shape (n_theta, n_z, 5)
+        Position in ``data`` of the entry of row ``(i, j)`` in direction
+        W, S, C, N, E (see module constants), ``-1`` where absent (S on the
+        mid-plane row ``j = 0``, N on the end row ``j = n_z−1``). The kernels
+        compute the same positions in place (:func:`_row_slots`).
+    """
+    i = np.repeat(np.arange(n_theta), n_z)
+    j = np.tile(np.arange(n_z), n_theta)
+    row = i * n_z + j
+    cols = np.stack(
+        [
+            ((i - 1) % n_theta) * n_z + j,
+            np.where(j > 0, row - 1, -1),
+            row,
+            np.where(j < n_z - 1, row + 1, -1),
+            ((i + 1) % n_theta) * n_z + j,
+        ],
+        axis=1,
+    )
+    present = cols >= 0
+    big = n_theta * n_z + 1
+    key = np.where(present, cols, big)
+    order = np.argsort(key, axis=1, kind="stable")
+    rank = np.empty_like(order)
+    np.put_along_axis(rank, order, np.arange(5)[None, :].repeat(len(row), 0), axis=1)
+    counts = present.sum(axis=1)
+    indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    sorted_key = np.take_along_axis(key, order, axis=1)
+    indices = sorted_key[sorted_key < big].astype(np.int64)
+    slots = np.where(present, indptr[:-1, None] + rank, -1).astype(np.int64)
+    return indptr, indices, slots.reshape(n_theta, n_z, 5)
+
+
+def coupled_pattern(n_theta: int, n_z: int) -> tuple[IntArray, IntArray]:
+    """CSR pattern of the foil-coupled Jacobian: dense blocks on 3 θ-diagonals.
+
+    Row ``(i, j)`` holds every column of the θ-blocks ``i−1, i, i+1``
+    (periodic), blocks in increasing column order, ``3 n_z`` entries per row.
+
+    Returns
+    -------
+    indptr : ndarray, shape (n_theta*n_z + 1,)
+    indices : ndarray, shape (3 n_z · n_theta n_z,)
+    """
+    n = n_theta * n_z
+    i = np.repeat(np.arange(n_theta), n_z)
+    blocks = np.sort(np.stack([(i - 1) % n_theta, i, (i + 1) % n_theta], axis=1), axis=1)
+    indices = (blocks[:, :, None] * n_z + np.arange(n_z)[None, None, :]).reshape(-1)
+    indptr = np.arange(n + 1, dtype=np.int64) * (3 * n_z)
+    return indptr, indices.astype(np.int64)
+
+
+@njit(cache=True)
+def _row_slots(i: int, j: int, n_theta: int, n_z: int) -> tuple[int, int, int, int, int]:
+    """Positions (W, S, C, N, E) of row (i, j) in the data of :func:`stencil_pattern`.
+
+    Rows of one θ-block hold ``5 n_z − 2`` entries; row ``j`` starts at
+    ``0`` (``j = 0``) or ``5 j − 1``. Sorted columns put W after the block for
+    ``i = 0`` and E before it for ``i = n_theta − 1`` (periodic wrap).
+    """
+    start = i * (5 * n_z - 2) + (0 if j == 0 else 5 * j - 1)
+    has_s = j > 0
+    has_n = j < n_z - 1
+    k = start
+    w = -1
+    e = -1
+    if i == n_theta - 1:
+        e = k
+        k += 1
+        w = k
+        k += 1
+    elif i > 0:
+        w = k
+        k += 1
+    s = -1
+    if has_s:
+        s = k
+        k += 1
+    c = k
+    k += 1
+    nn = -1
+    if has_n:
+        nn = k
+        k += 1
+    if i == 0:
+        e = k
+        k += 1
+        w = k
+    elif i < n_theta - 1:
+        e = k
+    return w, s, c, nn, e
+
+
+# ---------------------------------------------------------------------------
+# Face fluxes and their derivatives
+# ---------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _bern_both(x: float) -> tuple[float, float]:
+    """``(bernoulli(x), bernoulli_deriv(x))`` from one exponential (same values)."""
+    if x >= 0.0:
+        return _bern_pos(x)
+    b, db = _bern_pos(-x)
+    return b - x, -db - 1.0
+
+
+@njit(cache=True)
+def _theta_flux(pa: float, pb: float, ha: float, hb: float, lam: float, dth: float) -> float:
+    """The flux of :func:`_theta_face` alone (same value, no derivatives)."""
+    pf = 0.5 * (pa + pb)
+    hf = 0.5 * (ha + hb)
+    hf2 = hf * hf
+    hf3 = hf2 * hf
+    pe = lam * dth / (pf * hf2)
+    b = bernoulli(pe)
+    dp = pb - pa
+    g = pf * hf3 * b / dth
+    return g * dp - lam * hf * pa
+
+
+@njit(cache=True)
+def _theta_face(
+    pa: float, pb: float, ha: float, hb: float, lam: float, dth: float
+) -> tuple[float, float, float, float]:
+    """Fitted θ-flux and (dq/dP_a, dq/dP_b, dq/dH_a = dq/dH_b)."""
+    pf = 0.5 * (pa + pb)
+    hf = 0.5 * (ha + hb)
+    hf2 = hf * hf
+    hf3 = hf2 * hf
+    pe = lam * dth / (pf * hf2)
+    b, db = _bern_both(pe)
+    dp = pb - pa
+    g = pf * hf3 * b / dth
+    q = g * dp - lam * hf * pa
+    # g = (P_f H_f³/Δθ) B(Pe) with Pe ∝ 1/(P_f H_f²): chain rule through Pe.
+    g_pf = hf3 * (b - pe * db) / dth
+    g_hf = pf * hf2 * (3.0 * b - 2.0 * pe * db) / dth
+    dqa = 0.5 * g_pf * dp - g - lam * hf
+    dqb = 0.5 * g_pf * dp + g
+    dqh = 0.5 * (g_hf * dp - lam * pa)
+    return q, dqa, dqb, dqh
+
+
+@njit(cache=True)
+def _z_face(
+    pa: float, pb: float, ha: float, hb: float, dz: float
+) -> tuple[float, float, float, float]:
+    """Axial diffusive flux and (dq/dP_a, dq/dP_b, dq/dH_a = dq/dH_b)."""
+    pf = 0.5 * (pa + pb)
+    hf = 0.5 * (ha + hb)
+    hf2 = hf * hf
+    d = pf * hf2 * hf
+    dp = pb - pa
+    q = d * dp / dz
+    dqa = (0.5 * hf2 * hf * dp - d) / dz
+    dqb = (0.5 * hf2 * hf * dp + d) / dz
+    dqh = 1.5 * pf * hf2 * dp / dz
+    return q, dqa, dqb, dqh
+
+
+@njit(cache=True)
+def _end_face(pa: float, ha: float, dz: float) -> tuple[float, float, float]:
+    """Flux through the end face (P = 1 at ΔZ/2) and (dq/dP_a, dq/dH_a)."""
+    h3 = ha * ha * ha
+    # P_f (1 − P_a) = (1 − P_a²)/2
+    q = h3 * (1.0 - pa * pa) / dz
+    dqa = -2.0 * h3 * pa / dz
+    dqh = 3.0 * ha * ha * (1.0 - pa * pa) / dz
+    return q, dqa, dqh
+
+
+# ---------------------------------------------------------------------------
+# Residual and Jacobians (compiled)
+# ---------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def residual(
+    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, out: FloatArray
+) -> None:
+    """Finite-volume residual of Eq. (4), cell-integrated; twin :func:`residual_py`.
+
+    Parameters
+    ----------
+    P, H : ndarray, shape (n_theta, n_z)
+        Dimensionless pressure ``p/p_a`` (> 0) and film ``h/C`` (> 0).
+    lam : float
+        Bearing number ``Λ = 6 μ ω R²/(p_a C²)`` (any sign).
+    d_theta, d_z : float
+        Cell sizes Δθ, ΔZ.
+    out : ndarray, shape (n_theta, n_z)
+        Filled with ``R[i, j]`` (net outflow of q through the cell faces).
+    """
+    n_theta, n_z = P.shape
+    out[:, :] = 0.0
+    for i in range(n_theta):
+        ie = i + 1 if i < n_theta - 1 else 0
+        for j in range(n_z):
+            q = _theta_flux(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)
+            out[i, j] += d_z * q
+            out[ie, j] -= d_z * q
+        for j in range(n_z - 1):
+            q = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)[0]
+            out[i, j] += d_theta * q
+            out[i, j + 1] -= d_theta * q
+        out[i, n_z - 1] += d_theta * _end_face(P[i, n_z - 1], H[i, n_z - 1], d_z)[0]
+
+
+@njit(cache=True)
+def _jacobian(
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    data: FloatArray,
+    wrt_h: bool,
+) -> None:
+    n_theta, n_z = P.shape
+    data[:] = 0.0
+    for i in range(n_theta):
+        ie = i + 1 if i < n_theta - 1 else 0
+        for j in range(n_z):
+            _, dqa, dqb, dqh = _theta_face(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)
+            if wrt_h:
+                dqa = dqh
+                dqb = dqh
+            _, _, ca, _, ea = _row_slots(i, j, n_theta, n_z)
+            wb, _, cb, _, _ = _row_slots(ie, j, n_theta, n_z)
+            data[ca] += d_z * dqa
+            data[ea] += d_z * dqb
+            data[wb] -= d_z * dqa
+            data[cb] -= d_z * dqb
+        for j in range(n_z - 1):
+            _, dqa, dqb, dqh = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)
+            if wrt_h:
+                dqa = dqh
+                dqb = dqh
+            _, _, ca, na, _ = _row_slots(i, j, n_theta, n_z)
+            _, sb, cb, _, _ = _row_slots(i, j + 1, n_theta, n_z)
+            data[ca] += d_theta * dqa
+            data[na] += d_theta * dqb
+            data[sb] -= d_theta * dqa
+            data[cb] -= d_theta * dqb
+        _, dqa, dqh = _end_face(P[i, n_z - 1], H[i, n_z - 1], d_z)
+        ca = _row_slots(i, n_z - 1, n_theta, n_z)[2]
+        data[ca] += d_theta * (dqh if wrt_h else dqa)
+
+
+@njit(cache=True)
+def _jacobian_both(
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    data_p: FloatArray,
+    data_h: FloatArray,
+) -> None:
+    """:func:`jacobian_P` and :func:`jacobian_H` in one pass over the faces (same values)."""
+    n_theta, n_z = P.shape
+    data_p[:] = 0.0
+    data_h[:] = 0.0
+    for i in range(n_theta):
+        ie = i + 1 if i < n_theta - 1 else 0
+        for j in range(n_z):
+            _, dqa, dqb, dqh = _theta_face(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)
+            _, _, ca, _, ea = _row_slots(i, j, n_theta, n_z)
+            wb, _, cb, _, _ = _row_slots(ie, j, n_theta, n_z)
+            data_p[ca] += d_z * dqa
+            data_p[ea] += d_z * dqb
+            data_p[wb] -= d_z * dqa
+            data_p[cb] -= d_z * dqb
+            data_h[ca] += d_z * dqh
+            data_h[ea] += d_z * dqh
+            data_h[wb] -= d_z * dqh
+            data_h[cb] -= d_z * dqh
+        for j in range(n_z - 1):
+            _, dqa, dqb, dqh = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)
+            _, _, ca, na, _ = _row_slots(i, j, n_theta, n_z)
+            _, sb, cb, _, _ = _row_slots(i, j + 1, n_theta, n_z)
+            data_p[ca] += d_theta * dqa
+            data_p[na] += d_theta * dqb
+            data_p[sb] -= d_theta * dqa
+            data_p[cb] -= d_theta * dqb
+            data_h[ca] += d_theta * dqh
+            data_h[na] += d_theta * dqh
+            data_h[sb] -= d_theta * dqh
+            data_h[cb] -= d_theta * dqh
+        _, dqa, dqh = _end_face(P[i, n_z - 1], H[i, n_z - 1], d_z)
+        ca = _row_slots(i, n_z - 1, n_theta, n_z)[2]
+        data_p[ca] += d_theta * dqa
+        data_h[ca] += d_theta * dqh
+
+
+@njit(cache=True)
+def jacobian_P(
+    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+) -> None:
+    """Fill ``data`` of the CSR ``dR/dP`` (pattern :func:`stencil_pattern`).
+
+    Exact derivatives, including those of ``B(Pe)`` through ``Pe(P_f, H_f)``.
+    Twin: :func:`jacobian_P_py`. Arguments as :func:`residual`;
+    ``data`` has shape ``(nnz,)`` and is overwritten.
+    """
+    _jacobian(P, H, lam, d_theta, d_z, data, False)
+
+
+@njit(cache=True)
+def jacobian_H(
+    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+) -> None:
+    """Fill ``data`` of the CSR ``dR/dH`` (pattern :func:`stencil_pattern`).
+
+    Twin: :func:`jacobian_H_py`. Arguments as :func:`jacobian_P`.
+    """
+    _jacobian(P, H, lam, d_theta, d_z, data, True)
+
+
+@njit(cache=True)
+def coupled_jacobian(
+    jp_data: FloatArray, jh_data: FloatArray, s: FloatArray, n_z: int, out: FloatArray
+) -> None:
+    """Assemble ``dR/dP + dR/dH · dH/dP`` on the pattern of :func:`coupled_pattern`.
+
+    The foil couples ``H[i, :]`` to the axial mean of ``P[i, :]``:
+    ``dH[i, j]/dP[i, k] = s[i]`` for every ``j, k``, with
+    ``s[i] = c_i/n_z`` where ``p̄_i > 0`` and ``0`` elsewhere. Row ``(i, j)``
+    of the product is therefore constant over ``k`` in each column block
+    ``i' ∈ {i−1, i, i+1}``: ``s[i'] · Σ_{j'} dR[i, j]/dH[i', j']``.
+    Twin: :func:`coupled_jacobian_py`.
+
+    Parameters
+    ----------
+    jp_data, jh_data : ndarray, shape (nnz,)
+        Data of ``dR/dP`` and ``dR/dH`` on :func:`stencil_pattern`.
+    s : ndarray, shape (n_theta,)
+    n_z : int
+    out : ndarray, shape (3 n_z · n_theta n_z,)
+    """
+    n_theta = s.shape[0]
+    width = 3 * n_z
+    for i in range(n_theta):
+        iw = i - 1 if i > 0 else n_theta - 1
+        ie = i + 1 if i < n_theta - 1 else 0
+        # rank of the blocks (W, C, E) in sorted column order
+        if i == 0:
+            rw, rc, re = 2, 0, 1
+        elif i == n_theta - 1:
+            rw, rc, re = 1, 2, 0
+        else:
+            rw, rc, re = 0, 1, 2
+        for j in range(n_z):
+            w, so, c, no, e = _row_slots(i, j, n_theta, n_z)
+            base = (i * n_z + j) * width
+            hc = jh_data[c]
+            if so >= 0:
+                hc += jh_data[so]
+            if no >= 0:
+                hc += jh_data[no]
+            vw = s[iw] * jh_data[w]
+            vc = s[i] * hc
+            ve = s[ie] * jh_data[e]
+            for k in range(n_z):
+                out[base + rw * n_z + k] = vw
+                out[base + rc * n_z + k] = vc
+                out[base + re * n_z + k] = ve
+            out[base + rw * n_z + j] += jp_data[w]
+            out[base + re * n_z + j] += jp_data[e]
+            out[base + rc * n_z + j] += jp_data[c]
+            if so >= 0:
+                out[base + rc * n_z + j - 1] += jp_data[so]
+            if no >= 0:
+                out[base + rc * n_z + j + 1] += jp_data[no]
+
+
+# ---------------------------------------------------------------------------
+# NumPy twins
+# ---------------------------------------------------------------------------
+
+
+def _faces_py(
+    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float
+) -> tuple[tuple[FloatArray, ...], tuple[FloatArray, ...], tuple[FloatArray, ...]]:
+    """Vectorised face fluxes and derivatives: θ-faces (n_theta, n_z),
+    interior Z-faces (n_theta, n_z−1), end faces (n_theta,)."""
+    pa, pb = P, np.roll(P, -1, axis=0)
+    ha, hb = H, np.roll(H, -1, axis=0)
+    pf = 0.5 * (pa + pb)
+    hf = 0.5 * (ha + hb)
+    pe = lam * d_theta / (pf * hf**2)
+    b = bernoulli_py(pe)
+    db = bernoulli_deriv_py(pe)
+    dp = pb - pa
+    g = pf * hf**3 * b / d_theta
+    g_pf = hf**3 * (b - pe * db) / d_theta
+    g_hf = pf * hf**2 * (3.0 * b - 2.0 * pe * db) / d_theta
+    th = (
+        g * dp - lam * hf * pa,
+        0.5 * g_pf * dp - g - lam * hf,
+        0.5 * g_pf * dp + g,
+        0.5 * (g_hf * dp - lam * pa),
+    )
+    pa, pb = P[:, :-1], P[:, 1:]
+    ha, hb = H[:, :-1], H[:, 1:]
+    pf = 0.5 * (pa + pb)
+    hf = 0.5 * (ha + hb)
+    dp = pb - pa
+    d = pf * hf**3
+    zf = (
+        d * dp / d_z,
+        (0.5 * hf**3 * dp - d) / d_z,
+        (0.5 * hf**3 * dp + d) / d_z,
+        1.5 * pf * hf**2 * dp / d_z,
+    )
+    pl, hl = P[:, -1], H[:, -1]
+    end = (
+        hl**3 * (1.0 - pl**2) / d_z,
+        -2.0 * hl**3 * pl / d_z,
+        3.0 * hl**2 * (1.0 - pl**2) / d_z,
+    )
+    return th, zf, end
+
+
+def residual_py(
+    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, out: FloatArray
+) -> None:
+    """NumPy twin of :func:`residual`."""
+    th, zf, end = _faces_py(P, H, lam, d_theta, d_z)
+    qt = th[0]
+    qz = np.concatenate([np.zeros((P.shape[0], 1)), zf[0], end[0][:, None]], axis=1)
+    out[:, :] = d_z * (qt - np.roll(qt, 1, axis=0)) + d_theta * (qz[:, 1:] - qz[:, :-1])
+
+
+def _jacobian_py(
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    data: FloatArray,
+    wrt_h: bool,
+) -> None:
+    n_theta, n_z = P.shape
+    th, zf, end = _faces_py(P, H, lam, d_theta, d_z)
+    if wrt_h:
+        t_a, t_b = th[3], th[3]
+        z_a, z_b = zf[3], zf[3]
+        e_a = end[2]
+    else:
+        t_a, t_b = th[1], th[2]
+        z_a, z_b = zf[1], zf[2]
+        e_a = end[1]
+    zeros = np.zeros((n_theta, 1))
+    # derivative of R[i, j] w.r.t. each stencil neighbour
+    vals = np.zeros((n_theta, n_z, 5))
+    vals[:, :, E] = d_z * t_b
+    vals[:, :, W] = -d_z * np.roll(t_a, 1, axis=0)
+    vals[:, :, N] = d_theta * np.concatenate([z_b, zeros], axis=1)
+    vals[:, :, S] = -d_theta * np.concatenate([zeros, z_a], axis=1)
+    z_out = np.concatenate([z_a, e_a[:, None]], axis=1)
+    z_in = np.concatenate([zeros, z_b], axis=1)
+    vals[:, :, C] = d_z * (t_a - np.roll(t_b, 1, axis=0)) + d_theta * (z_out - z_in)
+    _, _, slots = stencil_pattern(n_theta, n_z)
+    mask = slots >= 0
+    data[:] = 0.0
+    data[slots[mask]] = vals[mask]
+
+
+def jacobian_P_py(
+    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+) -> None:
+    """NumPy twin of :func:`jacobian_P`."""
+    _jacobian_py(P, H, lam, d_theta, d_z, data, False)
+
+
+def jacobian_H_py(
+    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+) -> None:
+    """NumPy twin of :func:`jacobian_H`."""
+    _jacobian_py(P, H, lam, d_theta, d_z, data, True)
+
+
+def coupled_jacobian_py(
+    jp_data: FloatArray, jh_data: FloatArray, s: FloatArray, n_z: int, out: FloatArray
+) -> None:
+    """NumPy twin of :func:`coupled_jacobian` (via scipy.sparse products)."""
+    import scipy.sparse as sp
+
+    n_theta = s.shape[0]
+    n = n_theta * n_z
+    indptr, indices, _ = stencil_pattern(n_theta, n_z)
+    jp = sp.csr_matrix((jp_data, indices, indptr), shape=(n, n))
+    jh = sp.csr_matrix((jh_data, indices, indptr), shape=(n, n))
+    dhdp = sp.kron(sp.diags(s), np.ones((n_z, n_z)), format="csr")
+    full = (jp + jh @ dhdp).toarray()
+    c_indptr, c_indices = coupled_pattern(n_theta, n_z)
+    rows = np.repeat(np.arange(n), np.diff(c_indptr))
+    out[:] = full[rows, c_indices]
