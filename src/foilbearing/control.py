@@ -66,13 +66,12 @@ class SpeedProfile:
         """End time, s."""
         return float(self.times[-1])
 
-    def _segment(self, t: float) -> int:
-        k = int(np.searchsorted(self.times, t, side="right")) - 1
-        return min(max(k, 0), self.times.size - 2)
-
     def state(self, t: float) -> tuple[float, float, float]:
-        """(ω, dω/dt, φ) at t: rad/s, rad/s², rad (the values of :meth:`omega`,
-        :meth:`omega_dot` and :meth:`phase`, from one search of the breakpoints)."""
+        """(ω, dω/dt, φ) at t: rad/s, rad/s², rad, from one search of the breakpoints.
+
+        ω is held at its end values outside the profile; dω/dt is the slope of
+        the segment containing t (of the first or last one outside); φ = ∫₀ᵗ ω dt.
+        """
         times, speeds, phases = self._knots  # type: ignore[attr-defined]
         k = min(max(bisect.bisect_right(times, t) - 1, 0), len(times) - 2)
         t0, w0 = times[k], speeds[k]
@@ -86,21 +85,27 @@ class SpeedProfile:
             w = w0 + a * dt
         return w, a, phases[k] + w0 * dt + 0.5 * a * dt * dt
 
+    def speed_and_phase(self, t: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """ω and φ at many times at once (the arithmetic of :meth:`state`), rad/s and rad."""
+        times, speeds = self.times, self.speeds
+        t = np.asarray(t, dtype=float)
+        k = np.clip(np.searchsorted(times, t, side="right") - 1, 0, times.size - 2)
+        dt = t - times[k]
+        a = (speeds[k + 1] - speeds[k]) / (times[k + 1] - times[k])
+        phase = self._phase[k] + speeds[k] * dt + 0.5 * a * dt * dt  # type: ignore[attr-defined]
+        return np.interp(t, times, speeds), phase
+
     def omega(self, t: float) -> float:
         """ω(t), rad/s."""
-        return float(np.interp(t, self.times, self.speeds))
+        return self.state(t)[0]
 
     def omega_dot(self, t: float) -> float:
         """dω/dt, rad/s² (the slope of the segment containing t)."""
-        k = self._segment(t)
-        return float((self.speeds[k + 1] - self.speeds[k]) / (self.times[k + 1] - self.times[k]))
+        return self.state(t)[1]
 
     def phase(self, t: float) -> float:
         """φ(t) = ∫₀ᵗ ω dt, rad."""
-        k = self._segment(t)
-        dt = t - self.times[k]
-        a = self.omega_dot(t)
-        return float(self._phase[k] + self.speeds[k] * dt + 0.5 * a * dt * dt)  # type: ignore[attr-defined]
+        return self.state(t)[2]
 
 
 def constant_speed(speed: float, duration: float) -> SpeedProfile:

@@ -678,22 +678,12 @@ class _Samples:
             if n_act
             else np.zeros((count, 0))
         )
-        speed, phase = _speed_phase(profile, ts)
+        speed, phase = profile.speed_and_phase(ts)
         new = (ts, ex, ey, speed, phase, h_min, volts)
         if self.done is None:
             return new
         cols = [np.concatenate([old, fresh]) for old, fresh in zip(self.done, new, strict=True)]
         return cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], cols[6]
-
-
-def _speed_phase(profile: SpeedProfile, t: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """``profile.omega`` and ``profile.phase`` at many times at once (the same arithmetic)."""
-    times, speeds = profile.times, profile.speeds
-    phase0 = np.concatenate([[0.0], np.cumsum(0.5 * (speeds[1:] + speeds[:-1]) * np.diff(times))])
-    k = np.clip(np.searchsorted(times, t, side="right") - 1, 0, times.size - 2)
-    dt = t - times[k]
-    a = (speeds[k + 1] - speeds[k]) / (times[k + 1] - times[k])
-    return np.interp(t, times, speeds), phase0[k] + speeds[k] * dt + 0.5 * a * dt * dt
 
 
 def _progress_bar(

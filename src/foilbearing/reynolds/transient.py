@@ -282,7 +282,7 @@ class TransientSystem:
         g = self.grid
         n = self.n
         rate = self.rate(inputs)
-        # Private buffers: a factorisation may run on another thread beside Newton steps.
+        # Buffers of its own: the factor keeps jh, a_pe, active and the matrix data.
         film = np.empty(g.shape)
         jp = np.empty(self._jp.size)
         jh = np.empty(self._jp.size)
@@ -516,6 +516,33 @@ class TransientFactor:
             self._jh = sp.csr_matrix((self.jh_data, s.ws.indices, s.ws.indptr), shape=(s.n, s.n))
         return self._jh
 
+    def _step_args(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        weights: FloatArray,
+        g: FloatArray,
+        dy: FloatArray,
+    ) -> tuple[Any, ...]:
+        """Arguments of the compiled Newton step (:func:`~foilbearing.reynolds._kernels.transient_newton_step`)."""
+        s = self.sys
+        return (
+            y,
+            c0,
+            hist,
+            inputs.lam,
+            s.rate(inputs),
+            inputs.preload,
+            inputs.force,
+            *self._args_sys,
+            g,
+            *self._args_fac,
+            dy,
+            weights,
+        )
+
     def newton_step(
         self,
         y: FloatArray,
@@ -558,21 +585,7 @@ class TransientFactor:
         """
         if self._fac is None:
             return self.newton_step_py(y, inputs, c0, hist, weights, g, dy)
-        s = self.sys
-        args: tuple[Any, ...] = (
-            y,
-            c0,
-            hist,
-            inputs.lam,
-            s.rate(inputs),
-            inputs.preload,
-            inputs.force,
-            *self._args_sys,
-            g,
-            *self._args_fac,
-            dy,
-            weights,
-        )
+        args = self._step_args(y, inputs, c0, hist, weights, g, dy)
         h_min, err, p_min = kern.transient_newton_step(*args)
         return float(h_min), float(err), float(p_min)
 
@@ -618,21 +631,9 @@ class TransientFactor:
             return self.newton_solve_py(
                 y, inputs, c0, hist, weights, work, controls, fresh, first_change
             )
-        s = self.sys
         g, dy, q_out = work
         args: tuple[Any, ...] = (
-            y,
-            c0,
-            hist,
-            inputs.lam,
-            s.rate(inputs),
-            inputs.preload,
-            inputs.force,
-            *self._args_sys,
-            g,
-            *self._args_fac,
-            dy,
-            weights,
+            *self._step_args(y, inputs, c0, hist, weights, g, dy),
             q_out,
             *controls,
             fresh,

@@ -61,10 +61,18 @@ def block_cyclic_alloc(n_theta: int, n_z: int) -> FloatArray:
     return np.empty((n_theta, n_z, 5 * n_z))  # every entry is written by the factorisation
 
 
+@njit(cache=True)
+def _chain(k: int, n_theta: int) -> tuple[int, int, int, int]:
+    """Chain k (0: A, 1: B) as ``(first, last, left separator, right separator)``."""
+    p = (n_theta - 1) // 2
+    if k == 0:
+        return 0, p - 1, n_theta - 1, p
+    return p + 1, n_theta - 2, p, n_theta - 1
+
+
 def block_cyclic_chains(n_theta: int) -> tuple[int, tuple[tuple[int, int, int, int], ...]]:
     """Separator p and the two chains ``(first, last, left separator, right separator)``."""
-    p = (n_theta - 1) // 2
-    return p, ((0, p - 1, n_theta - 1, p), (p + 1, n_theta - 2, p, n_theta - 1))
+    return (n_theta - 1) // 2, (_chain(0, n_theta), _chain(1, n_theta))
 
 
 @njit(cache=True, fastmath={"contract"})
@@ -367,22 +375,11 @@ def _separator_factor(
         for c in range(m2):
             dmax = max(dmax, abs(aug[r, c]))
         aug[r, m2 + r] = 1.0
-    snorm = 0.0
-    for c in range(m2):
-        col = 0.0
-        for r in range(m2):
-            col += abs(aug[r, c])
-        snorm = max(snorm, col)
+    snorm = _norm1(aug, 0, m2)
     k = _gauss_jordan(aug, m2, 2 * m2, row)
     if k >= 0:
         return BC_ZERO_PIVOT, s_idx[0] if k < m else s_idx[1], 0.0, dmax / bmax
-    inorm = 0.0
-    for c in range(m2):
-        col = 0.0
-        for r in range(m2):
-            col += abs(aug[r, m2 + c])
-        inorm = max(inorm, col)
-    rc_s = 1.0 / (snorm * inorm)
+    rc_s = 1.0 / (snorm * _norm1(aug, m2, m2))
     if not rc_s >= rcond:
         rcond = rc_s
         worst = s_idx[1]
@@ -393,7 +390,7 @@ def _separator_factor(
             for c in range(m2):
                 x[r, c] = aug[a * m + r, m2 + c]
     for k in range(2):
-        first, last, right = (0, p - 1, p) if k == 0 else (p + 1, n_b - 2, n_b - 1)
+        first, last, _left, right = _chain(k, n_b)
         if last >= first:
             rl = _rank(right, last, n_b)
             for r in range(m):
@@ -458,18 +455,12 @@ def block_cyclic_factor(
     if bmax != bmax:
         return BC_NOT_FINITE, -1, 0.0, np.inf
     d4 = data.reshape((n_theta, n_z, 3, n_z))
-    p = (n_theta - 1) // 2
-    firsts = (0, p + 1)
-    lasts = (p - 1, n_theta - 2)
-    lefts = (n_theta - 1, p)
-    rights = (p, n_theta - 1)
     sc = np.empty((2, 2 * n_z, 2 * n_z))
     stats = np.empty((2, 3))
     status = np.empty(2, dtype=np.int64)
     for k in range(2):  # independent: the place for two threads (not worth it on 2 cores)
-        status[k] = _chain_factor(
-            d4, fac, firsts[k], lasts[k], lefts[k], rights[k], sc[k], stats[k]
-        )
+        first, last, left, right = _chain(k, n_theta)
+        status[k] = _chain_factor(d4, fac, first, last, left, right, sc[k], stats[k])
     return _separator_factor(d4, fac, sc, stats, status, bmax)
 
 
@@ -507,7 +498,7 @@ def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> Non
         zq = z[q]
         acc[:, :, :] = 0.0
         for k in range(2):
-            first, last, right = (0, p - 1, p) if k == 0 else (p + 1, n_b - 2, last_b)
+            first, last, _left, right = _chain(k, n_b)
             if last < first:
                 continue
             # forward: y_i = b_i − L_i z_{i−1}, z_i = D_i⁻¹ y_i, b_l −= R_i z_i, b_r −= L_r z_e
@@ -530,7 +521,7 @@ def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> Non
         _gemv_acc(fac[last_b], 0, m, 2 * m, x, zq[last_b], 1.0)
         # backward: x_i = z_i − [V_i | W_i] [x_{i+1}; x_l]
         for k in range(2):
-            first, last, left = (0, p - 1, last_b) if k == 0 else (p + 1, n_b - 2, p)
+            first, last, left, _right = _chain(k, n_b)
             for c in range(m):
                 x[m + c] = zq[left, c]
             for i in range(last, first - 1, -1):
