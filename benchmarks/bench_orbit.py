@@ -76,6 +76,30 @@ def arithmetic_limit(res, seconds: float) -> None:
     )
 
 
+class StepClock:
+    """Wall time per step binned by rotor speed (a ``progress`` callback, called after each step)."""
+
+    def __init__(self, width_rpm: float = 5000.0) -> None:
+        self.width = width_rpm
+        self.last = time.perf_counter()
+        self.seconds: dict[int, float] = {}
+        self.steps: dict[int, int] = {}
+
+    def __call__(self, t: float, speed: float) -> None:
+        now = time.perf_counter()
+        b = int(speed / RPM // self.width)
+        self.seconds[b] = self.seconds.get(b, 0.0) + now - self.last
+        self.steps[b] = self.steps.get(b, 0) + 1
+        self.last = now
+
+    def report(self) -> str:
+        return ", ".join(
+            f"{b * self.width / 1e3:.0f}-{(b + 1) * self.width / 1e3:.0f}: "
+            f"{1e3 * self.seconds[b] / self.steps[b]:.2f}"
+            for b in sorted(self.steps)
+        )
+
+
 def full_run(repeats: int = 3) -> None:
     """The paper's speed-up (3 to 90 krpm at 500 rad/s²) on the default grid.
 
@@ -94,9 +118,12 @@ def full_run(repeats: int = 3) -> None:
     prof = linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0)
     revs = ((90e3 * RPM) ** 2 - (3e3 * RPM) ** 2) / (2 * 500.0 * 2 * math.pi)
     runs = []
-    for _ in range(repeats):
+    clock = StepClock()
+    for k in range(repeats):
         cpu = time.process_time()
-        res = simulate(case, prof, voltage_ramp(1.74, 2.24, 150.0))
+        res = simulate(
+            case, prof, voltage_ramp(1.74, 2.24, 150.0), progress=clock if k == 0 else False
+        )
         runs.append((res.wall_time, time.process_time() - cpu, res))
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     res = runs[0][2]
@@ -117,6 +144,10 @@ def full_run(repeats: int = 3) -> None:
         f"  the full 18.2 s ({full_steps:,.0f} steps) would take about "
         f"{per_step[0] * full_steps:.0f} / {per_step[len(per_step) // 2] * full_steps:.0f} / "
         f"{per_step[-1] * full_steps:.0f} s (target 60 s)"
+    )
+    print(
+        "  ms per step by speed (krpm), first run: smooth running, then the whip limit cycle "
+        f"from ~26 krpm, and its growth to contact: {clock.report()}"
     )
     arithmetic_limit(res, per_step[0])
 

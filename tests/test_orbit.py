@@ -13,6 +13,7 @@ from scipy.signal import find_peaks
 from foilbearing.case import Grid, default_case
 from foilbearing.control import (
     SubsyncController,
+    VoltageSchedule,
     constant_speed,
     linear_ramp,
     voltage_ramp,
@@ -142,6 +143,20 @@ def test_contact_stops_the_run_and_keeps_the_data() -> None:
     assert res.contact is not None and 0.0 < res.contact["min_film_um"] < 2.0
     assert res.time.size > 10 and res.time[-1] <= res.contact["time_s"]
     assert "contact at" in res.message
+
+
+def test_voltage_program_is_piecewise_linear_with_steps() -> None:
+    # Held, ramped and stepped (a repeated time: the later row applies from that instant)
+    # segments, per actuator, against np.interp on each side of the step.
+    times = np.array([0.1, 0.3, 0.5, 0.5, 0.8])
+    volts = np.array([[0, 10, 20], [0, 10, 20], [50, 10, 0], [80, 90, 100], [80, 0, 100.0]])
+    program = VoltageSchedule(times, volts)
+    for t in np.linspace(0.0, 1.0, 101):
+        side = slice(0, 3) if t < 0.5 else slice(3, 5)
+        expected = [np.interp(t, times[side], volts[side, a]) for a in range(3)]
+        np.testing.assert_allclose(program(t), expected, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(program(0.5), [80, 90, 100])
+    np.testing.assert_array_equal(voltage_ramp(0.2, 0.2, 150.0)(0.2), [150.0])
 
 
 def test_voltage_ramp_moves_the_journal_towards_the_centre() -> None:

@@ -256,6 +256,37 @@ def test_newton_solve_matches_twin(setup) -> None:
     assert np.max(np.abs(y_a - y_t) * w) < 2 * tol
 
 
+def test_slowly_contracting_fresh_factor_is_refreshed_not_abandoned(setup) -> None:
+    # A factor taken away from the solution (here: with the journal 0.02 C off in Y)
+    # contracts slowly; the iteration asks for a refresh at its iterate instead of giving up (which
+    # would halve the time step), both twins alike, and the refreshed factor converges.
+    sim, y, inp = setup
+    sys_ = sim.system
+    c0 = 3000.0
+    k = sys_.n + sys_.nt
+    far = y.copy()
+    far[k + 1] += 0.02
+    hist = -c0 * sys_.storage(y, inp)
+    w = sim.weights(y)
+    controls = (0.3, 0.001, 10)
+    outcomes = []
+    for name in ("newton_solve", "newton_solve_py"):
+        factor = sys_.factorize(far, inp, c0)
+        y_k = y.copy()
+        work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
+        out = getattr(factor, name)(y_k, inp, c0, hist, w, work, controls, True, math.inf)
+        outcomes.append((out, y_k))
+    (a, y_a), (b, y_b) = outcomes
+    assert a[0] == b[0] == transient.NEWTON_REFRESH
+    assert a[1] == b[1] >= 3  # rates above 0.5, not yet diverging
+    assert _rel(y_a, y_b) < 1e-10
+    work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
+    again = sys_.factorize(y_a, inp, c0).newton_solve(
+        y_a, inp, c0, hist, w, work, controls, True, a[2]
+    )
+    assert again[0] == transient.NEWTON_CONVERGED
+
+
 @pytest.mark.parametrize(("h1", "h2"), [(math.nan, math.nan), (2e-4, math.nan), (2e-4, 3e-4)])
 def test_bdf2_setup_matches_twin_and_extrapolates_a_parabola(h1: float, h2: float) -> None:
     rng = np.random.default_rng(8)

@@ -153,16 +153,19 @@ class VoltageSchedule:
             raise InputError("voltage program: times must be non-decreasing, one row per time")
         object.__setattr__(self, "times", t)
         object.__setattr__(self, "volts", v)
+        # Called once per time step: breakpoints as a list (bisect) and which
+        # segments hold the voltage (no arithmetic there).
+        object.__setattr__(self, "_times_list", t.tolist())
+        object.__setattr__(self, "_held", np.all(v[1:] == v[:-1], axis=1).tolist())
 
     def __call__(self, t: float) -> FloatArray:
         """Voltages at time t, V, shape (n_actuators,)."""
-        t_arr = self.times
-        k = int(np.searchsorted(t_arr, t, side="right"))
+        k = bisect.bisect_right(self._times_list, t)  # type: ignore[attr-defined]
         if k == 0:
             return self.volts[0].copy()
-        if k >= t_arr.size:
-            return self.volts[-1].copy()
-        t0, t1 = t_arr[k - 1], t_arr[k]
+        if k >= len(self._times_list) or self._held[k - 1]:  # type: ignore[attr-defined]
+            return self.volts[k - 1].copy()
+        t0, t1 = self.times[k - 1], self.times[k]
         w = (t - t0) / (t1 - t0)
         return (1.0 - w) * self.volts[k - 1] + w * self.volts[k]
 

@@ -675,8 +675,10 @@ class TransientFactor:
                 if h_new > 0.0:
                     return kern.NEWTON_CONVERGED, k, first_change, h_new
             if fresh:
-                if k >= max_newton or conv > 0.5:
+                if k >= max_newton or conv >= 1.0:
                     return kern.NEWTON_TOO_SLOW, k, first_change, math.nan
+                if conv > 0.5:
+                    return kern.NEWTON_REFRESH, k, first_change, math.nan
             elif k >= max_newton or conv >= 1.0:
                 return kern.NEWTON_DIVERGED, k, first_change, math.nan
             elif conv ** (max_newton - k) / (1.0 - conv) * err > tol:

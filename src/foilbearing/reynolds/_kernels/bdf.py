@@ -576,9 +576,11 @@ def transient_newton_solve(
     error left, ``rate/(1 − rate)·err`` with the measured contraction rate, is
     below tol; the storage ``Q(y)`` then goes to ``q_out``
     (:func:`transient_storage`). A fresh factor (``fresh``) stops after
-    ``max_newton`` iterations or at a rate above 0.5; a stale one when it
-    diverges (rate >= 1, or ``max_newton``), or asks for a refresh when it
-    would not converge within ``max_newton`` iterations. Twin:
+    ``max_newton`` iterations or when it diverges (rate >= 1), and asks for a
+    refresh at its iterate when it contracts slowly (rate above 0.5: the
+    iterate has left the region where this Jacobian is good); a stale one
+    stops when it diverges (rate >= 1, or ``max_newton``), or asks for a
+    refresh when it would not converge within ``max_newton`` iterations. Twin:
     :meth:`foilbearing.reynolds.transient.TransientFactor.newton_solve_py`.
 
     Returns
@@ -586,8 +588,8 @@ def transient_newton_solve(
     outcome : int
         ``NEWTON_CONVERGED``, ``NEWTON_FILM_CLOSED`` (y not updated),
         ``NEWTON_NOT_FINITE`` (NaN update or a pressure <= 0),
-        ``NEWTON_TOO_SLOW`` (fresh factor), ``NEWTON_DIVERGED`` or
-        ``NEWTON_REFRESH`` (stale factor; y is the last iterate).
+        ``NEWTON_TOO_SLOW`` (fresh factor), ``NEWTON_DIVERGED`` (stale factor)
+        or ``NEWTON_REFRESH`` (y is the last iterate).
     iterations : int
         Iterations done.
     first_change : float
@@ -618,8 +620,10 @@ def transient_newton_solve(
             if h_new > 0.0:
                 return NEWTON_CONVERGED, k, first_change, h_new
         if fresh:
-            if k >= max_newton or conv > 0.5:
+            if k >= max_newton or conv >= 1.0:
                 return NEWTON_TOO_SLOW, k, first_change, np.nan
+            if conv > 0.5:
+                return NEWTON_REFRESH, k, first_change, np.nan
         elif k >= max_newton or conv >= 1.0:
             return NEWTON_DIVERGED, k, first_change, np.nan
         elif conv ** (max_newton - k) / (1.0 - conv) * err > tol:
