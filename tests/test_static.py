@@ -40,6 +40,33 @@ def test_equilibrium_balances_the_load() -> None:
     assert np.all(np.isfinite(res.P)) and res.H.min() > 0
 
 
+def test_block_cyclic_and_superlu_give_the_same_equilibrium(monkeypatch) -> None:
+    # The static Newton factorises dR/dP with the compiled block-cyclic LU; with SuperLU
+    # instead (its fallback) the iterates and the equilibrium must be the same.
+    import foilbearing.reynolds.blocksolve as blocksolve
+    import foilbearing.reynolds.steady as steady
+    import foilbearing.static as static
+
+    case = default_case().with_voltages(150.0)
+    block = solve_equilibrium(case, speed=50e3 * RPM)
+
+    calls = []
+
+    def superlu(data, indices, indptr, n_theta, n_z):
+        calls.append(n_theta)
+        return blocksolve._TransposedSuperLU(data, indices, indptr, n_theta * n_z)
+
+    monkeypatch.setattr(static, "factor_coupled", superlu)
+    monkeypatch.setattr(steady, "factor_coupled", superlu)
+    reference = solve_equilibrium(case, speed=50e3 * RPM)
+    assert block.converged and reference.converged and calls
+    assert block.iterations == reference.iterations
+    np.testing.assert_allclose(
+        [block.eps_x, block.eps_y], [reference.eps_x, reference.eps_y], rtol=1e-9
+    )
+    np.testing.assert_allclose(block.P, reference.P, rtol=1e-9)
+
+
 def test_equilibrium_is_independent_of_the_start() -> None:
     case = default_case().with_voltages(100.0)
     a = solve_equilibrium(case, speed=30e3 * RPM)

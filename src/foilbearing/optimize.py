@@ -332,7 +332,7 @@ def minimize_drag(
     is penalised in proportion to the violation (so the search is led back to
     the feasible set); a point without equilibrium gets a large constant. The
     search is the one of :func:`maximize_onset` (equal voltages and a Latin
-    hypercube, then bounded Nelder-Mead): an evaluation costs ~30 ms, but the
+    hypercube, then bounded Nelder-Mead): an evaluation costs ~10-25 ms, but the
     penalty makes the merit non-smooth at the constraint, where SLSQP with
     finite differences would stall. Only feasible points can be the optimum.
 

@@ -23,6 +23,7 @@ from foilbearing.case import Case
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
+from foilbearing.reynolds.blocksolve import factor_coupled
 
 __all__ = ["EquilibriumOptions", "StaticResult", "film_at_position", "solve_equilibrium"]
 
@@ -393,6 +394,13 @@ class _Equilibrium:
         G = np.array([self.w_x @ (P - 1.0) + load, self.w_y @ (P - 1.0)])
         return R, j_pp, j_ph, G
 
+    def _factor(self, j_pp: Any) -> Any:
+        """LU of dR/dP for ``.solve``: the block-cyclic LU on the foil-coupled pattern."""
+        g = self.model.grid
+        if j_pp.nnz == 3 * g.n_z * g.size:  # foil-coupled pattern (coupled_system)
+            return factor_coupled(j_pp.data, j_pp.indices, j_pp.indptr, g.n_theta, g.n_z)
+        return splu(j_pp.tocsc())
+
     def _film_min(self, P: FloatArray, eps: FloatArray) -> float:
         m = self.model
         p_mean = P.reshape(m.grid.shape).mean(axis=1) - 1.0
@@ -428,7 +436,7 @@ class _Equilibrium:
             if res <= opts.newton.tol and force_res <= opts.force_tol:
                 return _Outcome(P, eps, True, iterations + it, res, force_res, "converged")
             try:
-                lu = splu(j_pp.tocsc())
+                lu = self._factor(j_pp)
             except RuntimeError:
                 return _Outcome(P, eps, False, iterations + it, res, force_res, "singular Jacobian")
             # Schur complement: dP = a - Y dε with J a = -R, J Y = dR/dε; then the force rows.

@@ -21,12 +21,16 @@ eliminated independently, then the separators (see the kernels' comment).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import NDArray
+from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import _kernels as kern
 
-__all__ = ["BlockCyclicLU"]
+__all__ = ["BlockCyclicLU", "factor_coupled"]
 
 FloatArray = NDArray[np.float64]
 
@@ -129,3 +133,35 @@ class BlockCyclicLU:
         out = np.empty_like(b2)
         kern.block_cyclic_solve(self._fac, b2, out)
         return out.reshape(b.shape)
+
+
+class _TransposedSuperLU:
+    """SuperLU of B from its CSR data read as CSC (= Bᵀ), solving B x = b."""
+
+    def __init__(self, data: FloatArray, indices: NDArray, indptr: NDArray, n: int) -> None:
+        bt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
+        # Minimum degree on Bᵀ + B suits the structurally symmetric pattern.
+        self.lu = splu(bt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+
+    def solve(self, rhs: FloatArray) -> FloatArray:
+        return self.lu.solve(rhs, trans="T")
+
+
+def factor_coupled(
+    data: FloatArray, indices: NDArray, indptr: NDArray, n_theta: int, n_z: int
+) -> Any:
+    """Factorise B from its CSR arrays on the foil-coupled pattern, for ``.solve(rhs)``.
+
+    The compiled :class:`BlockCyclicLU`, or SuperLU (of the same arrays read as
+    Bᵀ, solved transposed) when a pivot block is ill conditioned or the
+    elimination without θ-block pivoting is unstable.
+
+    Raises
+    ------
+    RuntimeError
+        If B is exactly singular (from SuperLU).
+    """
+    try:
+        return BlockCyclicLU(data, n_theta, n_z)
+    except FloatingPointError:
+        return _TransposedSuperLU(data, indices, indptr, n_theta * n_z)

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.blocksolve import factor_coupled
 from foilbearing.reynolds.grid import Grid
 
 __all__ = [
@@ -379,16 +380,19 @@ def _newton(
             return _Outcome(P, it, res, False, "residual is not finite")
         if res <= opts.tol:
             return _Outcome(P, it, res, True, "converged")
-        # CSR arrays read as CSC are J^T: factor J^T and solve with trans="T",
-        # which avoids a CSR→CSC conversion per iteration.
-        jt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
         try:
-            # Minimum degree on J^T + J suits the structurally symmetric
-            # pattern: about half the fill of COLAMD on the foil-coupled blocks.
-            lu = splu(jt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+            if coupled:  # the compiled block-cyclic LU (SuperLU if it cannot pivot)
+                lu = factor_coupled(data, indices, indptr, g.n_theta, g.n_z)
+                step = -lu.solve(ws.res.ravel()).reshape(g.shape)
+            else:
+                # CSR arrays read as CSC are J^T: factor J^T and solve with trans="T",
+                # which avoids a CSR→CSC conversion per iteration. Minimum degree on
+                # J^T + J suits the structurally symmetric pattern.
+                jt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
+                lu = splu(jt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+                step = -lu.solve(ws.res.ravel(), trans="T").reshape(g.shape)
         except RuntimeError as exc:  # exactly singular Jacobian
             return _Outcome(P, it, res, False, f"singular Jacobian ({exc})")
-        step = -lu.solve(ws.res.ravel(), trans="T").reshape(g.shape)
         if not np.all(np.isfinite(step)):
             return _Outcome(P, it, res, False, "Newton step is not finite")
         # Step limit: no cell loses more than max_drop of its pressure.

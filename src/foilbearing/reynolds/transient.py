@@ -30,10 +30,9 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds.blocksolve import BlockCyclicLU
+from foilbearing.reynolds.blocksolve import BlockCyclicLU, factor_coupled
 from foilbearing.reynolds.grid import Grid
 from foilbearing.reynolds.steady import Workspace
 
@@ -312,7 +311,7 @@ class TransientSystem:
             jc,
             a_pe,
         )
-        lu = _factor_coupled(jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
+        lu = factor_coupled(jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         if isinstance(lu, BlockCyclicLU):
             y_border = np.empty((n, 2))
             small_inv = np.empty((2, 2))
@@ -430,28 +429,6 @@ class TransientSystem:
             [jv_p, None, None, jv_v],
         ]
         return sp.bmat(blocks, format="csc")
-
-
-class _TransposedSuperLU:
-    """SuperLU of B from its CSR data read as CSC (= Bᵀ), solving B x = b."""
-
-    def __init__(self, data: FloatArray, indices: NDArray, indptr: NDArray, n: int) -> None:
-        bt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
-        self.lu = splu(bt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
-
-    def solve(self, rhs: FloatArray) -> FloatArray:
-        return self.lu.solve(rhs, trans="T")
-
-
-def _factor_coupled(
-    data: FloatArray, indices: NDArray, indptr: NDArray, n_theta: int, n_z: int
-) -> Any:
-    """Factorise B (CSR data on the foil-coupled pattern): the compiled block-cyclic LU, or
-    SuperLU when a pivot block is ill-conditioned."""
-    try:
-        return BlockCyclicLU(data, n_theta, n_z)
-    except FloatingPointError:
-        return _TransposedSuperLU(data, indices, indptr, n_theta * n_z)
 
 
 class TransientFactor:
