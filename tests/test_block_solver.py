@@ -59,6 +59,22 @@ def test_kernel_matches_twin_and_spsolve(n_theta: int, n_z: int) -> None:
     assert _rel(x1, spsolve(mat.tocsc(), b1)) < 1e-10
 
 
+@pytest.mark.parametrize(("n_theta", "n_z"), [(3, 2), (8, 4), (96, 12)])
+def test_complex_matrix_matches_spsolve(n_theta: int, n_z: int) -> None:
+    # The perturbation at a frequency is complex: the same kernels, pivoting by modulus.
+    data, mat = _random_coupled(n_theta, n_z, seed=7)
+    rng = np.random.default_rng(8)
+    cdata = data + 1j * rng.uniform(-1.0, 1.0, data.size)
+    cmat = sp.csr_matrix((cdata, mat.indices, mat.indptr), shape=mat.shape)
+    rhs = rng.standard_normal((mat.shape[0], 2)) + 1j * rng.standard_normal((mat.shape[0], 2))
+    x = BlockCyclicLU(cdata, n_theta, n_z).solve(rhs)
+    assert x.dtype == np.complex128
+    assert _rel(x, spsolve(cmat.tocsc(), rhs)) < 1e-12
+    # a real matrix with a complex right-hand side
+    x_real = BlockCyclicLU(data, n_theta, n_z).solve(rhs)
+    assert _rel(x_real, spsolve(mat.tocsc(), rhs)) < 1e-12
+
+
 def test_real_newton_matrix_matches_splu() -> None:
     """The transient Newton matrix of the default case (as TransientSystem.factorize builds it)."""
     from foilbearing.case import default_case

@@ -33,6 +33,7 @@ from foilbearing.reynolds import _kernels as kern
 __all__ = ["BlockCyclicLU", "factor_coupled"]
 
 FloatArray = NDArray[np.float64]
+DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a frequency)
 
 
 class BlockCyclicLU:
@@ -40,7 +41,7 @@ class BlockCyclicLU:
 
     Parameters
     ----------
-    data : ndarray, shape (3 n_z · n_theta n_z,)
+    data : ndarray, shape (3 n_z · n_theta n_z,), real or complex
         CSR data of B on ``coupled_pattern(n_theta, n_z)``: row
         ``k = i*n_z + j`` holds the ``3 n_z`` columns of θ-blocks ``i−1, i, i+1``
         (periodic) in increasing column order. Not kept: the factors are a copy.
@@ -74,7 +75,7 @@ class BlockCyclicLU:
 
     def __init__(
         self,
-        data: FloatArray,
+        data: DataArray,
         n_theta: int,
         n_z: int,
         *,
@@ -82,7 +83,8 @@ class BlockCyclicLU:
         growth_max: float = 1e8,
     ) -> None:
         n = n_theta * n_z
-        data = np.ascontiguousarray(data, dtype=np.float64)
+        dtype = np.complex128 if np.iscomplexobj(data) else np.float64
+        data = np.ascontiguousarray(data, dtype=dtype)
         if data.shape != (3 * n_z * n,):
             raise ValueError(
                 f"data has shape {data.shape}; the coupled pattern of a "
@@ -90,7 +92,7 @@ class BlockCyclicLU:
             )
         self.n_theta, self.n_z = n_theta, n_z
         self.shape = (n, n)
-        self._fac = kern.block_cyclic_alloc(n_theta, n_z)
+        self._fac: Any = kern.block_cyclic_alloc(n_theta, n_z, dtype)
         status, block, rcond, growth = kern.block_cyclic_factor(data, n_theta, n_z, self._fac)
         self.rcond, self.growth = float(rcond), float(growth)
         p = (n_theta - 1) // 2
@@ -123,9 +125,10 @@ class BlockCyclicLU:
         Returns
         -------
         ndarray
-            ``x``, same shape as ``rhs``, float64.
+            ``x``, same shape as ``rhs``; float64, or complex128 if B or rhs is complex.
         """
-        b = np.asarray(rhs, dtype=np.float64)
+        dtype = np.result_type(self._fac, np.asarray(rhs), np.float64)
+        b = np.asarray(rhs, dtype=dtype)
         n = self.shape[0]
         if b.ndim not in (1, 2) or b.shape[0] != n:
             raise ValueError(f"rhs has shape {b.shape}; expected ({n},) or ({n}, k)")
@@ -138,7 +141,7 @@ class BlockCyclicLU:
 class _TransposedSuperLU:
     """SuperLU of B from its CSR data read as CSC (= Bᵀ), solving B x = b."""
 
-    def __init__(self, data: FloatArray, indices: NDArray, indptr: NDArray, n: int) -> None:
+    def __init__(self, data: DataArray, indices: NDArray, indptr: NDArray, n: int) -> None:
         bt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
         # Minimum degree on Bᵀ + B suits the structurally symmetric pattern.
         self.lu = splu(bt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
@@ -148,7 +151,11 @@ class _TransposedSuperLU:
 
 
 def factor_coupled(
-    data: FloatArray, indices: NDArray, indptr: NDArray, n_theta: int, n_z: int
+    data: DataArray,
+    indices: NDArray,
+    indptr: NDArray,
+    n_theta: int,
+    n_z: int,
 ) -> Any:
     """Factorise B from its CSR arrays on the foil-coupled pattern, for ``.solve(rhs)``.
 

@@ -25,9 +25,9 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.blocksolve import factor_coupled
 from foilbearing.reynolds.grid import Grid
 from foilbearing.reynolds.steady import Workspace
 
@@ -106,13 +106,25 @@ def pressure_response(
     -------
     ΔP, shape (n_theta*n_z, m), complex.
     """
-    j_p, j_h = reynolds_jacobians(grid, P, H, lam, workspace)
-    area = grid.d_theta * grid.d_z
-    s_op = foil_operator(grid, compliance)
-    jw = 2j * nu * lam * area
-    p0 = sp.diags(np.ravel(P))
-    h0 = sp.diags(np.ravel(H))
-    j_film = j_h - jw * p0  # ∂/∂H of R − 2Λ A jν P H
-    system = (j_p - jw * h0) + j_film @ s_op
-    lu = splu(sp.csc_matrix(system))
-    return lu.solve(-(j_film @ dh_journal).astype(np.complex128))
+    ws = workspace if workspace is not None else Workspace(grid)
+    reynolds_jacobians(grid, P, H, lam, ws)  # J_P, J_H into ws.jp, ws.jh
+    n = grid.size
+    jw = 2j * nu * lam * grid.d_theta * grid.d_z
+    diag = _diagonal_slots(grid)
+    j_pressure = ws.jp.astype(np.complex128)
+    j_pressure[diag] -= jw * np.ravel(H)
+    j_film = ws.jh.astype(np.complex128)  # ∂/∂H of R − 2Λ A jν P H
+    j_film[diag] -= jw * np.ravel(P)
+    # The system (J_P − jw H₀) + (J_H − jw P₀) S on the foil-coupled pattern, where the
+    # compiled block-cyclic LU factorises it (SuperLU if it cannot).
+    s_row = np.asarray(compliance, dtype=np.complex128) / grid.n_z
+    system = np.empty(ws.c_indices.size, dtype=np.complex128)
+    kern.coupled_jacobian(j_pressure, j_film, s_row, grid.n_z, system)
+    lu = factor_coupled(system, ws.c_indices, ws.c_indptr, grid.n_theta, grid.n_z)
+    film = sp.csr_matrix((j_film, ws.indices, ws.indptr), shape=(n, n))
+    return lu.solve(-(film @ dh_journal).astype(np.complex128))
+
+
+def _diagonal_slots(grid: Grid) -> NDArray[np.int64]:
+    """Position of each row's diagonal entry in the 5-point stencil data."""
+    return kern.stencil_pattern(grid.n_theta, grid.n_z)[2][:, :, 2].ravel()

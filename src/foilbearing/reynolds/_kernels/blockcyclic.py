@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
+DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a frequency)
 
 
 # ---------------------------------------------------------------------------
@@ -53,14 +56,15 @@ IntArray = NDArray[np.int64]
 BC_OK, BC_ZERO_PIVOT, BC_NOT_FINITE = 0, 1, 2
 
 
-def block_cyclic_alloc(n_theta: int, n_z: int) -> FloatArray:
+def block_cyclic_alloc(n_theta: int, n_z: int, dtype: type = np.float64) -> DataArray:
     """Factor storage for :func:`block_cyclic_factor`, shape (n_theta, n_z, 5 n_z).
 
-    ``n_theta >= 3`` (the three θ-blocks of a row are distinct), ``n_z >= 1``.
+    ``n_theta >= 3`` (the three θ-blocks of a row are distinct), ``n_z >= 1``;
+    ``dtype`` that of the matrix data (float64 or complex128).
     """
     if n_theta < 3 or n_z < 1:
         raise ValueError(f"block cyclic LU needs n_theta >= 3 and n_z >= 1, got {n_theta}, {n_z}")
-    return np.empty((n_theta, n_z, 5 * n_z))  # every entry is written by the factorisation
+    return np.empty((n_theta, n_z, 5 * n_z), dtype=dtype)  # all written by the factorisation
 
 
 @njit(cache=True)
@@ -78,7 +82,7 @@ def block_cyclic_chains(n_theta: int) -> tuple[int, tuple[tuple[int, int, int, i
 
 
 @njit(cache=True, fastmath={"contract"})
-def _gauss_jordan(aug: FloatArray, m: int, width: int, row: FloatArray) -> int:
+def _gauss_jordan(aug: DataArray, m: int, width: int, row: DataArray) -> int:
     """Gauss-Jordan elimination with partial pivoting of ``aug[:, :width]`` to ``[I | D⁻¹ X]``.
 
     ``aug`` (m, ≥ width) holds ``[D | X]`` with D the m × m pivot block; row
@@ -117,10 +121,10 @@ def _gauss_jordan(aug: FloatArray, m: int, width: int, row: FloatArray) -> int:
 
 @njit(cache=True, fastmath={"contract"})
 def _gemm_acc(
-    c: FloatArray,
+    c: DataArray,
     c0: int,
-    a: FloatArray,
-    b: FloatArray,
+    a: DataArray,
+    b: DataArray,
     m: int,
     w: int,
     alpha: float,
@@ -156,7 +160,7 @@ def _gemm_acc(
 
 @njit(cache=True, inline="always", fastmath={"reassoc", "contract"})
 def _gemv_acc(
-    a: FloatArray, c0: int, m: int, w: int, x: FloatArray, y: FloatArray, alpha: float
+    a: DataArray, c0: int, m: int, w: int, x: DataArray, y: DataArray, alpha: float
 ) -> None:
     """``y[:m] += alpha · a[:, c0:c0+w] @ x[:w]``; ``x`` must not overlap ``y``.
 
@@ -211,7 +215,7 @@ def _rank(i: int, j: int, n_theta: int) -> int:
 
 
 @njit(cache=True)
-def _norm1(a: FloatArray, c0: int, m: int) -> float:
+def _norm1(a: DataArray, c0: int, m: int) -> float:
     """1-norm (largest column sum) of the m × m block ``a[:m, c0:c0+m]``."""
     best = 0.0
     for c in range(m):
@@ -224,13 +228,13 @@ def _norm1(a: FloatArray, c0: int, m: int) -> float:
 
 @njit(cache=True, nogil=True)
 def _chain_factor(
-    d4: FloatArray,
-    fac: FloatArray,
+    d4: DataArray,
+    fac: DataArray,
     first: int,
     last: int,
     left: int,
     right: int,
-    sc: FloatArray,
+    sc: DataArray,
     stats: FloatArray,
 ) -> int:
     """Eliminate the chain rows ``first … last`` (see the comment above :data:`BC_OK`).
@@ -247,12 +251,13 @@ def _chain_factor(
     stats[2] = first
     if last < first:
         return BC_OK
-    aug = np.empty((m, 4 * m))  # [D_i | U_i | G_i | I] → [I | V_i | W_i | D_i⁻¹]
-    row = np.empty(4 * m)
-    lo = np.empty((m, m))
-    vw = np.empty((m, 2 * m))  # [V_i | W_i]
-    t = np.zeros((m, 2 * m))  # [R_i | S_ll]
-    tmp = np.empty((m, 2 * m))
+    dt = fac.dtype
+    aug = np.empty((m, 4 * m), dtype=dt)  # [D_i | U_i | G_i | I] → [I | V_i | W_i | D_i⁻¹]
+    row = np.empty(4 * m, dtype=dt)
+    lo = np.empty((m, m), dtype=dt)
+    vw = np.empty((m, 2 * m), dtype=dt)  # [V_i | W_i]
+    t = np.zeros((m, 2 * m), dtype=dt)  # [R_i | S_ll]
+    tmp = np.empty((m, 2 * m), dtype=dt)
     for i in range(first, last + 1):
         x = fac[i]
         rc = _rank(i, i, n_b)
@@ -333,9 +338,9 @@ def _chain_factor(
 
 @njit(cache=True, nogil=True)
 def _separator_factor(
-    d4: FloatArray,
-    fac: FloatArray,
-    sc: FloatArray,
+    d4: DataArray,
+    fac: DataArray,
+    sc: DataArray,
     stats: FloatArray,
     status: IntArray,
     bmax: float,
@@ -354,8 +359,8 @@ def _separator_factor(
         rcond = stats[1, 1]
         worst = int(stats[1, 2])
     m2 = 2 * m
-    aug = np.zeros((m2, 2 * m2))  # [S | I] → [I | S⁻¹]
-    row = np.empty(2 * m2)
+    aug = np.zeros((m2, 2 * m2), dtype=fac.dtype)  # [S | I] → [I | S⁻¹]
+    row = np.empty(2 * m2, dtype=fac.dtype)
     for a in range(2):
         for b in range(2):
             i, j = s_idx[a], s_idx[b]
@@ -402,20 +407,20 @@ def _separator_factor(
 
 
 @njit(cache=True)
-def _check_data(data: FloatArray) -> float:
+def _check_data(data: DataArray) -> float:
     """Largest |entry| of the matrix data, or NaN if it holds inf or NaN (branch-free loop)."""
     bmax = 0.0
-    nonfinite = 0.0  # v − v is 0 for finite v, NaN for inf or NaN
+    nonfinite = 0.0  # |v| − |v| is 0 for finite v, NaN for inf or NaN (real or complex)
     for v in data:
-        nonfinite += v - v
         av = abs(v)
+        nonfinite += av - av
         bmax = av if av > bmax else bmax
     return bmax if nonfinite == 0.0 else np.nan
 
 
 @njit(cache=True, nogil=True)
 def block_cyclic_factor(
-    data: FloatArray, n_theta: int, n_z: int, fac: FloatArray
+    data: DataArray, n_theta: int, n_z: int, fac: DataArray
 ) -> tuple[int, int, float, float]:
     """Block LU of the periodic block-tridiagonal matrix on :func:`coupled_pattern`.
 
@@ -424,7 +429,8 @@ def block_cyclic_factor(
     none between blocks, so it is meant for block-diagonally dominant
     matrices such as the BDF Newton matrix ``c0·diag(H) + …``. Cost
     ``O(n_theta n_z³)``. Replaces ``scipy.sparse.linalg.splu`` of the CSR
-    matrix; twin :func:`block_cyclic_factor_py`.
+    matrix; twin :func:`block_cyclic_factor_py`. Real or complex: ``data`` and
+    ``fac`` of one dtype (float64 or complex128; the pivots by modulus).
 
     Parameters
     ----------
@@ -457,7 +463,7 @@ def block_cyclic_factor(
     if bmax != bmax:
         return BC_NOT_FINITE, -1, 0.0, np.inf
     d4 = data.reshape((n_theta, n_z, 3, n_z))
-    sc = np.empty((2, 2 * n_z, 2 * n_z))
+    sc = np.empty((2, 2 * n_z, 2 * n_z), dtype=fac.dtype)
     stats = np.empty((2, 3))
     status = np.empty(2, dtype=np.int64)
     for k in range(2):  # independent: the place for two threads (not worth it on 2 cores)
@@ -467,7 +473,7 @@ def block_cyclic_factor(
 
 
 @njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
-def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> None:
+def block_cyclic_solve(fac: DataArray, rhs: DataArray, out: DataArray) -> None:
     """Solve ``B x = rhs`` with the factors of :func:`block_cyclic_factor`.
 
     Cost ``O(n_theta n_z²)`` per right-hand side; twin
@@ -481,7 +487,8 @@ def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> Non
     rhs : ndarray, shape (n, k)
         Right-hand sides, ``n = n_theta n_z``, row ``i*n_z + j``.
     out : ndarray, shape (n, k)
-        Filled with the solutions (may be ``rhs`` itself).
+        Filled with the solutions (may be ``rhs`` itself); complex if the
+        factors or ``rhs`` are.
     """
     n_b = fac.shape[0]
     m = fac.shape[1]
@@ -489,9 +496,10 @@ def block_cyclic_solve(fac: FloatArray, rhs: FloatArray, out: FloatArray) -> Non
     last_b = n_b - 1
     p = (n_b - 1) // 2
     # (column, block, n_z): block vectors contiguous for the products
-    z = np.empty((ncol, n_b, m))
-    x = np.empty(2 * m)
-    acc = np.empty((2, 2, m))  # per chain: right-hand side updates of [left, right]
+    dt = out.dtype  # that of the factors or of rhs, whichever is complex
+    z = np.empty((ncol, n_b, m), dtype=dt)
+    x = np.empty(2 * m, dtype=dt)
+    acc = np.empty((2, 2, m), dtype=dt)  # per chain: right-hand side updates of [left, right]
     for i in range(n_b):
         for j in range(m):
             for q in range(ncol):

@@ -3,12 +3,16 @@ sparsity patterns, the compiled kernels and their NumPy twins (see the package d
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
+#: Real or complex data (the complex one for the perturbation at a frequency).
+DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a frequency)
 
 # Below this |x| the Bernoulli function and its derivative use their Taylor
 # series: x/expm1(x) loses digits to cancellation in B'(x) = B(1−B)/x − B.
@@ -424,7 +428,7 @@ def jacobian_H(
 
 @njit(cache=True)
 def coupled_jacobian(
-    jp_data: FloatArray, jh_data: FloatArray, s: FloatArray, n_z: int, out: FloatArray
+    jp_data: DataArray, jh_data: DataArray, s: DataArray, n_z: int, out: DataArray
 ) -> None:
     """Assemble ``dR/dP + dR/dH · dH/dP`` on the pattern of :func:`coupled_pattern`.
 
