@@ -51,15 +51,23 @@ def reynolds_jacobians(
     lam
         Bearing number Λ.
     """
-    ws = workspace if workspace is not None else Workspace(grid)
-    p = np.ascontiguousarray(P, dtype=np.float64)
-    h = np.ascontiguousarray(H, dtype=np.float64)
+    ws = _jacobians_into(workspace, grid, P, H, lam)
     n = grid.size
-    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.jp)
-    kern.jacobian_H(p, h, lam, grid.d_theta, grid.d_z, ws.jh)
     j_p = sp.csr_matrix((ws.jp.copy(), ws.indices, ws.indptr), shape=(n, n))
     j_h = sp.csr_matrix((ws.jh.copy(), ws.indices, ws.indptr), shape=(n, n))
     return j_p, j_h
+
+
+def _jacobians_into(
+    workspace: Workspace | None, grid: Grid, P: FloatArray, H: FloatArray, lam: float
+) -> Workspace:
+    """Fill ``ws.jp`` and ``ws.jh`` with the stencil data of J_P and J_H; the workspace."""
+    ws = workspace if workspace is not None else Workspace(grid)
+    p = np.ascontiguousarray(P, dtype=np.float64)
+    h = np.ascontiguousarray(H, dtype=np.float64)
+    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.jp)
+    kern.jacobian_H(p, h, lam, grid.d_theta, grid.d_z, ws.jh)
+    return ws
 
 
 def foil_operator(grid: Grid, compliance: ComplexArray | FloatArray) -> sp.csr_matrix:
@@ -106,11 +114,10 @@ def pressure_response(
     -------
     ΔP, shape (n_theta*n_z, m), complex.
     """
-    ws = workspace if workspace is not None else Workspace(grid)
-    reynolds_jacobians(grid, P, H, lam, ws)  # J_P, J_H into ws.jp, ws.jh
+    ws = _jacobians_into(workspace, grid, P, H, lam)
     n = grid.size
     jw = 2j * nu * lam * grid.d_theta * grid.d_z
-    diag = _diagonal_slots(grid)
+    diag = ws.diag_slots
     j_pressure = ws.jp.astype(np.complex128)
     j_pressure[diag] -= jw * np.ravel(H)
     j_film = ws.jh.astype(np.complex128)  # ∂/∂H of R − 2Λ A jν P H
@@ -123,8 +130,3 @@ def pressure_response(
     lu = factor_coupled(system, ws.c_indices, ws.c_indptr, grid.n_theta, grid.n_z)
     film = sp.csr_matrix((j_film, ws.indices, ws.indptr), shape=(n, n))
     return lu.solve(-(film @ dh_journal).astype(np.complex128))
-
-
-def _diagonal_slots(grid: Grid) -> NDArray[np.int64]:
-    """Position of each row's diagonal entry in the 5-point stencil data."""
-    return kern.stencil_pattern(grid.n_theta, grid.n_z)[2][:, :, 2].ravel()

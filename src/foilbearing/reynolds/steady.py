@@ -147,6 +147,8 @@ class Workspace:
     indices: NDArray[np.int64] = field(init=False, repr=False)
     c_indptr: NDArray[np.int64] = field(init=False, repr=False)
     c_indices: NDArray[np.int64] = field(init=False, repr=False)
+    #: Position of each cell's diagonal entry in the 5-point stencil data.
+    diag_slots: NDArray[np.int64] = field(init=False, repr=False)
     res: FloatArray = field(init=False, repr=False)
     h: FloatArray = field(init=False, repr=False)
     s: FloatArray = field(init=False, repr=False)
@@ -156,7 +158,8 @@ class Workspace:
 
     def __post_init__(self) -> None:
         g = self.grid
-        self.indptr, self.indices, _ = kern.stencil_pattern(g.n_theta, g.n_z)
+        self.indptr, self.indices, slots = kern.stencil_pattern(g.n_theta, g.n_z)
+        self.diag_slots = slots[:, :, 2].ravel()
         self.c_indptr, self.c_indices = kern.coupled_pattern(g.n_theta, g.n_z)
         self.res = np.empty(g.shape)
         self.h = np.empty(g.shape)

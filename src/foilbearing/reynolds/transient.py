@@ -131,7 +131,7 @@ class TransientSystem:
             [np.repeat(self.cos_t, grid.n_z), np.repeat(self.sin_t, grid.n_z)]
         )
         self.s_vp = self.force_scale * self.w
-        self.diag_slots = kern.stencil_pattern(grid.n_theta, grid.n_z)[2][:, :, 2].ravel()
+        self.diag_slots = self.ws.diag_slots
         self.c_indptr, self.c_indices = kern.coupled_pattern(grid.n_theta, grid.n_z)
         self._jc = np.empty(self.c_indices.size)  # sizes of the factorisation's buffers
         self._jp = np.empty(self.ws.jp.size)
