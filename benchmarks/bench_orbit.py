@@ -2,6 +2,9 @@
 the fast stepper 30x faster than solve_ivp BDF on the same segment). Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--full]
+
+The cost model behind these figures and every route tried towards the 60 s target:
+docs/orbit-performance.md.
 """
 
 from __future__ import annotations
