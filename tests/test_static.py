@@ -54,7 +54,7 @@ def test_block_cyclic_and_superlu_give_the_same_equilibrium(monkeypatch) -> None
 
     def superlu(data, indices, indptr, n_theta, n_z):
         calls.append(n_theta)
-        return blocksolve._TransposedSuperLU(data, indices, indptr, n_theta * n_z)
+        return blocksolve.TransposedSuperLU(data, indices, indptr, n_theta * n_z)
 
     monkeypatch.setattr(static, "factor_coupled", superlu)
     monkeypatch.setattr(steady, "factor_coupled", superlu)

@@ -17,13 +17,12 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.sparse.linalg import splu
 
 from foilbearing.case import Case
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
-from foilbearing.reynolds.blocksolve import factor_coupled
+from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
 
 __all__ = ["EquilibriumOptions", "StaticResult", "film_at_position", "solve_equilibrium"]
 
@@ -399,7 +398,7 @@ class _Equilibrium:
         g = self.model.grid
         if j_pp.nnz == 3 * g.n_z * g.size:  # foil-coupled pattern (coupled_system)
             return factor_coupled(j_pp.data, j_pp.indices, j_pp.indptr, g.n_theta, g.n_z)
-        return splu(j_pp.tocsc())
+        return TransposedSuperLU(j_pp.data, j_pp.indices, j_pp.indptr, g.size)
 
     def _film_min(self, P: FloatArray, eps: FloatArray) -> float:
         m = self.model

@@ -30,7 +30,7 @@ from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import _kernels as kern
 
-__all__ = ["BlockCyclicLU", "factor_coupled"]
+__all__ = ["BlockCyclicLU", "TransposedSuperLU", "factor_coupled"]
 
 FloatArray = NDArray[np.float64]
 DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a frequency)
@@ -138,8 +138,12 @@ class BlockCyclicLU:
         return out.reshape(b.shape)
 
 
-class _TransposedSuperLU:
-    """SuperLU of B from its CSR data read as CSC (= Bᵀ), solving B x = b."""
+class TransposedSuperLU:
+    """SuperLU of B from its CSR arrays read as CSC (= Bᵀ), solving B x = b.
+
+    Any CSR pattern; reading the arrays as Bᵀ and solving transposed avoids a
+    CSR → CSC conversion per factorisation.
+    """
 
     def __init__(self, data: DataArray, indices: NDArray, indptr: NDArray, n: int) -> None:
         bt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
@@ -171,4 +175,4 @@ def factor_coupled(
     try:
         return BlockCyclicLU(data, n_theta, n_z)
     except FloatingPointError:
-        return _TransposedSuperLU(data, indices, indptr, n_theta * n_z)
+        return TransposedSuperLU(data, indices, indptr, n_theta * n_z)

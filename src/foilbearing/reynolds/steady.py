@@ -24,10 +24,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
-from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds.blocksolve import factor_coupled
+from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
 from foilbearing.reynolds.grid import Grid
 
 __all__ = [
@@ -386,14 +385,9 @@ def _newton(
         try:
             if coupled:  # the compiled block-cyclic LU (SuperLU if it cannot pivot)
                 lu = factor_coupled(data, indices, indptr, g.n_theta, g.n_z)
-                step = -lu.solve(ws.res.ravel()).reshape(g.shape)
             else:
-                # CSR arrays read as CSC are J^T: factor J^T and solve with trans="T",
-                # which avoids a CSR→CSC conversion per iteration. Minimum degree on
-                # J^T + J suits the structurally symmetric pattern.
-                jt = sp.csc_matrix((data, indices, indptr), shape=(n, n))
-                lu = splu(jt, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
-                step = -lu.solve(ws.res.ravel(), trans="T").reshape(g.shape)
+                lu = TransposedSuperLU(data, indices, indptr, n)
+            step = -lu.solve(ws.res.ravel()).reshape(g.shape)
         except RuntimeError as exc:  # exactly singular Jacobian
             return _Outcome(P, it, res, False, f"singular Jacobian ({exc})")
         if not np.all(np.isfinite(step)):
