@@ -44,7 +44,8 @@ def newton_matrix(n_theta: int, n_z: int) -> tuple[np.ndarray, np.ndarray, np.nd
     case = replace(default_case().with_voltages(150.0), grid=Grid(n_theta, n_z))
     sim = OrbitSimulation(case, constant_speed(30000 * math.pi / 30, 0.1))
     y = sim.initial_state()
-    factor = sim.system.factorize(y, sim.inputs(0.0, sim.volts(0.0)), c0=5000.0)
+    inp = sim.inputs(0.0, sim.volts(0.0))
+    factor = sim.system.factorize(y, inp, 5000.0, -5000.0 * sim.system.storage(y, inp))
     assert factor.coupled_data is not None
     return factor.coupled_data.copy(), sim.system.c_indices, sim.system.c_indptr
 

@@ -87,7 +87,8 @@ def test_real_newton_matrix_matches_splu() -> None:
     y = sim.initial_state()
     inp = sim.inputs(0.0, sim.volts(0.0))
     system = sim.system
-    data = system.factorize(y, inp, c0=5000.0).coupled_data
+    hist = -5000.0 * system.storage(y, inp)
+    data = system.factorize(y, inp, 5000.0, hist).coupled_data
     assert data is not None
     n_theta, n_z = system.grid.n_theta, system.grid.n_z
     n = n_theta * n_z

@@ -36,7 +36,8 @@ def test_zero_frequency_stiffness_equals_static_derivative() -> None:
 def test_perturbed_system_on_the_block_lu_equals_the_sparse_assembly() -> None:
     # pressure_response assembles (J_P − jw H₀) + (J_H − jw P₀) S on the foil-coupled
     # pattern and factorises it with the block-cyclic LU; the same system built from the
-    # scipy.sparse products and solved by SuperLU must give the same ΔP.
+    # scipy.sparse products and solved by SuperLU must give the same ΔP. Under lift-off
+    # the cells the static film holds at ambient have ΔP = 0 (identity rows).
     import scipy.sparse as sp
     from scipy.sparse.linalg import splu
 
@@ -49,16 +50,22 @@ def test_perturbed_system_on_the_block_lu_equals_the_sparse_assembly() -> None:
 
     st = solve_equilibrium(default_case().with_voltages(150.0), speed=50e3 * RPM)
     grid, dh = st.model.grid, _journal_columns(st.model)
-    compliance = dynamic_compliance(st, None)
-    assert np.iscomplexobj(compliance) and np.any(compliance != 0)
     nu = 0.4
-    dp = pressure_response(grid, st.P, st.H, st.bearing_number, nu, compliance, dh)
+    compliance = dynamic_compliance(st, nu * st.speed)
+    assert np.iscomplexobj(compliance) and np.any(compliance != 0)
     j_p, j_h = reynolds_jacobians(grid, st.P, st.H, st.bearing_number)
     jw = 2j * nu * st.bearing_number * grid.d_theta * grid.d_z
     j_film = j_h - jw * sp.diags(st.P.ravel())
     system = (j_p - jw * sp.diags(st.H.ravel())) + j_film @ foil_operator(grid, compliance)
-    reference = splu(sp.csc_matrix(system)).solve(-(j_film @ dh).astype(np.complex128))
+    rhs = -(j_film @ dh).astype(np.complex128)
+    held = (st.P.ravel() == 1.0).astype(float)  # the complementarity sets them exactly
+    assert 0 < held.sum() < held.size
+    system = sp.diags(1.0 - held) @ system + sp.diags(held)
+    rhs = (1.0 - held)[:, None] * rhs
+    reference = splu(sp.csc_matrix(system)).solve(rhs)
+    dp = pressure_response(grid, st.P, st.H, st.bearing_number, nu, compliance, dh, lift_off=True)
     assert np.abs(dp - reference).max() < 1e-10 * np.abs(reference).max()
+    assert np.all(dp[held > 0] == 0.0)
 
 
 def test_small_eccentricity_closed_form() -> None:

@@ -147,3 +147,41 @@ def test_coupled_jacobian_kernel_equals_sparse_product() -> None:
     kern.coupled_jacobian(jp, jh, s, N_Z, a)
     kern.coupled_jacobian_py(jp, jh, s, N_Z, b)
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
+
+
+@pytest.mark.parametrize("coupled", [True, False])
+def test_lift_off_rows_kernel_equals_twin(coupled: bool) -> None:
+    # Cells with P near and below ambient and residuals of both signs: some held, some
+    # free; the held rows become −d e_k with residual −d (P − 1), their film rows zero.
+    rng = np.random.default_rng(11)
+    P, H = _fields(6)
+    P = 1.0 + 0.05 * rng.standard_normal(P.shape)
+    indptr, _, slots = kern.stencil_pattern(N_THETA, N_Z)
+    diag = slots[:, :, 2].ravel()
+    nnz = indptr[-1]
+    jp, jh = np.empty(nnz), np.empty(nnz)
+    kern.jacobian_P(P, H, 1.5, D_THETA, D_Z, jp)
+    kern.jacobian_H(P, H, 1.5, D_THETA, D_Z, jh)
+    res = _residual(P, H, 1.5).reshape(P.shape)
+    jc = rng.standard_normal(kern.coupled_pattern(N_THETA, N_Z)[1].size)
+    outs = []
+    for kernel in (kern.lift_off_rows, kern.lift_off_rows_py):
+        args = [P, res.copy(), jp.copy(), jh.copy(), jc.copy(), diag, indptr, coupled]
+        held = np.zeros(P.size, dtype=bool)
+        count = kernel(*args, held)
+        outs.append((count, held, *args[1:5]))
+    (n_a, held_a, *arrays_a), (n_b, held_b, *arrays_b) = outs
+    assert n_a == n_b == held_a.sum() and 0 < n_a < P.size
+    np.testing.assert_array_equal(held_a, held_b)
+    for a, b in zip(arrays_a, arrays_b, strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-14)
+    d = np.abs(jp[diag])
+    np.testing.assert_allclose(arrays_a[0].ravel()[held_a], -d[held_a] * (P.ravel()[held_a] - 1.0))
+    matrix = (
+        sp.csr_matrix((arrays_a[3], *kern.coupled_pattern(N_THETA, N_Z)[::-1]), shape=(P.size,) * 2)
+        if coupled
+        else sp.csr_matrix(
+            (arrays_a[1], kern.stencil_pattern(N_THETA, N_Z)[1], indptr), shape=(P.size,) * 2
+        )
+    ).toarray()
+    np.testing.assert_array_equal(matrix[held_a], -np.diag(d)[held_a])

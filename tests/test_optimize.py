@@ -97,7 +97,9 @@ def test_onset_optimum_not_worse_than_equal_voltages(coarse) -> None:
 
 
 def test_drag_optimum_is_feasible_and_best_of_history(coarse) -> None:
-    frac = 0.35
+    # Minimum film at 50 krpm on this grid: 0.33 C at 0 V falling to 0.20 C at 150 V, so a
+    # 0.30 C floor is feasible near 0 V and binds elsewhere.
+    frac = 0.30
     res = opt.minimize_drag(coarse, 50_000 * RPM, min_film_fraction=frac, max_evaluations=40)
     assert res.evaluations <= 40
     assert res.min_film is not None and res.min_film >= frac * coarse.bearing.clearance

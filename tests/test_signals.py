@@ -214,3 +214,26 @@ def test_plots_return_figures(whirl):
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 3
     assert [len(ax.lines) for ax in visible] == [2, 2, 1]  # the last speed is never reached
+
+
+def test_order_tracking_reads_a_half_frequency_component_not_a_whirl_at_another_ratio() -> None:
+    # Speed-up at 500 rad/s² from 1500 rad/s: 20 µm of 1X throughout, 3 µm of 0.5X between
+    # 1.0 and 2.0 s, and 5 µm of a whirl at a fixed 90 Hz (ratio 0.2-0.35, not 0.5).
+    from foilbearing.signals import order_amplitude, order_interval
+
+    fs = 10_000.0
+    t = np.arange(0.0, 3.0, 1.0 / fs)
+    speed = 1500.0 + 500.0 * t
+    phase = 1500.0 * t + 250.0 * t**2
+    half = np.where((t > 1.0) & (t < 2.0), 3e-6, 0.0)
+    x = 20e-6 * np.cos(phase) + half * np.cos(0.5 * phase + 0.3) + 5e-6 * np.sin(2 * np.pi * 90 * t)
+    amp = order_amplitude(t, x, phase, 0.5)
+    mid = (t > 1.2) & (t < 1.8)
+    assert np.allclose(amp[mid], 3e-6, rtol=0.03)  # the 0.5X amplitude, within 3 %
+    quiet = (t > 0.3) & (t < 0.8)
+    assert np.max(amp[quiet]) < 0.3e-6  # the 90 Hz whirl and 1X leak little
+    lo, hi, peak, _ = order_interval(speed, amp, 1.5e-6)
+    assert lo == pytest.approx((1500 + 500 * 1.0) * 30 / np.pi, rel=0.02)
+    assert hi == pytest.approx((1500 + 500 * 2.0) * 30 / np.pi, rel=0.02)
+    assert peak == pytest.approx(3e-6, rel=0.05)
+    assert order_interval(speed, amp, 1e-3) is None

@@ -24,9 +24,11 @@ RPM = math.pi / 30.0
 
 @pytest.fixture(scope="module")
 def sweep():
-    """C-GFB and shimmed GFB at 0/50/150 V and 10/50/90 krpm (continuation in speed)."""
+    """C-GFB and shimmed GFB at 0/50/100/150 V and 10/30/50/90 krpm (continuation in speed)."""
     return static_sweep(
-        default_case(), [10e3 * RPM, 50e3 * RPM, 90e3 * RPM], [0.0, 50.0, 100.0, 150.0]
+        default_case(),
+        [10e3 * RPM, 30e3 * RPM, 50e3 * RPM, 90e3 * RPM],
+        [0.0, 50.0, 100.0, 150.0],
     )
 
 
@@ -100,10 +102,22 @@ def test_concentric_rigid_journal_without_preload() -> None:
 
 
 def test_stiff_foil_tends_to_rigid_bearing() -> None:
+    # With the suction retained a very stiff foil is a rigid surface; under lift-off it is
+    # not (a rigid surface holds suction), and the journal, pushed by no sub-ambient film,
+    # sits further along the load.
     base = default_case()
     rigid = replace(base, foil=None, actuators=None)
-    stiff = replace(base, foil=Foil(bump_stiffness=1e16, loss_factor=0.1), actuators=None)
-    soft = replace(base, foil=Foil(bump_stiffness=1e9, loss_factor=0.1), actuators=None)
+    stiff = replace(
+        base, foil=Foil(bump_stiffness=1e16, loss_factor=0.1, subambient="retained"), actuators=None
+    )
+    soft = replace(
+        base, foil=Foil(bump_stiffness=1e9, loss_factor=0.1, subambient="retained"), actuators=None
+    )
+    lifted = replace(stiff, foil=replace(stiff.foil, subambient="lift-off"))
+    assert (
+        solve_equilibrium(lifted, speed=40e3 * RPM).eccentricity
+        > solve_equilibrium(rigid, speed=40e3 * RPM).eccentricity
+    )
     r, s, f = (solve_equilibrium(c, speed=40e3 * RPM) for c in (rigid, stiff, soft))
     assert r.converged and s.converged and f.converged
     assert abs(r.eps_x - s.eps_x) < 1e-5 and abs(r.eps_y - s.eps_y) < 1e-5
@@ -157,9 +171,11 @@ def test_fig10_local_pressure_trends(sweep) -> None:
     for angle in (60.0, 300.0):
         p = cg.actuator_pressure.sel(actuator=angle).values
         assert np.all(np.diff(p) > 0)  # rises with speed
-    # At the loaded 180 deg the pressure first falls then rises with speed (paper Fig. 10).
+    # At the loaded 180 deg the pressure first falls then rises with speed (paper Fig. 10):
+    # under lift-off the minimum is near 30 krpm at 150 V.
     p180 = cg.actuator_pressure.sel(actuator=180.0).values
-    assert p180[1] < p180[0] and p180[2] > p180[1]
+    k = int(np.argmin(p180))
+    assert 0 < k < p180.size - 1 and p180[-1] > p180[0]
     # C-GFB below the shimmed GFB at every speed for 100 and 150 V.
     for volt in (100.0, 150.0):
         sel = sweep.sel(voltage=volt, actuator=180.0).actuator_pressure

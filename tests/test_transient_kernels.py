@@ -22,12 +22,16 @@ def _rel(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
 
 
-def _setup(loss_factor: float | None) -> tuple[OrbitSimulation, np.ndarray, transient.Inputs]:
-    """A coarse default case, its start state perturbed (some θ-rows engaged, some not)."""
+def _setup(
+    loss_factor: float | None, subambient: str
+) -> tuple[OrbitSimulation, np.ndarray, transient.Inputs]:
+    """A coarse default case, its start state perturbed (some θ-rows engaged, some not;
+    under lift-off some cells held at ambient, some free)."""
     case = default_case().with_voltages(100.0)
     case = replace(case, grid=Grid(n_theta=32, n_z=4))
+    assert case.foil is not None
+    case = replace(case, foil=replace(case.foil, subambient=subambient))
     if loss_factor is not None:
-        assert case.foil is not None
         case = replace(case, foil=replace(case.foil, loss_factor=loss_factor))
     sim = OrbitSimulation(case, constant_speed(20e3 * RPM, 0.01))
     y = sim.initial_state()
@@ -39,9 +43,19 @@ def _setup(loss_factor: float | None) -> tuple[OrbitSimulation, np.ndarray, tran
     return sim, y, inp
 
 
-@pytest.fixture(scope="module", params=[None, 0.0], ids=["viscoelastic", "elastic"])
+@pytest.fixture(
+    scope="module",
+    params=[(None, "lift-off"), (0.0, "lift-off"), (None, "retained"), (0.0, "retained")],
+    ids=["viscoelastic-lift-off", "elastic-lift-off", "viscoelastic-retained", "elastic-retained"],
+)
 def setup(request: pytest.FixtureRequest) -> tuple[OrbitSimulation, np.ndarray, transient.Inputs]:
-    return _setup(request.param)
+    return _setup(*request.param)
+
+
+def _hist(sim: OrbitSimulation, y: np.ndarray, inp: transient.Inputs, c0: float) -> np.ndarray:
+    """BDF1 history from y with a small perturbation: both lift-off branches occur."""
+    rng = np.random.default_rng(4)
+    return -c0 * sim.system.storage(y, inp) + 1e-3 * c0 * rng.standard_normal(sim.system.size)
 
 
 def test_residual_and_storage_match_twins(setup) -> None:
@@ -50,8 +64,13 @@ def test_residual_and_storage_match_twins(setup) -> None:
     active = sys_.split(y)[0].mean(axis=1) > 1.0
     assert active.any() and not active.all()  # both branches of q = max(p̄ − 1, 0)
     c0 = 3000.0
-    hist = np.random.default_rng(4).standard_normal(sys_.size)
+    hist = _hist(sim, y, inp, c0)
     buf = np.empty(sys_.size)
+    branches = sys_.lift_state(y, inp, c0, hist)
+    if sys_.lift_off:
+        assert np.any(branches > 0) and np.any(branches < 0)  # held and free cells
+    else:
+        assert not np.any(branches)
     g, h_min = sys_.newton_residual(y, inp, c0, hist, buf)
     g_py, h_min_py = sys_.newton_residual_py(y, inp, c0, hist)
     assert g is buf
@@ -66,28 +85,30 @@ def test_solve_matches_twin_and_jacobian(setup) -> None:
     sim, y, inp = setup
     sys_ = sim.system
     c0 = 3000.0
-    factor = sys_.factorize(y, inp, c0)
+    hist = _hist(sim, y, inp, c0)
+    factor = sys_.factorize(y, inp, c0, hist)
     assert factor._fac is not None  # the compiled path
     rhs = np.random.default_rng(5).standard_normal(sys_.size)
     out = np.empty(sys_.size)
     dy = factor.solve(rhs, out)
     assert dy is out
     assert _rel(dy, factor.solve_py(rhs)) < 1e-12
-    assert _rel(dy, spsolve(sys_.jacobian(y, inp, c0), rhs)) < 1e-9
+    assert _rel(dy, spsolve(sys_.jacobian(y, inp, c0, hist), rhs)) < 1e-9
 
 
 def test_superlu_fallback_uses_the_twin(setup, monkeypatch: pytest.MonkeyPatch) -> None:
     sim, y, inp = setup
     sys_ = sim.system
     c0 = 3000.0
-    ref = sys_.factorize(y, inp, c0)
+    hist0 = _hist(sim, y, inp, c0)
+    ref = sys_.factorize(y, inp, c0, hist0)
 
     class Refuse:
         def __init__(self, *args: object, **kwargs: object) -> None:
             raise FloatingPointError("refused")
 
     monkeypatch.setattr(transient, "BlockCyclicLU", Refuse)
-    factor = sys_.factorize(y, inp, c0)
+    factor = sys_.factorize(y, inp, c0, hist0)
     assert factor._fac is None
     rhs = np.random.default_rng(6).standard_normal(sys_.size)
     out = np.empty(sys_.size)
@@ -133,9 +154,12 @@ def test_jacobian_blocks_match_twin(setup) -> None:
     active = np.empty(sys_.nt)
     jc = np.empty(sys_.c_indices.size)
     a_pe = np.empty((n, 2))
-    kern.transient_jacobian(
+    lift_state = np.empty(n)
+    hist = _hist(sim, y, inp, c0)
+    held = kern.transient_jacobian(
         y,
         c0,
+        hist,
         inp.lam,
         sys_.rate(inp),
         inp.preload,
@@ -149,25 +173,33 @@ def test_jacobian_blocks_match_twin(setup) -> None:
         sys_.diag_slots,
         sys_.jh_rows,
         sys_.ws.indptr,
+        sys_.lift_off,
+        True,
         H,
         jp,
         jh,
         active,
         jc,
         a_pe,
+        lift_state,
     )
-    H_py, jp_py, jh_py, active_py, jc_py, a_pe_py = sys_.jacobian_blocks_py(y, inp, c0)
+    H_py, jp_py, jh_py, active_py, jc_py, a_pe_py, state_py, held_py = sys_.jacobian_blocks_py(
+        y, inp, c0, hist
+    )
     assert active.any() and not active.all()
     np.testing.assert_array_equal(active, active_py)
+    np.testing.assert_array_equal(lift_state > 0, held_py)
+    assert held == held_py.sum() and (held > 0) == sys_.lift_off
     for got, want in [(H, H_py), (jp, jp_py), (jh, jh_py), (jc, jc_py), (a_pe, a_pe_py)]:
         assert _rel(got, want) < 1e-12
+    assert _rel(lift_state, state_py) < 1e-12 if sys_.lift_off else not np.any(lift_state)
 
 
 def test_border_matches_twin(setup) -> None:
     sim, y, inp = setup
     sys_ = sim.system
     c0 = 3000.0
-    factor = sys_.factorize(y, inp, c0)
+    factor = sys_.factorize(y, inp, c0, _hist(sim, y, inp, c0))
     y_border, small_inv = sys_.border_py(factor.lu, factor.a_pe, c0)
     assert _rel(factor.y_border, y_border) < 1e-12
     assert _rel(factor.small_inv, small_inv) < 1e-12
@@ -178,8 +210,8 @@ def test_newton_step_matches_twin(setup, stale: bool) -> None:
     sim, y, inp = setup
     sys_ = sim.system
     c0 = 3000.0
-    factor = sys_.factorize(y, inp, 2500.0 if stale else c0)
-    hist = 1e-3 * np.random.default_rng(8).standard_normal(sys_.size)
+    hist = _hist(sim, y, inp, c0)
+    factor = sys_.factorize(y, inp, 2500.0 if stale else c0, hist)
     w = sim.weights(y)
     y_c, y_py = y.copy(), y.copy()
     g, dy = np.empty(sys_.size), np.empty(sys_.size)
@@ -197,7 +229,7 @@ def test_newton_step_matches_twin(setup, stale: bool) -> None:
 def test_newton_step_leaves_a_closed_film(setup) -> None:
     sim, y, inp = setup
     sys_ = sim.system
-    factor = sys_.factorize(y, inp, 3000.0)
+    factor = sys_.factorize(y, inp, 3000.0, _hist(sim, y, inp, 3000.0))
     closed = y.copy()
     closed[sys_.n + sys_.nt] = 5.0  # ε_X = 5 C: the film closes
     before = closed.copy()
@@ -227,33 +259,48 @@ def test_fused_jacobians_equal_the_separate_kernels() -> None:
 
 
 def test_newton_solve_matches_twin(setup) -> None:
-    # The compiled Newton loop and its NumPy twin: same outcome, iterations and iterate.
+    # The compiled Newton loop and its NumPy twin: same outcome, iterations, iterate and
+    # lift-off branches. Under lift-off the perturbed start moves many cells to the other
+    # branch, so the factor is refreshed at the iterate (with those branches) until the
+    # iteration converges.
     sim, y, inp = setup
     sys_ = sim.system
     c0 = 3000.0
-    factor = sys_.factorize(y, inp, c0)
     hist = -c0 * sys_.storage(y, inp)  # BDF1 from y: the step's own change is small
     w = sim.weights(y)
     controls = (3.0, 0.1, 6)
     results = []
-    for solve in (factor.newton_solve, factor.newton_solve_py):
+    for name in ("newton_solve", "newton_solve_py"):
+        factor = sys_.factorize(y, inp, c0, hist)
         y_k = y.copy()
         work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
-        out = solve(y_k, inp, c0, hist, w, work, controls, True, math.inf)
-        results.append((out, y_k, work[2]))
-    (a, y_a, q_a), (b, y_b, _q_b) = results
-    assert a[0] == b[0] == transient.NEWTON_CONVERGED
-    assert a[1] == b[1] >= 2
-    assert a[3] == pytest.approx(b[3], rel=1e-12)
+        outcomes = []
+        for _ in range(6):
+            out = getattr(factor, name)(y_k, inp, c0, hist, w, work, controls, True, math.inf)
+            outcomes.append(out)
+            if out[0] != transient.NEWTON_REFRESH:
+                break
+            factor = sys_.factorize(y_k, inp, c0, hist, factor.lift_state)
+        results.append((outcomes, y_k, work[2], factor.lift_state.copy()))
+    (a, y_a, q_a, s_a), (b, y_b, _q_b, s_b) = results
+    assert [o[:2] for o in a] == [o[:2] for o in b]
+    assert a[-1][0] == transient.NEWTON_CONVERGED
+    assert a[-1][3] == pytest.approx(b[-1][3], rel=1e-12)
     assert _rel(y_a, y_b) < 1e-10
+    np.testing.assert_array_equal(s_a > 0, s_b > 0)
     assert _rel(q_a, sys_.storage(y_a, inp)) < 1e-12
     # The error left (weighted, against a tightly converged iterate) is within the tolerance.
-    y_t = y.copy()
+    factor = sys_.factorize(y_a, inp, c0, hist, s_a)
+    y_t = y_a.copy()
     work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
     tight = factor.newton_solve(y_t, inp, c0, hist, w, work, (1e-6, 1e-9, 40), True, math.inf)
     assert tight[0] == transient.NEWTON_CONVERGED
-    tol = max(controls[0], controls[1] * a[2])
+    np.testing.assert_array_equal(factor.lift_state > 0, s_a > 0)
+    tol = max(controls[0], controls[1] * a[-1][2])
     assert np.max(np.abs(y_a - y_t) * w) < 2 * tol
+    if sys_.lift_off:  # the complementarity holds: P >= 1 on free cells, P = 1 on held ones
+        p = y_t[: sys_.n]
+        assert np.all(p[s_a < 0] > 1.0 - 1e-6) and np.all(np.abs(p[s_a > 0] - 1.0) < 1e-12)
 
 
 def test_slowly_contracting_fresh_factor_is_refreshed_not_abandoned(setup) -> None:
@@ -271,7 +318,7 @@ def test_slowly_contracting_fresh_factor_is_refreshed_not_abandoned(setup) -> No
     controls = (0.3, 0.001, 10)
     outcomes = []
     for name in ("newton_solve", "newton_solve_py"):
-        factor = sys_.factorize(far, inp, c0)
+        factor = sys_.factorize(far, inp, c0, hist)
         y_k = y.copy()
         work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
         out = getattr(factor, name)(y_k, inp, c0, hist, w, work, controls, True, math.inf)
@@ -281,9 +328,13 @@ def test_slowly_contracting_fresh_factor_is_refreshed_not_abandoned(setup) -> No
     assert a[1] == b[1] >= 3  # rates above 0.5, not yet diverging
     assert _rel(y_a, y_b) < 1e-10
     work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
-    again = sys_.factorize(y_a, inp, c0).newton_solve(
-        y_a, inp, c0, hist, w, work, controls, True, a[2]
-    )
+    branches = None
+    for _ in range(6):  # under lift-off, refreshed again while cells change branch
+        factor = sys_.factorize(y_a, inp, c0, hist, branches)
+        again = factor.newton_solve(y_a, inp, c0, hist, w, work, controls, True, a[2])
+        if again[0] != transient.NEWTON_REFRESH:
+            break
+        branches = factor.lift_state
     assert again[0] == transient.NEWTON_CONVERGED
 
 

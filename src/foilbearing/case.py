@@ -103,13 +103,32 @@ class BumpGeometry:
         )
 
 
+#: How a foil bearing treats sub-ambient film pressure (MODEL.md section 3).
+SUBAMBIENT_MODELS = ("lift-off", "retained")
+
+
 @dataclass(frozen=True)
 class Foil:
-    """Compliant foil: an elastic foundation of stiffness k_b per unit area with loss factor γ."""
+    """Compliant foil: an elastic foundation of stiffness k_b per unit area with loss factor γ.
+
+    ``subambient`` says what the film does where its pressure falls below
+    ambient (MODEL.md section 3): ``"lift-off"`` (default) — the top foil,
+    which only rests on the bumps, is pulled off them towards the journal
+    until the suction is relieved, so the film holds no sub-ambient pressure
+    (``P ≥ 1`` as a complementarity condition); ``"retained"`` — the foil
+    stays on the bumps and the film keeps its sub-ambient pressure, as a rigid
+    surface would (the model before lift-off, kept for comparison).
+    """
 
     bump_stiffness: float  # k_b, N/m³
     loss_factor: float  # γ
     bump: BumpGeometry | None = None
+    subambient: str = "lift-off"
+
+    @property
+    def lift_off(self) -> bool:
+        """Whether sub-ambient film pressure lifts the top foil (no suction held)."""
+        return self.subambient == "lift-off"
 
 
 @dataclass(frozen=True)
@@ -231,6 +250,25 @@ class Case:
         act = replace(self.actuators, voltages=volts)
         _check_actuators(act, self.bearing, self.source)
         return replace(self, actuators=act)
+
+    def with_subambient(self, model: str) -> Case:
+        """The same case with another sub-ambient film model: ``"lift-off"`` or ``"retained"``.
+
+        Only a bearing with a ``[foil]`` has the choice: rigid surfaces hold suction.
+        """
+        if model not in SUBAMBIENT_MODELS:
+            raise InputError(
+                f"subambient = {model!r}: expected one of "
+                + ", ".join(repr(m) for m in SUBAMBIENT_MODELS),
+                source=self.source,
+            )
+        if self.foil is None:
+            raise InputError(
+                f"subambient = {model!r}: this bearing has no [foil]; a rigid surface holds "
+                "sub-ambient pressure (add a [foil] table, or drop the option)",
+                source=self.source,
+            )
+        return replace(self, foil=replace(self.foil, subambient=model))
 
     def with_speed(self, speed: float) -> Case:
         """The same case at another rotor speed (rad/s, > 0)."""
@@ -375,8 +413,9 @@ def _read_foil(t: _Table) -> Foil:
             None,
             "a stiffness per unit area (e.g. '8.69e9 N/m**3') or a [foil.bump] geometry",
         )
+    subambient = t.choice("subambient", SUBAMBIENT_MODELS, default="lift-off")
     t.done()
-    return Foil(bump_stiffness=k_b, loss_factor=loss, bump=bump)
+    return Foil(bump_stiffness=k_b, loss_factor=loss, bump=bump, subambient=subambient)
 
 
 def _read_actuators(t: _Table, bearing: Bearing) -> Actuators:

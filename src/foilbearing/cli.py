@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from foilbearing.case import Case, load_case
-from foilbearing.cli_common import add_case_arg
+from foilbearing.cli_common import add_case_arg, add_subambient_arg, apply_subambient
 from foilbearing.errors import InputError, SolverError
 from foilbearing.figures import (
     write_identification_figures,
@@ -121,6 +121,7 @@ def _parser() -> argparse.ArgumentParser:
         metavar="EX,EY",
         help="film at this journal position (units of C), no equilibrium search",
     )
+    add_subambient_arg(stat)
     stat.add_argument("--out", type=Path, help="write the results to FILE.nc (NetCDF)")
     stat.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
     stat.add_argument("--json", action="store_true", help="print one JSON object")
@@ -137,6 +138,7 @@ def _parser() -> argparse.ArgumentParser:
         help="excitation frequencies in Hz, e.g. 100,500,1000Hz "
         "(default: 20 ratios 0.1-2.0 of the rotor speed)",
     )
+    add_subambient_arg(coef)
     coef.add_argument("--out", type=Path, help="write the coefficients to FILE.nc")
     coef.add_argument("--plot", metavar="DIR", type=Path, help="write the figure (PNG) to DIR")
     coef.add_argument("--json", action="store_true", help="print one JSON object")
@@ -151,6 +153,7 @@ def _parser() -> argparse.ArgumentParser:
         default="5000rpm:150000rpm:5000rpm",
         help="scan START:STOP:STEP (default 5000rpm:150000rpm:5000rpm)",
     )
+    add_subambient_arg(stab)
     stab.add_argument(
         "--plot", metavar="DIR", type=Path, help="write the stability map (PNG) to DIR"
     )
@@ -270,7 +273,7 @@ def _cmd_identify(args: argparse.Namespace) -> int:
 def _cmd_static(args: argparse.Namespace) -> int:
     from foilbearing.io import write_with
 
-    case = load_case(args.case)
+    case = apply_subambient(load_case(args.case), args.subambient)
     speeds = parse_list(args.speed, "speed", "--speed") if args.speed else [case.operation.speed]
     for s in speeds:
         if s <= 0.0:
@@ -385,7 +388,7 @@ def _cmd_coefficients(args: argparse.Namespace) -> int:
     from foilbearing.io import save_figure, write_with
     from foilbearing.static import solve_equilibrium
 
-    case = load_case(args.case)
+    case = apply_subambient(load_case(args.case), args.subambient)
     if args.speed is not None:
         (speed,) = parse_list(args.speed, "speed", "--speed")
         case = case.with_speed(speed)
@@ -428,7 +431,7 @@ def _cmd_stability(args: argparse.Namespace) -> int:
     from foilbearing.io import save_figure
     from foilbearing.stability import onset_speed, stability_map
 
-    case = load_case(args.case)
+    case = apply_subambient(load_case(args.case), args.subambient)
     speeds = parse_speed_range(args.speed_range, field="--speed-range")
     voltages = parse_list(args.voltage, "voltage", "--voltage")
     if case.actuators is None:

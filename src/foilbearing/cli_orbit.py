@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from foilbearing.cli_common import add_case_arg
+from foilbearing.cli_common import add_case_arg, add_subambient_arg, apply_subambient
 from foilbearing.errors import InputError
 
 __all__ = ["register", "run_spec_from_args"]
@@ -55,6 +55,7 @@ def register(sub: Any) -> None:
     p.add_argument("--stop-time", default=None, help="end the run at this simulated time, e.g. 5s")
     p.add_argument("--steps-per-rev", type=int, default=16, help="time steps per revolution")
     p.add_argument("--sample-rate", default="10000Hz", help="output sampling rate (default 10 kHz)")
+    add_subambient_arg(p)
     p.add_argument("--out", type=Path, help="write the time series (NetCDF); checkpoints too")
     p.add_argument("--resume", type=Path, metavar="FILE.nc", help="continue a stopped run")
     p.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
@@ -74,6 +75,7 @@ def run_spec_from_args(args: argparse.Namespace) -> dict[str, Any]:
         "stop_time": args.stop_time,
         "steps_per_rev": args.steps_per_rev,
         "sample_rate": args.sample_rate,
+        "subambient": args.subambient,
     }
 
 
@@ -95,7 +97,7 @@ def _build(spec: dict[str, Any]) -> tuple[Any, ...]:
     )
     from foilbearing.orbit import OrbitSettings
 
-    case = load_case(spec["case"])
+    case = apply_subambient(load_case(spec["case"]), spec.get("subambient"))
     if spec["speed"] is not None:
         profile = constant_speed(
             _q(spec["speed"], "speed", "--speed"), _q(spec["duration"], "time", "--duration")

@@ -3,16 +3,24 @@
 Perturbation of the static solution (MODEL.md section 4): a small harmonic
 journal motion at ω_e = ν ω gives ``K_ij + j ω_e C_ij = −∂F_i/∂e_j``, from the
 complex pressure response of :mod:`foilbearing.reynolds.perturbed`. The foil
-enters as a complex stiffness per unit area: the bump ``k_b(1 + jγ)`` in series
-with the purely elastic actuator under each stinger,
+enters as a complex stiffness per unit area: the bump, a spring k_b in
+parallel with the viscous damper ``c_b = γ k_b/ω`` (the loss factor's
+equivalent at the running speed ω; the orbit integrates the same Kelvin-Voigt
+bump, so linear and nonlinear analyses share one foil damping law, MODEL.md
+section 3), ``k_b (1 + jγ ω_e/ω)``, in series with the purely elastic actuator
+under each stinger,
 
-    1/k'(θ) = 1/(k_b (1 + jγ)) + φ(θ)/(k_p + 4k_sp),
+    1/k'(θ) = 1/(k_b (1 + jγν)) + φ(θ)/(k_p + 4k_sp),
 
 where φ(θ) = (k_p + 4k_sp)(1/k(θ) − 1/k_b) is the stinger fraction of the
 smoothed stiffness function (1 under a stinger, 0 away from it), so that with
 γ = 0 the compliance is the static 1/k(θ) of Eq. (8). The shimmed GFB has
 φ = 0 (rigid shims). Where the steady foil is not engaged (p̄ ≤ 0) it does not
-respond (bumps carry no tension), as in the static model.
+respond (bumps carry no tension), as in the static model. The loss of this law
+at a sub-synchronous whirl is γν, a fraction of γ: the structural
+(hysteretic) ``k_b(1 + jγ)`` would give γ at every frequency, but it has no
+causal time-domain counterpart the orbit could integrate with the same
+states; ``docs/lift-off.md`` gives the onsets measured with each.
 """
 
 from __future__ import annotations
@@ -98,8 +106,20 @@ class ForceCoefficients:
         return ds
 
 
-def dynamic_compliance(static: StaticResult, loss_factor: float | None = None) -> NDArray:
-    """Complex foil compliance c_i = p_a/(C k'(θ_i)) where the steady foil is engaged, else 0."""
+def dynamic_compliance(
+    static: StaticResult, frequency: float, loss_factor: float | None = None
+) -> NDArray:
+    """Complex foil compliance c_i = p_a/(C k'(θ_i)) where the steady foil is engaged, else 0.
+
+    Parameters
+    ----------
+    static
+        The static point (its speed ω sets the bump's damper γ k_b/ω).
+    frequency
+        Excitation frequency ω_e, rad/s: the bump's loss there is γ ω_e/ω.
+    loss_factor
+        Override of the case's γ.
+    """
     case, model = static.case, static.model
     if case.foil is None:
         if loss_factor:
@@ -109,7 +129,7 @@ def dynamic_compliance(static: StaticResult, loss_factor: float | None = None) -
     if gamma < 0:
         raise InputError(f"loss factor = {gamma!r}: must be >= 0")
     k_b = case.foil.bump_stiffness
-    inv_k: Any = 1.0 / (k_b * (1.0 + 1j * gamma))
+    inv_k: Any = 1.0 / (k_b * (1.0 + 1j * gamma * frequency / static.speed))
     if model.actuator_stiffness is not None and model.stiffness is not None:
         stinger = model.actuator_stiffness * (1.0 / model.stiffness - 1.0 / k_b)
         inv_k = inv_k + stinger / model.actuator_stiffness
@@ -134,7 +154,8 @@ def force_coefficients(
     frequencies
         Excitation frequencies ω_e in rad/s (> 0), scalar or array.
     loss_factor
-        Override of the bump's loss factor γ (default: the case's).
+        Override of the bump's loss factor γ (default: the case's); the bump's
+        damper is γ k_b/ω at the static point's speed ω.
 
     Returns
     -------
@@ -148,7 +169,6 @@ def force_coefficients(
     if not static.converged:
         raise InputError(f"the static point did not converge ({static.message})")
     case, model = static.case, static.model
-    compliance = dynamic_compliance(static, loss_factor)
     dh = _journal_columns(model)
     w_x, w_y = (w.ravel() for w in model.grid.force_weights())
     scale = -case.gas.ambient_pressure * case.bearing.radius**2 / case.bearing.clearance
@@ -162,9 +182,10 @@ def force_coefficients(
             static.H,
             static.bearing_number,
             w_e / static.speed,
-            compliance,
+            dynamic_compliance(static, w_e, loss_factor),
             dh,
             ws,
+            lift_off=model.lift_off,
         )
         z = scale * np.array([[w_x @ dp[:, 0], w_x @ dp[:, 1]], [w_y @ dp[:, 0], w_y @ dp[:, 1]]])
         K[n] = z.real

@@ -3,7 +3,10 @@
 MODEL.md section 2-3: ``h(θ) = C + e_X cos θ + e_Y sin θ − r_p(θ) + w(θ)`` with
 the foil deflection ``w = max(p_A, 0)/k(θ)``. Here the parts that do not
 depend on the pressure are put on the Reynolds grid; the Reynolds solvers add
-``w`` through the compliance ``c(θ) = p_a/(C k(θ))``.
+``w`` through the compliance ``c(θ) = p_a/(C k(θ))``. A foil bearing's film
+holds no sub-ambient pressure by default (top-foil lift-off: ``lift_off``,
+MODEL.md section 3); a rigid bearing, or a case with ``[foil] subambient =
+"retained"``, keeps it.
 
 The reading of the paper used throughout (MODEL.md section 3): the film uses
 r_p(θ) from the *base* preload, and the foil deflects by ``p_A/k(θ)`` with
@@ -49,6 +52,9 @@ class FilmModel:
         Base preload (actuators) or shim thickness at each angle, m.
     actuator_stiffness
         k_p + 4k_sp in N/m³ for a C-GFB, None otherwise (shims are rigid).
+    lift_off
+        Whether sub-ambient film pressure lifts the top foil off the bumps, so
+        that the film holds none (P ≥ 1, a complementarity condition).
     """
 
     grid: Grid
@@ -58,6 +64,7 @@ class FilmModel:
     preload_angles: tuple[float, ...]
     base_preloads: tuple[float, ...]
     actuator_stiffness: float | None
+    lift_off: bool = False
 
     def h_rigid(self, eps_x: float, eps_y: float) -> FloatArray:
         """Film thickness without foil deflection, H_r = 1 + ε_X cos θ + ε_Y sin θ − r_p/C.
@@ -111,4 +118,5 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         else:
             stiffness = np.full(grid.n_theta, k_b)
         compliance = case.gas.ambient_pressure / (c * stiffness)
-    return FilmModel(grid, preload, compliance, stiffness, angles, deltas, k_act)
+    lift_off = case.foil is not None and case.foil.lift_off
+    return FilmModel(grid, preload, compliance, stiffness, angles, deltas, k_act, lift_off)

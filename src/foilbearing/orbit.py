@@ -27,6 +27,7 @@ from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
 from foilbearing.errors import InputError
 from foilbearing.film import film_model
+from foilbearing.reynolds._kernels import MAX_MOVED_KEPT
 from foilbearing.reynolds.transient import (
     NEWTON_CONVERGED,
     NEWTON_REFRESH,
@@ -239,6 +240,7 @@ class OrbitSimulation:
             c_bump=c_bump,
             loss_factor=gamma,
             film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
+            lift_off=self.model.lift_off,
         )
         # Unit preload lobes per actuator (or shim), so r_p follows the voltages in time.
         if act is not None:
@@ -449,6 +451,8 @@ def _run(
     guess, hist, weights = np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size)
     atol = sim.atol()
     counters = [0, 0, 0]  # steps, factorizations, Newton iterations
+    # Lift-off boundary coordinate at the last three accepted steps (None: unknown).
+    lift_s: list[FloatArray | None] = [None, None, None]
     status, message, contact = "completed", "", None
 
     def result(status: str, message: str) -> OrbitResult:
@@ -488,8 +492,11 @@ def _run(
                     y, y1, y2, q_now, q_now if q_prev is None else q_prev, h, h1, h2,
                     atol, s.rtol, guess, hist, weights,
                 )  # fmt: skip
+                branches = _predicted_branches(
+                    lift_s[0], lift_s[1], lift_s[2], h, st.h_prev, st.h_prev2
+                )
                 ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _newton(
-                    sim, guess, inp, c0, hist, weights, lu, lu_c0, work
+                    sim, guess, inp, c0, hist, weights, lu, lu_c0, work, branches
                 )
                 counters[2] += its
                 counters[1] += nf
@@ -499,6 +506,7 @@ def _run(
                 if h < 1e-9:
                     raise FloatingPointError(f"time step collapsed at t = {t:.6f} s")
             counters[0] += 1
+            lift_s = [_lift_coordinate(lu, sys_._slack), lift_s[0], lift_s[1]]
             st.y_prev2, st.h_prev2 = st.y_prev, st.h_prev
             st.y_prev, st.h_prev = y, h
             st.y, st.t = y_new, t_new
@@ -559,6 +567,7 @@ def _newton(
     lu: Any,
     lu_c0: float,
     work: tuple[FloatArray, FloatArray],
+    branches: FloatArray | None = None,
 ) -> tuple[bool, FloatArray, int, Any, float, int, FloatArray, float]:
     """Modified Newton on c0·Q(y) + hist − f(y) = 0 from the guess y0, reusing the factor.
 
@@ -572,7 +581,10 @@ def _newton(
     iteration stops at a fraction of the step's own change (predictor to
     corrector), as BDF codes do: the Newton error then stays well below the
     truncation error of the step. ``work`` holds two state-sized buffers
-    (residual, update) reused across iterations. Returns ``(converged, y,
+    (residual, update) reused across iterations. ``branches`` are the
+    predicted lift-off branches of the step (:func:`_predicted_branches`): a
+    kept factor takes them when few cells move, a new factor is taken with
+    them otherwise. Returns ``(converged, y,
     iterations, factor, factor_c0, factorisations, Q(y), min film)``; on
     failure y is the guess and Q is empty.
     """
@@ -586,8 +598,16 @@ def _newton(
     for attempt in range(2):
         y = y0.copy()
         fresh = lu is None or attempt == 1 or abs(c0 - lu_c0) > 0.2 * c0
+        if not fresh and branches is not None and lu is not None:
+            moved = np.count_nonzero((lu.lift_state > 0.0) != (branches > 0.0))
+            if moved > MAX_MOVED_KEPT:
+                fresh = True  # the factor's held cells are too far from this step's
+            elif moved:
+                lu.lift_state[:] = np.where(branches > 0.0, 1.0, -1.0) * np.abs(lu.lift_state)
         if fresh:
-            lu = sys_.factorize(y, inp, c0)
+            # Lift-off branches: those predicted for the step, or decided afresh at
+            # the guess when the step starts over.
+            lu = sys_.factorize(y, inp, c0, hist, branches if attempt == 0 else None)
             lu_c0 = c0
             factorizations += 1
         first_change = math.inf
@@ -601,14 +621,56 @@ def _newton(
             if outcome != NEWTON_REFRESH or refreshes >= _MAX_REFRESH:
                 break  # closed film, NaN, too slow or diverging: restart fresh, or give up
             refreshes += 1
-            # A factor that will not converge in time: refresh it here, go on from y.
-            lu = sys_.factorize(y, inp, c0)
+            # A factor that will not converge in time: refresh it here (with the
+            # lift-off branches the iteration has reached), go on from y.
+            lu = sys_.factorize(y, inp, c0, hist, lu.lift_state)
             lu_c0 = c0
             factorizations += 1
             fresh = True
         if fresh:
             break
     return False, y0, its, None, math.nan, factorizations, np.empty(0), math.nan
+
+
+def _lift_coordinate(lu: Any, slack: FloatArray) -> FloatArray | None:
+    """The signed distance of each cell from the lift-off boundary at a converged step.
+
+    ``P − 1 − G/d``: ``P − 1 >= 0`` on a free cell, ``−G/d <= 0`` on a held one
+    (the slack of the residual kernel, sign-corrected); it moves smoothly as
+    the boundary moves, so its extrapolation predicts the next step's branches.
+    None without lift-off.
+    """
+    if lu is None or not np.any(lu.lift_state):
+        return None
+    return np.where(lu.lift_state > 0.0, slack, -slack)
+
+
+def _predicted_branches(
+    s0: FloatArray | None,
+    s1: FloatArray | None,
+    s2: FloatArray | None,
+    h: float,
+    h1: float | None,
+    h2: float | None,
+) -> FloatArray | None:
+    """Lift-off branches predicted for a step of h: +1 held, −1 free (None: no history).
+
+    Extrapolates the boundary coordinate of the last accepted steps (t_n, t_n − h1,
+    t_n − h1 − h2) to t_n + h with the predictor's Lagrange weights.
+    """
+    if s0 is None:
+        return None
+    if s1 is None or h1 is None:
+        pred = s0
+    elif s2 is None or h2 is None:
+        pred = s0 + (h / h1) * (s0 - s1)
+    else:
+        t1, t2 = -h1, -h1 - h2
+        l0 = (h - t1) * (h - t2) / (t1 * t2)
+        l1 = h * (h - t2) / (t1 * (t1 - t2))
+        l2 = h * (h - t1) / (t2 * (t2 - t1))
+        pred = l0 * s0 + l1 * s1 + l2 * s2
+    return np.where(pred < 0.0, 1.0, -1.0)
 
 
 class _Samples:

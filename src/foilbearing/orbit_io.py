@@ -38,6 +38,8 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
         raise InputError("not a foilbearing orbit file with a checkpoint", source=str(path))
     spec = json.loads(ds.attrs["run_spec"])
     case = load_case(spec["case"])
+    if spec.get("subambient") is not None:
+        case = case.with_subambient(spec["subambient"])
     a = ds.attrs
     settings = OrbitSettings(
         steps_per_rev=int(a["steps_per_rev"]),

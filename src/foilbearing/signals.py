@@ -35,6 +35,8 @@ __all__ = [
     "Waterfall",
     "divergence_speed",
     "onset",
+    "order_amplitude",
+    "order_interval",
     "subsynchronous_amplitude",
     "waterfall",
 ]
@@ -325,6 +327,59 @@ def subsynchronous_amplitude(
         frequency_hz=frequency,
         synchronous_amplitude=np.interp(times, t, np.abs(a1)),
         window_s=float(window_s),
+    )
+
+
+def order_amplitude(
+    t: np.ndarray,
+    x: np.ndarray,
+    phase: np.ndarray,
+    order: float,
+    *,
+    track_s: float = 0.1,
+) -> np.ndarray:
+    """Amplitude of the component of x locked to ``order`` × the rotor speed (m, per sample).
+
+    Order tracking, as for 1X in :func:`subsynchronous_amplitude`: after the
+    slow part is removed, ``a(t) = 2 L[x₀ e^{−j·order·φ}]`` with L the moving
+    mean of ``track_s`` applied twice, and the amplitude is |a|. A component at
+    another frequency f lands at f − order·ω/2π and is rejected by L when that
+    offset is ≫ 1/track_s. ``order = 0.5`` reads the half-frequency
+    subharmonic the paper reports at 0 V (123-147 Hz at 14.8-17.6 krpm),
+    which a sub-synchronous whirl at another ratio does not feed.
+
+    Parameters
+    ----------
+    t, x, phase
+        Time (s), signal (m) and rotor angle φ (rad), uniform in t, shape (n,).
+    order
+        Multiple of the running frequency, > 0 (0.5 for 0.5X).
+    track_s
+        Length of the moving mean, s.
+    """
+    t, x, phase = (np.asarray(a, dtype=float) for a in (t, x, phase))
+    fs = _sampling(t, x, phase)
+    if not order > 0.0:
+        raise InputError(f"order = {order!r}: expected a multiple of the speed > 0, e.g. 0.5")
+    n_track = max(1, round(track_s * fs))
+    x0 = x - _low_pass(x, n_track)
+    return np.abs(2.0 * _low_pass(x0 * np.exp(-1j * order * phase), n_track))
+
+
+def order_interval(
+    speed: np.ndarray, amplitude: np.ndarray, threshold: float
+) -> tuple[float, float, float, float] | None:
+    """Where an order component exceeds ``threshold`` (m): first and last speed (rpm), its
+    peak amplitude (m) and the speed at the peak (rpm); None if it never does."""
+    above = np.flatnonzero(amplitude > threshold)
+    if above.size == 0:
+        return None
+    k = int(np.argmax(amplitude))
+    return (
+        float(speed[above[0]] * RPM),
+        float(speed[above[-1]] * RPM),
+        float(amplitude[k]),
+        float(speed[k] * RPM),
     )
 
 

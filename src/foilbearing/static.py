@@ -244,7 +244,9 @@ def film_at_position(
             "of a rigid bearing: choose a smaller eccentricity"
         )
     lam = case.bearing_number(omega)
-    sol = solve_steady(model.grid, h_r, model.compliance, lam, options=opts.newton)
+    sol = solve_steady(
+        model.grid, h_r, model.compliance, lam, options=opts.newton, lift_off=model.lift_off
+    )
     return _result(
         case,
         model,
@@ -389,7 +391,9 @@ class _Equilibrium:
 
     def _evaluate(self, P: FloatArray, eps: FloatArray, load: float) -> tuple[Any, ...]:
         m = self.model
-        R, j_pp, j_ph = coupled_system(P, m.grid, m.h_rigid(*eps), m.compliance, self.lam, self.ws)
+        R, j_pp, j_ph = coupled_system(
+            P, m.grid, m.h_rigid(*eps), m.compliance, self.lam, self.ws, lift_off=m.lift_off
+        )
         G = np.array([self.w_x @ (P - 1.0) + load, self.w_y @ (P - 1.0)])
         return R, j_pp, j_ph, G
 
@@ -412,7 +416,14 @@ class _Equilibrium:
         g = m.grid
         eps = np.asarray(eps, dtype=float).copy()
         first = solve_steady(
-            g, m.h_rigid(*eps), m.compliance, self.lam, P0, options=opts.newton, workspace=self.ws
+            g,
+            m.h_rigid(*eps),
+            m.compliance,
+            self.lam,
+            P0,
+            options=opts.newton,
+            workspace=self.ws,
+            lift_off=m.lift_off,
         )
         P = first.P.ravel().copy()
         load_ref = max(abs(load), 1e-12)

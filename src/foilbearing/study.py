@@ -164,10 +164,19 @@ def _stability_stage(
     stage("linear stability: onset speed per voltage, C-GFB and shimmed GFB")
     scan = [s * rpm for s in range(5_000, 150_001, 2_500)]
     onsets: dict[str, dict[float, Any]] = {"C-GFB": {}, "shimmed": {}}
+    # Both film models where the case has lift-off: the suction-retained one beside it
+    # shows what relieving the sub-ambient film does to the onset (MODEL.md section 3).
+    retained = case.foil is not None and case.foil.lift_off
+    if retained:
+        onsets |= {"C-GFB, suction retained": {}, "shimmed, suction retained": {}}
     for volt in PAPER_VOLTAGES:
         c = case.with_voltages(volt)
         onsets["C-GFB"][volt] = onset_speed(c, scan)
         onsets["shimmed"][volt] = onset_speed(c.shimmed(), scan)
+        if retained:
+            kept = c.with_subambient("retained")
+            onsets["C-GFB, suction retained"][volt] = onset_speed(kept, scan)
+            onsets["shimmed, suction retained"][volt] = onset_speed(kept.shimmed(), scan)
         stage(f"  {volt:g} V: C-GFB {onsets['C-GFB'][volt].message}")
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
@@ -176,10 +185,9 @@ def _stability_stage(
         out / "stability_map.png",
     )
     results["stability"] = {
-        "C-GFB": [{"voltage_V": v} | r.headline() for v, r in onsets["C-GFB"].items()],
-        "shimmed": [{"voltage_V": v} | r.headline() for v, r in onsets["shimmed"].items()],
-        "figures": [str(fig)],
-    }
+        kind: [{"voltage_V": v} | r.headline() for v, r in per_volt.items()]
+        for kind, per_volt in onsets.items()
+    } | {"figures": [str(fig)]}
     return onsets
 
 

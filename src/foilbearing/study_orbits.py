@@ -7,11 +7,18 @@ motions", just before its 0 V run diverges (~33 krpm), during the speed-up at
 its ramp starts, so if our 0 V run diverges before the paper's control time
 (our viscosity, rotor mass and imbalance are assumptions, MODEL.md section 1)
 the protocol's controlled runs would diverge with it; they are not run and the
-study says so. In their place the study keeps the paper's intent, control at
-the initiation of the instability *in our model*: the same 0.5 s ramp, ending
-0.3 s before our 0 V run's sub-synchronous onset, with the case's imbalance and,
-as a sensitivity, with 1 g·mm. Runs after the first are separate processes (one
-per core); each writes its NetCDF as it finishes.
+study says so. Two labelled variants then keep what the protocol was for:
+
+- *control before our divergence*: the case's imbalance, the same 0.5 s ramp
+  ending 0.3 s before our 0 V run's sub-synchronous onset (or, if its
+  sub-synchronous motion lasts too short to count as an onset, before its
+  contact);
+- *1 g·mm*: the protocol as published (0 V, and the ramps at 6.0-6.5 s) with
+  a lighter imbalance; if our 0 V run diverges before 6 s with it too, the
+  ramps are placed as in the first variant.
+
+Runs after the first are separate processes (one per core); each writes its
+NetCDF as it finishes.
 """
 
 from __future__ import annotations
@@ -86,11 +93,13 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
         "stop_time": None,
         "steps_per_rev": result.settings.steps_per_rev,
         "sample_rate": f"{result.settings.sample_rate}Hz",
+        "subambient": None,
     }
     path = out / f"orbit_{run.label}.nc"
     write_with(path, lambda tmp: to_netcdf(result, spec, tmp))
     analysis = analyse_orbit(result)
     head = analysis.headline(result)
+    head["half_order"] = _half_order(result)
     control_end = 3000 + 500.0 * (ramp[1] if ramp else 0.0) / RPM
     after = [
         iv
@@ -109,6 +118,35 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
         netcdf=str(path),
     )
     return {"headline": head, "result": result, "analysis": analysis, "label": run.label}
+
+
+def _half_order(result: Any) -> dict[str, float] | None:
+    """Where the 0.5X component of e_X exceeds 1 µm (the paper's 0 V observation is a 0.5X
+    subharmonic): speeds (rpm), its peak (µm) and the frequency there (Hz); None if never."""
+    from foilbearing.signals import order_amplitude, order_interval
+
+    if result.time.size < 100:
+        return None
+    amp = order_amplitude(result.time, result.e_x, result.phase, 0.5)
+    found = order_interval(result.speed, amp, 1e-6)
+    if found is None:
+        return None
+    lo, hi, peak, at = found
+    return {
+        "from_rpm": lo,
+        "to_rpm": hi,
+        "peak_um": peak * 1e6,
+        "peak_speed_rpm": at,
+        "peak_frequency_Hz": 0.5 * at / 60.0,
+    }
+
+
+def _early_ramp(zero_run: dict[str, Any]) -> tuple[float, float]:
+    """A 0.5 s ramp ending 0.3 s before the 0 V run's sub-synchronous onset, or its contact."""
+    onset = zero_run["analysis"].onset
+    contact = zero_run["result"].contact
+    end = onset.onset_time_s if onset is not None else contact["time_s"]
+    return (max(end - 0.8, 0.0), max(end - 0.3, 0.0))
 
 
 def paper_orbit_runs(
@@ -148,30 +186,33 @@ def paper_orbit_runs(
             "controlled runs are identical to it until then and were not run"
         )
         stage("  " + note)
-    onset_time = first["analysis"].onset.onset_time_s if first["analysis"].onset else None
-    if onset_time is not None and onset_time < RAMP[0]:
-        early = (max(onset_time - 0.8, 0.0), max(onset_time - 0.3, 0.0))
-        runs += [OrbitRun(v, early, imb, "control before our onset") for v in PAPER_ORBITS if v > 0]
+    if contact is not None and contact["time_s"] < RAMP[0]:
+        early = _early_ramp(first)
+        runs += [
+            OrbitRun(v, early, imb, "control before our divergence") for v in PAPER_ORBITS if v > 0
+        ]
         if abs(imb - SENSITIVITY_IMBALANCE) > 1e-12:
-            runs += [OrbitRun(0.0, None, SENSITIVITY_IMBALANCE, "1 g·mm sensitivity")]
+            light = run_one(
+                case, OrbitRun(0.0, None, SENSITIVITY_IMBALANCE, "1 g·mm"), out, stop_time
+            )
+            finish(light)
+            c_light = light["result"].contact
+            ramp = RAMP if c_light is None or c_light["time_s"] >= RAMP[0] else _early_ramp(light)
             runs += [
-                OrbitRun(v, early, SENSITIVITY_IMBALANCE, "1 g·mm sensitivity")
-                for v in PAPER_ORBITS
-                if v > 0
+                OrbitRun(v, ramp, SENSITIVITY_IMBALANCE, "1 g·mm") for v in PAPER_ORBITS if v > 0
             ]
     n = workers or (os.cpu_count() or 1)
     with ProcessPoolExecutor(max_workers=n) as pool:
         futures = [pool.submit(run_one, case, r, out, stop_time) for r in runs]
         for fut in as_completed(futures):
             finish(fut.result())
-    order = [zero.label] + [r.label for r in runs]
+    order = list(dict.fromkeys([zero.label, *done, *(r.label for r in runs)]))
     figures = []
     for series in dict.fromkeys(done[k]["headline"]["series"] for k in order):
         keys = [
             k
             for k in order
-            if done[k]["headline"]["series"] == series
-            or (series != "1 g·mm sensitivity" and k == zero.label)
+            if done[k]["headline"]["series"] == series or (series != "1 g·mm" and k == zero.label)
         ]
         subs = {
             done[k]["headline"]["description"]: done[k]["analysis"].subsync

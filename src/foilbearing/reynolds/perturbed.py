@@ -15,9 +15,12 @@ with ``J_P = ∂R/∂P`` and ``J_H = ∂R/∂H`` the same Jacobians the static N
 uses. The film perturbation is the journal's part plus the foil's,
 ``ΔH = ΔH_journal + S ΔP``, where ``S`` maps the pressures of a θ-row to the
 deflection of the foil there: ``S[(i,j),(i,k)] = c_i/n_z`` with the complex
-dynamic compliance ``c_i`` (zero where the foil is not engaged). At ν = 0 and
-real ``c`` this is exactly the linearisation of the static system, so static
-and dynamic results agree by construction.
+dynamic compliance ``c_i`` (zero where the foil is not engaged). Under top-foil
+lift-off the cells held at ambient pressure by the static solution stay there,
+``ΔP = 0``: their rows are the linearisation of the same complementarity
+condition the static Newton solves (:mod:`foilbearing.reynolds.steady`). At
+ν = 0 and real ``c`` this is exactly the linearisation of the static system,
+so static and dynamic results agree by construction.
 """
 
 from __future__ import annotations
@@ -29,7 +32,7 @@ from numpy.typing import NDArray
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.blocksolve import factor_coupled
 from foilbearing.reynolds.grid import Grid
-from foilbearing.reynolds.steady import Workspace
+from foilbearing.reynolds.steady import Workspace, held_cells, set_unit_rows
 
 __all__ = ["foil_operator", "pressure_response", "reynolds_jacobians"]
 
@@ -90,6 +93,8 @@ def pressure_response(
     compliance: ComplexArray | FloatArray,
     dh_journal: FloatArray,
     workspace: Workspace | None = None,
+    *,
+    lift_off: bool = False,
 ) -> ComplexArray:
     """Complex pressure perturbations ΔP for given journal film perturbations.
 
@@ -109,13 +114,18 @@ def pressure_response(
     dh_journal
         Film perturbations from the journal, shape (n_theta*n_z, m): one column
         per perturbed coordinate (e.g. cos θ and sin θ for ε_X and ε_Y).
+    lift_off
+        Top-foil lift-off: the cells the steady film holds at ambient
+        (:func:`~foilbearing.reynolds.steady.held_cells`) keep ΔP = 0.
 
     Returns
     -------
     ΔP, shape (n_theta*n_z, m), complex.
     """
-    ws = _jacobians_into(workspace, grid, P, H, lam)
     n = grid.size
+    ws = workspace if workspace is not None else Workspace(grid)
+    clamped = held_cells(grid, P, H, lam, ws) if lift_off else np.zeros(n, dtype=bool)
+    ws = _jacobians_into(ws, grid, P, H, lam)
     jw = 2j * nu * lam * grid.d_theta * grid.d_z
     diag = ws.diag_slots
     j_pressure = ws.jp.astype(np.complex128)
@@ -127,6 +137,13 @@ def pressure_response(
     s_row = np.asarray(compliance, dtype=np.complex128) / grid.n_z
     system = np.empty(ws.c_indices.size, dtype=np.complex128)
     kern.coupled_jacobian(j_pressure, j_film, s_row, grid.n_z, system)
+    if np.any(clamped):
+        rows = np.flatnonzero(clamped)
+        # Scaled like the Reynolds rows (|∂R/∂P| on the diagonal), which the block LU's
+        # pivoting and conditioning checks expect; the right-hand side is zero there.
+        scale = np.abs(ws.jp[diag[rows]])
+        set_unit_rows(system, rows, np.where(scale > 0.0, scale, 1.0), grid.n_theta, grid.n_z)
+        j_film[clamped[ws.entry_rows]] = 0.0
     lu = factor_coupled(system, ws.c_indices, ws.c_indptr, grid.n_theta, grid.n_z)
     film = sp.csr_matrix((j_film, ws.indices, ws.indptr), shape=(n, n))
     return lu.solve(-(film @ dh_journal).astype(np.complex128))

@@ -13,6 +13,24 @@ P = 1 at the bearing end, zero flux at the mid-plane, periodic in θ, on a
 pressure does not pull the foil towards the journal: bumps carry no tension,
 so ``max(p̄, 0)`` (``H = h_rigid`` wherever ``p̄_i <= 0``).
 
+Top-foil lift-off (``lift_off=True``, MODEL.md section 3): the top foil only
+rests on the bumps, so where the film would fall below ambient it is pulled
+off them until the suction is relieved, and the film holds no sub-ambient
+pressure. Each cell then satisfies the complementarity conditions
+
+    P − 1 >= 0,   −R >= 0,   (P − 1)·R = 0
+
+(R the cell's net inflow, the residual of Eq. (4)): either the Reynolds
+equation holds with P >= 1, or the cell sits at ambient with a net outflow,
+which the lifting foil supplies (a Gümbel-type condition written as a
+complementarity problem, as Swift-Stieber cavitation is). It is solved as
+the non-smooth equation ``min(d·(P − 1), −R) = 0`` (d = −∂R_k/∂P_k > 0, the
+diagonal of the Jacobian, which only scales the two branches alike) by a
+semismooth Newton method: a cell on the ambient branch has the row
+``−d·ΔP = d·(P − 1)``, i.e. ΔP = 1 − P, in place of its Reynolds row. The
+same rows give the linearisation (ΔP = 0 on clamped cells) used by the
+dynamic coefficients, and the orbit's BDF step solves the same condition.
+
 The functions take arrays, not domain objects; all quantities are
 dimensionless (P = p/p_a, H = h/C, forces in units of p_a R²).
 """
@@ -20,6 +38,7 @@ dimensionless (P = p/p_a, H = h/C, forces in units of p_a R²).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -33,9 +52,12 @@ __all__ = [
     "NewtonOptions",
     "SteadyFilm",
     "Workspace",
+    "assemble",
     "coupled_system",
     "film_force",
     "film_thickness",
+    "held_cells",
+    "set_unit_rows",
     "solve_steady",
 ]
 
@@ -154,6 +176,10 @@ class Workspace:
     jp: FloatArray = field(init=False, repr=False)
     jh: FloatArray = field(init=False, repr=False)
     jc: FloatArray = field(init=False, repr=False)
+    #: Row of each entry of the 5-point stencil data.
+    entry_rows: NDArray[np.int64] = field(init=False, repr=False)
+    #: Cells held at ambient by lift-off at the last assembly (all False without lift-off).
+    clamped: NDArray[np.bool_] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         g = self.grid
@@ -166,6 +192,8 @@ class Workspace:
         self.jp = np.empty(self.indices.size)
         self.jh = np.empty(self.indices.size)
         self.jc = np.empty(self.c_indices.size)
+        self.entry_rows = np.repeat(np.arange(g.size), np.diff(self.indptr))
+        self.clamped = np.zeros(g.size, dtype=bool)
 
 
 # ---------------------------------------------------------------------------
@@ -196,6 +224,41 @@ def film_thickness(
     return h_rigid + (compliance * np.maximum(p_mean, 0.0))[:, None], p_mean
 
 
+def held_cells(
+    grid: Grid, P: FloatArray, H: FloatArray, lam: float, workspace: Workspace | None = None
+) -> NDArray[np.bool_]:
+    """The cells top-foil lift-off holds at ambient in the film (P, H) (n,).
+
+    The ambient branch of ``min(d (P − 1), −R) = 0`` (module docstring), as the
+    Newton iteration decides it; at a converged solution, the cells with P = 1
+    and a net outflow. ``workspace``: buffers of this grid (its residual and
+    Jacobian buffers are overwritten).
+    """
+    ws = workspace if workspace is not None else Workspace(grid)
+    p = np.ascontiguousarray(P, dtype=np.float64)
+    h = np.ascontiguousarray(H, dtype=np.float64)
+    kern.residual(p, h, lam, grid.d_theta, grid.d_z, ws.res)
+    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.jp)
+    kern.lift_off_rows(p, ws.res, ws.jp, ws.jh, ws.jp, ws.diag_slots, ws.indptr, False, ws.clamped)
+    return ws.clamped.copy()
+
+
+def set_unit_rows(
+    data: NDArray[Any], rows: NDArray[np.int64], values: ArrayLike, n_theta: int, n_z: int
+) -> None:
+    """Make ``rows`` of a matrix on the foil-coupled pattern ``values·e_row`` (in place).
+
+    ``data`` is the CSR data on :func:`~foilbearing.reynolds._kernels.coupled_pattern`
+    (3 n_z entries a row, θ-blocks in sorted column order: the row's own block
+    is first for i = 0, last for i = n_theta − 1, in the middle otherwise).
+    """
+    block = data.reshape(n_theta * n_z, 3 * n_z)
+    block[rows] = 0.0
+    i = rows // n_z
+    own = np.where(i == 0, 0, np.where(i == n_theta - 1, 2, 1))
+    block[rows, own * n_z + rows % n_z] = values
+
+
 def _film(ws: Workspace, P: FloatArray, h_rigid: FloatArray, comp: FloatArray) -> None:
     """Fill ``ws.h`` and ``ws.s = dH_i/dP_ik`` without allocating fields."""
     p_mean = P.mean(axis=1) - 1.0
@@ -206,24 +269,31 @@ def _film(ws: Workspace, P: FloatArray, h_rigid: FloatArray, comp: FloatArray) -
     ws.s /= ws.grid.n_z
 
 
-def _assemble(
+def assemble(
     ws: Workspace,
     P: FloatArray,
     h_rigid: FloatArray,
     comp: FloatArray,
     lam: float,
     coupled: bool,
+    lift_off: bool = False,
 ) -> FloatArray:
-    """Fill residual and Jacobian buffers; return the data of ``J_PP``."""
+    """Fill residual and Jacobian buffers (lift-off rows included); return the data of ``J_PP``."""
     g = ws.grid
     _film(ws, P, h_rigid, comp)
     kern.residual(P, ws.h, lam, g.d_theta, g.d_z, ws.res)
     kern.jacobian_P(P, ws.h, lam, g.d_theta, g.d_z, ws.jp)
-    if not coupled:
-        return ws.jp
-    kern.jacobian_H(P, ws.h, lam, g.d_theta, g.d_z, ws.jh)
-    kern.coupled_jacobian(ws.jp, ws.jh, ws.s, g.n_z, ws.jc)
-    return ws.jc
+    if coupled or lift_off:
+        kern.jacobian_H(P, ws.h, lam, g.d_theta, g.d_z, ws.jh)
+    if coupled:
+        kern.coupled_jacobian(ws.jp, ws.jh, ws.s, g.n_z, ws.jc)
+    if lift_off:
+        kern.lift_off_rows(
+            P, ws.res, ws.jp, ws.jh, ws.jc, ws.diag_slots, ws.indptr, coupled, ws.clamped
+        )
+    else:
+        ws.clamped[:] = False
+    return ws.jc if coupled else ws.jp
 
 
 def coupled_system(
@@ -233,6 +303,8 @@ def coupled_system(
     compliance: ArrayLike,
     lam: float,
     workspace: Workspace | None = None,
+    *,
+    lift_off: bool = False,
 ) -> tuple[FloatArray, sp.csr_matrix, sp.csr_matrix]:
     """Residual and Jacobians of the foil-coupled discrete Reynolds equation.
 
@@ -252,6 +324,9 @@ def coupled_system(
         Bearing number Λ.
     workspace : Workspace, optional
         Buffers of this grid; created if omitted.
+    lift_off : bool
+        Top-foil lift-off: the rows of the cells held at ambient are the
+        complementarity rows (module docstring); ``workspace.clamped`` marks them.
 
     Returns
     -------
@@ -274,15 +349,13 @@ def coupled_system(
             f"the film is closed (min H = {ws.h.min():.3g}) for this P and h_rigid: "
             "the pressure does not open the compliant foil enough"
         )
-    kern.residual(p, ws.h, lam, grid.d_theta, grid.d_z, ws.res)
-    kern.jacobian_P(p, ws.h, lam, grid.d_theta, grid.d_z, ws.jp)
-    kern.jacobian_H(p, ws.h, lam, grid.d_theta, grid.d_z, ws.jh)
+    coupled = bool(np.any(comp != 0.0))
+    data = assemble(ws, p, h_r, comp, lam, coupled, lift_off)
+    if not (coupled or lift_off):
+        kern.jacobian_H(p, ws.h, lam, grid.d_theta, grid.d_z, ws.jh)
     j_ph = sp.csr_matrix((ws.jh.copy(), ws.indices, ws.indptr), shape=(n, n))
-    if np.any(comp != 0.0):
-        kern.coupled_jacobian(ws.jp, ws.jh, ws.s, grid.n_z, ws.jc)
-        j_pp = sp.csr_matrix((ws.jc.copy(), ws.c_indices, ws.c_indptr), shape=(n, n))
-    else:
-        j_pp = sp.csr_matrix((ws.jp.copy(), ws.indices, ws.indptr), shape=(n, n))
+    indices, indptr = (ws.c_indices, ws.c_indptr) if coupled else (ws.indices, ws.indptr)
+    j_pp = sp.csr_matrix((data.copy(), indices, indptr), shape=(n, n))
     return ws.res.ravel().copy(), j_pp, j_ph
 
 
@@ -365,8 +438,10 @@ def _newton(
     comp: FloatArray,
     lam: float,
     opts: NewtonOptions,
+    lift_off: bool = False,
 ) -> _Outcome:
-    """Damped Newton with positivity-preserving step limit and Armijo backtracking."""
+    """Damped (semismooth, with lift-off) Newton with positivity-preserving step limit and
+    Armijo backtracking."""
     g = ws.grid
     n = g.size
     scale = 1.0 / (g.d_theta * g.d_z)
@@ -374,7 +449,7 @@ def _newton(
     indptr, indices = (ws.c_indptr, ws.c_indices) if coupled else (ws.indptr, ws.indices)
     P = P.copy()
     trial = np.empty_like(P)
-    data = _assemble(ws, P, h_rigid, comp, lam, coupled)
+    data = assemble(ws, P, h_rigid, comp, lam, coupled, lift_off)
     res = float(np.max(np.abs(ws.res))) * scale
     merit = float(np.sum(ws.res**2))
     for it in range(opts.max_iter):
@@ -397,7 +472,7 @@ def _newton(
         alpha = min(1.0, opts.max_drop / -ratio) if ratio < 0.0 else 1.0
         for _ in range(opts.max_backtracks + 1):
             np.add(P, alpha * step, out=trial)
-            data = _assemble(ws, trial, h_rigid, comp, lam, coupled)
+            data = assemble(ws, trial, h_rigid, comp, lam, coupled, lift_off)
             new_merit = float(np.sum(ws.res**2))
             # A trial that closes the film (possible only over a compliant foil) is refused.
             if ws.h.min() > 0.0 and new_merit <= (1.0 - 2.0 * opts.armijo * alpha) * merit:
@@ -406,7 +481,7 @@ def _newton(
         else:
             # The residual no longer decreases: accept as converged only when
             # it is already at the round-off floor of the residual.
-            _assemble(ws, P, h_rigid, comp, lam, coupled)
+            assemble(ws, P, h_rigid, comp, lam, coupled, lift_off)
             if res <= 100.0 * opts.tol:
                 return _Outcome(P, it + 1, res, True, "converged (at the round-off floor)")
             return _Outcome(P, it + 1, res, False, "line search stalled")
@@ -427,6 +502,7 @@ def solve_steady(
     *,
     options: NewtonOptions | None = None,
     workspace: Workspace | None = None,
+    lift_off: bool = False,
 ) -> SteadyFilm:
     """Solve the steady foil-coupled Reynolds equation (Eq. (4), ∂/∂τ = 0).
 
@@ -454,6 +530,10 @@ def solve_steady(
     options : NewtonOptions, optional
     workspace : Workspace, optional
         Reused buffers of this grid (saves the pattern set-up).
+    lift_off : bool
+        Top-foil lift-off: no sub-ambient film pressure (P >= 1 as a
+        complementarity condition, module docstring). Default False: the film
+        keeps its sub-ambient pressure (a rigid surface, or the suction-retained foil).
 
     Returns
     -------
@@ -475,13 +555,23 @@ def solve_steady(
         if not np.all(np.isfinite(start)) or start.min() <= 0.0:
             raise ValueError("p0 must be finite and > 0 everywhere")
 
-    out = _newton(ws, start, h_r, comp, lam, opts)
-    total = out.iterations
+    total = 0
+    if False and lift_off and p0 is None:
+        # A cold start from P = 1 sits on the corner of every cell's complementarity
+        # condition, and the active set then moves a few cells per iteration. The
+        # suction-retained solution locates the sub-ambient region instead: clamping
+        # it leaves a few cells at its border for the semismooth iteration to settle.
+        free = _newton(ws, start, h_r, comp, lam, opts, False)
+        total += free.iterations
+        if free.converged:
+            start = np.maximum(free.P, 1.0)
+    out = _newton(ws, start, h_r, comp, lam, opts, lift_off)
+    total += out.iterations
     steps = 0
     message = out.reason
     if not out.converged and opts.continuation and lam != 0.0 and h_r.min() > 0.0:
         first_reason = out.reason
-        out, n_it, steps, detail = _continuation(ws, h_r, comp, lam, opts)
+        out, n_it, steps, detail = _continuation(ws, h_r, comp, lam, opts, lift_off)
         total += n_it
         if out.converged:
             message = (
@@ -513,7 +603,12 @@ def solve_steady(
 
 
 def _continuation(
-    ws: Workspace, h_r: FloatArray, comp: FloatArray, lam: float, opts: NewtonOptions
+    ws: Workspace,
+    h_r: FloatArray,
+    comp: FloatArray,
+    lam: float,
+    opts: NewtonOptions,
+    lift_off: bool = False,
 ) -> tuple[_Outcome, int, int, str]:
     """Adaptive continuation from Λ = 0 (P = 1 exact) to ``lam``."""
     done = 0.0
@@ -523,7 +618,7 @@ def _continuation(
     last = _Outcome(P, 0, np.inf, False, "no step taken")
     for k in range(opts.max_continuation_steps):
         target = lam if abs(done + delta) >= abs(lam) else done + delta
-        last = _newton(ws, P, h_r, comp, target, opts)
+        last = _newton(ws, P, h_r, comp, target, opts, lift_off)
         total += last.iterations
         if last.converged:
             done, P = target, last.P

@@ -18,7 +18,26 @@ pressure, and the film (MODEL.md sections 2-3)
 The bump is a spring k_b in parallel with a viscous damper c_b = γ k_b/ω (the
 loss factor's equivalent at the running speed, MODEL.md section 3) in series
 with the massless elastic actuator of compliance c_a = φ(θ) p_a/(C k_act) under
-the stingers. With γ = 0 the bump is purely elastic and joins c_a.
+the stingers. With γ = 0 the bump is purely elastic and joins c_a. The dynamic
+coefficients use the same bump, ``k_b (1 + jγ ω_e/ω)``
+(:mod:`foilbearing.coefficients`).
+
+Top-foil lift-off (``lift_off``, MODEL.md section 3): the film holds no
+sub-ambient pressure. Each pressure cell's BDF equation G = 0 becomes the
+complementarity condition of the static solver
+(:mod:`foilbearing.reynolds.steady`),
+
+    P − 1 >= 0,   G >= 0,   (P − 1)·G = 0,
+
+i.e. ``min(d (P − 1), G) = 0`` with d the diagonal of the cell's Newton row.
+A factorisation puts each cell on the branch that this min selects at its
+state (a held cell gets the Newton row ``d e_k``); the modified Newton
+iteration then solves with the branches fixed, which keeps it smooth, and
+when it has converged moves the cells that violate their branch (a held cell
+with a net inflow, a free one below ambient) to the other branch and goes on
+with the same factor (:func:`~foilbearing.reynolds._kernels.switch_branches`).
+The branches are the ``lift_state`` of the factor: ``d`` held, ``−d`` free,
+0 without lift-off.
 """
 
 from __future__ import annotations
@@ -34,7 +53,7 @@ from numpy.typing import NDArray
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.blocksolve import BlockCyclicLU, factor_coupled
 from foilbearing.reynolds.grid import Grid
-from foilbearing.reynolds.steady import Workspace
+from foilbearing.reynolds.steady import Workspace, set_unit_rows
 
 __all__ = [
     "NEWTON_CONVERGED",
@@ -93,6 +112,8 @@ class TransientSystem:
         γ of the bump; 0 makes the bump purely elastic (no U dynamics).
     film_force_scale
         p_a R²/(m C): film force per unit Σ w(P − 1) as an acceleration of ε, 1/s².
+    lift_off
+        Top-foil lift-off: no sub-ambient film pressure (module docstring).
     """
 
     def __init__(
@@ -103,6 +124,7 @@ class TransientSystem:
         c_bump: FloatArray,
         loss_factor: float,
         film_force_scale: float,
+        lift_off: bool = False,
     ) -> None:
         self.grid = grid
         self.n = grid.size
@@ -110,6 +132,7 @@ class TransientSystem:
         self.sigma = sigma
         self.area = grid.d_theta * grid.d_z
         self.gamma = loss_factor
+        self.lift_off = bool(lift_off)
         self.dynamic_bump = bool(loss_factor > 0.0 and np.any(c_bump > 0.0))
         self.c_act = np.asarray(c_act, float) + (0.0 if self.dynamic_bump else np.asarray(c_bump))
         self.c_bump = np.asarray(c_bump, float) if self.dynamic_bump else np.zeros(self.nt)
@@ -124,6 +147,7 @@ class TransientSystem:
         self.mean = sp.kron(sp.eye(self.nt), np.ones((1, grid.n_z)) / grid.n_z, format="csr")
         self._res = np.empty(grid.shape)
         self._H = np.empty(grid.shape)
+        self._slack = np.empty(self.n)
         self._work = np.empty((self.n, 1))
         self.jh_rows = self.ws.indices // grid.n_z  # θ-row of each column of dR/dH
         # ∂H/∂ε per cell (n, 2) and the film force per unit P (2, n), for factorize
@@ -176,6 +200,7 @@ class TransientSystem:
         c0: float,
         hist: FloatArray,
         out: FloatArray | None = None,
+        lift_state: FloatArray | None = None,
     ) -> tuple[FloatArray, float]:
         """G = c0·Q(y) + hist − f(y) (the BDF equations) and the minimum film, in one pass.
 
@@ -194,6 +219,9 @@ class TransientSystem:
             History part of the BDF equations.
         out : ndarray, shape (size,), optional
             Buffer for G (a new array if None).
+        lift_state : ndarray, shape (n,), optional
+            Lift-off branch of each cell (a factor's, ``d`` held, ``−d`` free);
+            default :meth:`lift_state` at y (zeros without lift-off).
 
         Returns
         -------
@@ -204,6 +232,8 @@ class TransientSystem:
         """
         if out is None:
             out = np.empty(self.size)
+        if lift_state is None:
+            lift_state = self.lift_state(y, inputs, c0, hist)
         g = self.grid
         h_min = kern.transient_residual(
             y,
@@ -217,6 +247,7 @@ class TransientSystem:
             self.sin_t,
             self.c_act,
             self.c_bump,
+            lift_state,
             self.w,
             self.force_scale,
             self.area * self.sigma,
@@ -225,8 +256,34 @@ class TransientSystem:
             self._H,
             self._res,
             out,
+            self._slack,
         )
         return out, float(h_min)
+
+    def lift_scale(self, y: FloatArray, inputs: Inputs, c0: float) -> FloatArray:
+        """d of each cell's lift-off condition at y: |diagonal of its Newton row| (n,), 1/s."""
+        P, _U, _eps, _v = self.split(y)
+        H, _q = self.film(y, inputs.preload)
+        g = self.grid
+        jp = np.empty(self.ws.jp.size)
+        kern.jacobian_P(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, jp)
+        d = np.abs(c0 * H.ravel() - jp[self.diag_slots] / (self.area * self.sigma))
+        return np.where(d > 0.0, d, 1.0)
+
+    def lift_state(self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray) -> FloatArray:
+        """Lift-off branches at y, as a factorisation decides them (n,).
+
+        ``d`` where ``d (P − 1) < G`` (held at ambient), ``−d`` elsewhere; zeros
+        without lift-off. Twin of the decision in
+        :func:`~foilbearing.reynolds._kernels.transient_jacobian`.
+        """
+        if not self.lift_off:
+            return np.zeros(self.n)
+        d = self.lift_scale(y, inputs, c0)
+        free = -d
+        g_p = self.newton_residual_py(y, inputs, c0, hist, free)[0][: self.n]
+        P = self.split(y)[0].ravel()
+        return np.where(d * (P - 1.0) < g_p, d, free)
 
     def storage_min_film(
         self, y: FloatArray, preload: FloatArray, out: FloatArray | None = None
@@ -248,9 +305,15 @@ class TransientSystem:
         return inputs.omega / self.gamma if self.dynamic_bump else 0.0
 
     def newton_residual_py(
-        self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        lift_state: FloatArray | None = None,
+        slack: FloatArray | None = None,
     ) -> tuple[FloatArray, float]:
-        """NumPy twin of :meth:`newton_residual` (no ``out`` buffer)."""
+        """NumPy twin of :meth:`newton_residual` (no ``out`` buffer); fills ``slack`` if given."""
         P, U, eps, v = self.split(y)
         H, q = self.film(y, inputs.preload)
         g = self.grid
@@ -263,9 +326,21 @@ class TransientSystem:
         out[n + nt : n + nt + 2] = c0 * eps - v
         out[-2:] = c0 * v - self.force_scale * (self.w @ (P.ravel() - 1.0)) - inputs.force
         out += hist
+        d = self.lift_state(y, inputs, c0, hist) if lift_state is None else lift_state
+        if slack is not None:
+            safe = np.where(d > 0.0, d, 1.0)
+            slack[:] = np.where(d > 0.0, -out[:n] / safe, np.where(d < 0.0, 1.0 - P.ravel(), 0.0))
+        out[:n] = np.where(d > 0.0, d * (P.ravel() - 1.0), out[:n])
         return out, float(H.min())
 
-    def factorize(self, y: FloatArray, inputs: Inputs, c0: float) -> TransientFactor:
+    def factorize(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        branches: FloatArray | None = None,
+    ) -> TransientFactor:
         """Factorise the Newton matrix of :meth:`jacobian` by block elimination.
 
         The bump states U (diagonal rows) and the journal (ε, v: four unknowns)
@@ -276,7 +351,9 @@ class TransientSystem:
         (:func:`~foilbearing.reynolds._kernels.transient_jacobian`, twin
         :meth:`jacobian_blocks_py`), the border solve and the 2×2 Woodbury
         inverse from another (:func:`~foilbearing.reynolds._kernels.transient_border`,
-        twin :meth:`border_py`, also the path of the SuperLU fallback).
+        twin :meth:`border_py`, also the path of the SuperLU fallback). ``hist``
+        (the BDF history) decides which cells lift-off holds at ambient, unless
+        ``branches`` (a factor's ``lift_state``, e.g. the last step's) gives them.
         """
         g = self.grid
         n = self.n
@@ -288,9 +365,11 @@ class TransientSystem:
         jc = np.empty(self._jc.size)
         active = np.empty(self.nt)
         a_pe = np.empty((n, 2))
+        lift_state = np.zeros(n) if branches is None else branches.copy()
         kern.transient_jacobian(
             y,
             c0,
+            hist,
             inputs.lam,
             rate,
             inputs.preload,
@@ -304,12 +383,15 @@ class TransientSystem:
             self.diag_slots,
             self.jh_rows,
             self.ws.indptr,
+            self.lift_off,
+            branches is None,
             film,
             jp,
             jh,
             active,
             jc,
             a_pe,
+            lift_state,
         )
         lu = factor_coupled(jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         if isinstance(lu, BlockCyclicLU):
@@ -319,14 +401,14 @@ class TransientSystem:
         else:
             y_border, small_inv = self.border_py(lu, a_pe, c0)
         factor = TransientFactor(
-            self, lu, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active
+            self, lu, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active, lift_state
         )
         factor.coupled_data = jc
         return factor
 
     def jacobian_blocks_py(
-        self, y: FloatArray, inputs: Inputs, c0: float
-    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray
+    ) -> tuple[Any, ...]:
         """NumPy twin of :func:`~foilbearing.reynolds._kernels.transient_jacobian`.
 
         Returns
@@ -342,6 +424,10 @@ class TransientSystem:
             Data of the pressure block B on the coupled pattern.
         a_pe : ndarray, shape (n, 2)
             ``jh ∂H/∂ε``.
+        lift_state : ndarray, shape (n,)
+            Lift-off branches (``d`` held, ``−d`` free, zeros without lift-off).
+        clamped : ndarray of bool, shape (n,)
+            Cells held at ambient (rows ``d e_k`` in B, zero rows of jh and a_pe).
         """
         P, _U, _eps, _v = self.split(y)
         H, _q = self.film(y, inputs.preload)
@@ -361,12 +447,17 @@ class TransientSystem:
         rate = self.rate(inputs)
         active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
         c_eff = self.c_act + rate * self.c_bump / (c0 + rate)
+        n = self.n
+        d = self.lift_state(y, inputs, c0, hist)
+        clamped = d > 0.0
+        jh[clamped[ws.entry_rows]] = 0.0
         jc = np.empty(self._jc.size)
         kern.coupled_jacobian_py(jp, jh, c_eff * active / g.n_z, g.n_z, jc)
-        n = self.n
+        rows = np.flatnonzero(clamped)
+        set_unit_rows(jc, rows, d[rows], g.n_theta, g.n_z)
         jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
         a_pe = jh_mat @ self.dh_de
-        return H, jp, jh, active, jc, np.asarray(a_pe)
+        return H, jp, jh, active, jc, np.asarray(a_pe), d, clamped
 
     def border_py(self, lu: Any, a_pe: FloatArray, c0: float) -> tuple[FloatArray, FloatArray]:
         """NumPy twin of :func:`~foilbearing.reynolds._kernels.transient_border`.
@@ -383,8 +474,12 @@ class TransientSystem:
         return float(self.film(y, preload)[0].min())
 
     # --------------------------------------------------------------- Jacobian
-    def jacobian(self, y: FloatArray, inputs: Inputs, c0: float) -> sp.csc_matrix:
-        """∂/∂y of c0·Q(y) − f(y, t) (the BDF Newton matrix, c0 = α₀/Δt), sparse CSC."""
+    def jacobian(self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray) -> sp.csc_matrix:
+        """∂/∂y of c0·Q(y) − f(y, t) (the BDF Newton matrix, c0 = α₀/Δt), sparse CSC.
+
+        Under lift-off the rows of the cells held at ambient (decided with
+        ``hist``) are ``d e_k`` (the generalised derivative of ``min(d (P − 1), G)``).
+        """
         P, _U, _eps, _v = self.split(y)
         H, _q = self.film(y, inputs.preload)
         g = self.grid
@@ -428,7 +523,13 @@ class TransientSystem:
             [None, None, je_e, je_v],
             [jv_p, None, None, jv_v],
         ]
-        return sp.bmat(blocks, format="csc")
+        full = sp.bmat(blocks, format="csr")
+        if self.lift_off:
+            d = np.zeros(self.size)
+            d[:n] = np.maximum(self.lift_state(y, inputs, c0, hist), 0.0)
+            held = (d > 0.0).astype(float)
+            full = sp.diags(1.0 - held) @ full + sp.diags(d)
+        return sp.csc_matrix(full)
 
 
 class TransientFactor:
@@ -446,10 +547,14 @@ class TransientFactor:
         c0: float,
         rate: float,
         active: FloatArray,
+        lift_state: FloatArray,
     ) -> None:
         self.sys, self.lu, self.jh_data, self.a_pe = system, lu, jh_data, a_pe
         self.s_vp, self.y_border, self.small_inv = s_vp, y_border, small_inv
         self.c0, self.rate, self.active = c0, rate, active
+        #: Lift-off branch of each cell (``d`` held, ``−d`` free, 0 without lift-off):
+        #: those of the factorisation, then moved by the Newton iterations that use it.
+        self.lift_state = lift_state
         self._jh: sp.csr_matrix | None = None
         #: CSR data of the factorised pressure block B (on the coupled pattern).
         self.coupled_data: FloatArray | None = None
@@ -462,6 +567,7 @@ class TransientFactor:
             s.sin_t,
             s.c_act,
             s.c_bump,
+            lift_state,
             s.w,
             s.force_scale,
             s.area * s.sigma,
@@ -515,6 +621,7 @@ class TransientFactor:
             inputs.force,
             *self._args_sys,
             g,
+            s._slack,
             *self._args_fac,
             dy,
             weights,
@@ -635,9 +742,10 @@ class TransientFactor:
         g, dy, q_out = work
         newton_tol, newton_fraction, max_newton = controls
         prev = math.inf
-        k = 0
+        k = since = switches = 0
         while True:
             k += 1
+            since += 1
             h_min, err, p_min = self.newton_step_py(y, inputs, c0, hist, weights, g, dy)
             if h_min <= 0.0:
                 return kern.NEWTON_FILM_CLOSED, k, first_change, math.nan
@@ -646,19 +754,28 @@ class TransientFactor:
             if first_change == math.inf:
                 first_change = err
             tol = max(newton_tol, newton_fraction * first_change)
-            conv = err / prev if k > 1 else math.nan
+            conv = err / prev if since > 1 else math.nan
             if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
-                _q, h_new = self.sys.storage_min_film(y, inputs.preload, q_out)
-                if h_new > 0.0:
-                    return kern.NEWTON_CONVERGED, k, first_change, h_new
+                flipped = kern.switch_branches_py(self.lift_state, self.sys._slack, weights)
+                if flipped == 0:
+                    _q, h_new = self.sys.storage_min_film(y, inputs.preload, q_out)
+                    if h_new > 0.0:
+                        return kern.NEWTON_CONVERGED, k, first_change, h_new
+                elif switches < kern.MAX_SWITCHES and flipped <= kern.MAX_MOVED_KEPT:
+                    switches += 1
+                    since = 0
+                    prev = math.inf
+                    continue
+                else:
+                    return kern.NEWTON_REFRESH, k, first_change, math.nan
             if fresh:
-                if k >= max_newton or conv >= 1.0:
+                if since >= max_newton or conv >= 1.0:
                     return kern.NEWTON_TOO_SLOW, k, first_change, math.nan
                 if conv > 0.5:
                     return kern.NEWTON_REFRESH, k, first_change, math.nan
-            elif k >= max_newton or conv >= 1.0:
+            elif since >= max_newton or conv >= 1.0:
                 return kern.NEWTON_DIVERGED, k, first_change, math.nan
-            elif conv ** (max_newton - k) / (1.0 - conv) * err > tol:
+            elif conv ** (max_newton - since) / (1.0 - conv) * err > tol:
                 return kern.NEWTON_REFRESH, k, first_change, math.nan
             prev = err
 
@@ -674,7 +791,7 @@ class TransientFactor:
     ) -> tuple[float, float, float]:
         """NumPy twin of :meth:`newton_step`: residual, solve and update in sequence."""
         s = self.sys
-        g[:], h_min = s.newton_residual_py(y, inputs, c0, hist)
+        g[:], h_min = s.newton_residual_py(y, inputs, c0, hist, self.lift_state, s._slack)
         if h_min <= 0.0:
             return h_min, math.nan, math.nan
         dy[:] = self.solve_py(g)

@@ -483,6 +483,76 @@ def coupled_jacobian(
                 out[base + rc * n_z + j + 1] += jp_data[no]
 
 
+@njit(cache=True)
+def lift_off_rows(
+    P: FloatArray,
+    res: FloatArray,
+    jp_data: FloatArray,
+    jh_data: FloatArray,
+    coupled_data: FloatArray,
+    diag_slots: IntArray,
+    indptr: IntArray,
+    coupled: bool,
+    held: NDArray[np.bool_],
+) -> int:
+    """Top-foil lift-off rows of the steady system, in place; the number of held cells.
+
+    The complementarity ``min(d (P − 1), −R) = 0`` of each cell (d = |∂R_k/∂P_k|;
+    :mod:`foilbearing.reynolds.steady`): a cell with ``d (P − 1) < −R`` is held
+    at ambient, its residual becomes ``−d (P − 1)`` and its matrix row ``−d e_k``
+    (on the coupled pattern if ``coupled``, else on the stencil pattern), and
+    its row of ∂R/∂H is zero. Twin: :func:`lift_off_rows_py`.
+
+    Parameters
+    ----------
+    P, res : ndarray, shape (n_theta, n_z)
+        Pressure and Reynolds residual R (net inflow, cell-integrated); res is
+        overwritten on held cells.
+    jp_data, jh_data : ndarray, shape (nnz,)
+        ∂R/∂P and ∂R/∂H on :func:`stencil_pattern` (jp read for d, and
+        rewritten on held rows when not ``coupled``; jh rows of held cells zeroed).
+    coupled_data : ndarray, shape (3 n_z · n,)
+        The matrix on :func:`coupled_pattern` (rewritten on held rows when ``coupled``).
+    diag_slots : ndarray, shape (n,)
+        Position of each cell's diagonal entry in the stencil data.
+    indptr : ndarray, shape (n + 1,)
+        Stencil row pointers.
+    coupled : bool
+        Which matrix holds the system.
+    held : ndarray of bool, shape (n,)
+        Filled with the held cells.
+    """
+    n_theta, n_z = P.shape
+    n = n_theta * n_z
+    width = 3 * n_z
+    count = 0
+    for k in range(n):
+        i = k // n_z
+        j = k - i * n_z
+        d = abs(jp_data[diag_slots[k]])
+        if d == 0.0:
+            d = 1.0
+        gauge = P[i, j] - 1.0
+        held[k] = d * gauge < -res[i, j]
+        if not held[k]:
+            continue
+        count += 1
+        res[i, j] = -d * gauge
+        for e in range(indptr[k], indptr[k + 1]):
+            jh_data[e] = 0.0
+        if coupled:
+            own = 0 if i == 0 else (2 if i == n_theta - 1 else 1)
+            base = k * width
+            for c in range(width):
+                coupled_data[base + c] = 0.0
+            coupled_data[base + own * n_z + j] = -d
+        else:
+            for e in range(indptr[k], indptr[k + 1]):
+                jp_data[e] = 0.0
+            jp_data[diag_slots[k]] = -d
+    return count
+
+
 # ---------------------------------------------------------------------------
 # NumPy twins
 # ---------------------------------------------------------------------------
@@ -606,3 +676,37 @@ def coupled_jacobian_py(
     c_indptr, c_indices = coupled_pattern(n_theta, n_z)
     rows = np.repeat(np.arange(n), np.diff(c_indptr))
     out[:] = full[rows, c_indices]
+
+
+def lift_off_rows_py(
+    P: FloatArray,
+    res: FloatArray,
+    jp_data: FloatArray,
+    jh_data: FloatArray,
+    coupled_data: FloatArray,
+    diag_slots: IntArray,
+    indptr: IntArray,
+    coupled: bool,
+    held: NDArray[np.bool_],
+) -> int:
+    """NumPy twin of :func:`lift_off_rows`."""
+    n_theta, n_z = P.shape
+    d = np.abs(jp_data[diag_slots])
+    d = np.where(d > 0.0, d, 1.0)
+    gauge = P.ravel() - 1.0
+    held[:] = d * gauge < -res.ravel()
+    rows = np.flatnonzero(held)
+    res.ravel()[rows] = -d[rows] * gauge[rows]
+    entry_rows = np.repeat(np.arange(n_theta * n_z), np.diff(indptr))
+    mask = held[entry_rows]
+    jh_data[mask] = 0.0
+    if coupled:
+        block = coupled_data.reshape(n_theta * n_z, 3 * n_z)
+        block[rows] = 0.0
+        i = rows // n_z
+        own = np.where(i == 0, 0, np.where(i == n_theta - 1, 2, 1))
+        block[rows, own * n_z + rows % n_z] = -d[rows]
+    else:
+        jp_data[mask] = 0.0
+        jp_data[diag_slots[rows]] = -d[rows]
+    return int(rows.size)
