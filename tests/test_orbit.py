@@ -234,21 +234,22 @@ def test_controller_triggers_on_subsynchronous_motion_and_respects_slew_rate() -
 
 @pytest.mark.slow
 def test_paper_protocol_with_a_light_imbalance_control_delays_the_divergence() -> None:
-    # The paper's protocol as published (ramps to 100 / 150 V at 6.0-6.5 s, 32.6 krpm) with
+    # The paper's protocol as published (the ramp to 150 V at 6.0-6.5 s, 32.6 krpm) with
     # the 1 g·mm imbalance of the study's second series: our 0 V run survives the control
     # time and diverges well below 90 krpm, after its linear onset (43.6 krpm: the whirl
     # grows while the speed ramps); the preload raises the divergence speed (paper Figs.
-    # 13-14). Measured: 56.0 / 61.9 / 60.0 krpm at 0 / 100 / 150 V.
+    # 13-14). Measured: 56.0 / 61.9 / 60.0 krpm at 0 / 100 / 150 V (100 V left out for
+    # the CI's time).
     from foilbearing.orbit_analysis import analyse_orbit
 
     case = default_case()
     case = replace(case, rotor=replace(case.rotor, imbalance=1e-6))
     prof = linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0)
     div = {}
-    for volts in (0.0, 100.0, 150.0):
+    for volts in (0.0, 150.0):
         program = voltage_ramp(6.0, 6.5, volts) if volts else None
         res = simulate(case, prof, program)
         assert res.contact is None or res.contact["time_s"] > 6.5
         div[volts] = analyse_orbit(res).divergence_speed_rpm or math.inf
     assert 43.6e3 < div[0.0] < 80e3
-    assert div[100.0] > 1.05 * div[0.0] and div[150.0] > 1.05 * div[0.0]
+    assert div[150.0] > 1.05 * div[0.0]

@@ -58,6 +58,8 @@ _CAPTIONS = {
     "stability_map.png": "Not in the paper: linear stability over speed and voltage with the "
     "onset speeds; compare with the nonlinear orbits of Figs. 13-15.",
     "fig15_subsync.png": _SUBSYNC,
+    "fig15_subsync_control.png": _SUBSYNC + " Variant: control before our 0 V run's divergence.",
+    "fig15_subsync_1gmm.png": _SUBSYNC + " Variant: the protocol as published, 1 g·mm imbalance.",
     "orbit_subsync.png": _SUBSYNC,
 }
 _ORBIT_FIG = re.compile(r"orbit_(?P<v>[0-9.]+)V_(?P<kind>transient|waterfall3d|waterfall|orbits)")

@@ -225,9 +225,8 @@ def paper_orbit_runs(
             if done[k]["analysis"].onset is not None
         }
         if subs:
-            name = "fig15_subsync" + (
-                "" if series == "paper protocol" else "_" + series.split()[0].replace("·", "")
-            )
+            suffix = {"paper protocol": "", "1 g·mm": "_1gmm"}.get(series, "_control")
+            name = "fig15_subsync" + suffix
             figures.append(str(save_figure(plot_subsync(subs, onsets), out / f"{name}.png")))
     return {
         "runs": [done[k]["headline"] for k in order],
