@@ -250,8 +250,15 @@ def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
     return rows
 
 
-def orbit_comparison(runs: list[dict[str, Any]]) -> list[Row]:
-    """The speed-up runs beside the paper's Figs. 13-15 (MODEL.md section 6)."""
+def orbit_comparison(
+    runs: list[dict[str, Any]], linear_onsets_rpm: dict[float, float | None] | None = None
+) -> list[Row]:
+    """The speed-up runs beside the paper's Figs. 13-15 (MODEL.md section 6).
+
+    ``linear_onsets_rpm`` (final voltage → linear onset, rpm) adds each run's lag of
+    its divergence behind the linear onset at its final voltage: an onset read from
+    a ramped nonlinear run is not a linear onset (like with like).
+    """
     paper = {
         0.0: "whirl from ~15 krpm at 123-147 Hz, gone by ~19 krpm; whip diverges at ~33 krpm",
         50.0: "whip ~105 Hz, diverges at 44.4 krpm",
@@ -279,6 +286,12 @@ def orbit_comparison(runs: list[dict[str, Any]]) -> list[Row]:
             if div
             else f"no divergence up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
         )
+        lin = (linear_onsets_rpm or {}).get(v)
+        if lin and div:
+            parts.append(
+                f"{100.0 * (div / lin - 1.0):+.0f} % from the linear onset at {v:g} V "
+                f"({lin / 1e3:.1f} krpm)"
+            )
         half = run.get("half_order")
         if v == 0.0:
             parts.insert(

@@ -7,6 +7,7 @@ the output folder as it finishes, so an interrupted study keeps what it did.
 from __future__ import annotations
 
 import json
+import math
 import time
 from pathlib import Path
 from typing import Any
@@ -97,7 +98,15 @@ def run_study(
     if onsets is not None:
         rows += stability_comparison(onsets)
     if "orbits" in results:
-        rows += orbit_comparison(results["orbits"]["runs"])
+        linear = (
+            {
+                v: r.onset_speed and r.onset_speed * 30.0 / math.pi
+                for v, r in onsets["C-GFB"].items()
+            }
+            if onsets is not None
+            else None
+        )
+        rows += orbit_comparison(results["orbits"]["runs"], linear)
     table = markdown_table(rows)
     results["paper_comparison"] = [r.__dict__ for r in rows]
     write_text(
