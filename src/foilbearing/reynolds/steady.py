@@ -52,7 +52,6 @@ __all__ = [
     "NewtonOptions",
     "SteadyFilm",
     "Workspace",
-    "assemble",
     "coupled_system",
     "film_force",
     "film_thickness",
@@ -269,7 +268,7 @@ def _film(ws: Workspace, P: FloatArray, h_rigid: FloatArray, comp: FloatArray) -
     ws.s /= ws.grid.n_z
 
 
-def assemble(
+def _assemble(
     ws: Workspace,
     P: FloatArray,
     h_rigid: FloatArray,
@@ -350,7 +349,7 @@ def coupled_system(
             "the pressure does not open the compliant foil enough"
         )
     coupled = bool(np.any(comp != 0.0))
-    data = assemble(ws, p, h_r, comp, lam, coupled, lift_off)
+    data = _assemble(ws, p, h_r, comp, lam, coupled, lift_off)
     if not (coupled or lift_off):
         kern.jacobian_H(p, ws.h, lam, grid.d_theta, grid.d_z, ws.jh)
     j_ph = sp.csr_matrix((ws.jh.copy(), ws.indices, ws.indptr), shape=(n, n))
@@ -449,7 +448,7 @@ def _newton(
     indptr, indices = (ws.c_indptr, ws.c_indices) if coupled else (ws.indptr, ws.indices)
     P = P.copy()
     trial = np.empty_like(P)
-    data = assemble(ws, P, h_rigid, comp, lam, coupled, lift_off)
+    data = _assemble(ws, P, h_rigid, comp, lam, coupled, lift_off)
     res = float(np.max(np.abs(ws.res))) * scale
     merit = float(np.sum(ws.res**2))
     for it in range(opts.max_iter):
@@ -472,7 +471,7 @@ def _newton(
         alpha = min(1.0, opts.max_drop / -ratio) if ratio < 0.0 else 1.0
         for _ in range(opts.max_backtracks + 1):
             np.add(P, alpha * step, out=trial)
-            data = assemble(ws, trial, h_rigid, comp, lam, coupled, lift_off)
+            data = _assemble(ws, trial, h_rigid, comp, lam, coupled, lift_off)
             new_merit = float(np.sum(ws.res**2))
             # A trial that closes the film (possible only over a compliant foil) is refused.
             if ws.h.min() > 0.0 and new_merit <= (1.0 - 2.0 * opts.armijo * alpha) * merit:
@@ -481,7 +480,7 @@ def _newton(
         else:
             # The residual no longer decreases: accept as converged only when
             # it is already at the round-off floor of the residual.
-            assemble(ws, P, h_rigid, comp, lam, coupled, lift_off)
+            _assemble(ws, P, h_rigid, comp, lam, coupled, lift_off)
             if res <= 100.0 * opts.tol:
                 return _Outcome(P, it + 1, res, True, "converged (at the round-off floor)")
             return _Outcome(P, it + 1, res, False, "line search stalled")
@@ -555,18 +554,8 @@ def solve_steady(
         if not np.all(np.isfinite(start)) or start.min() <= 0.0:
             raise ValueError("p0 must be finite and > 0 everywhere")
 
-    total = 0
-    if False and lift_off and p0 is None:
-        # A cold start from P = 1 sits on the corner of every cell's complementarity
-        # condition, and the active set then moves a few cells per iteration. The
-        # suction-retained solution locates the sub-ambient region instead: clamping
-        # it leaves a few cells at its border for the semismooth iteration to settle.
-        free = _newton(ws, start, h_r, comp, lam, opts, False)
-        total += free.iterations
-        if free.converged:
-            start = np.maximum(free.P, 1.0)
     out = _newton(ws, start, h_r, comp, lam, opts, lift_off)
-    total += out.iterations
+    total = out.iterations
     steps = 0
     message = out.reason
     if not out.converged and opts.continuation and lam != 0.0 and h_r.min() > 0.0:

@@ -10,7 +10,12 @@ from numba import njit
 from numpy.typing import NDArray
 
 from foilbearing.reynolds._kernels.blockcyclic import block_cyclic_solve
-from foilbearing.reynolds._kernels.flux import _jacobian_both, coupled_jacobian, residual
+from foilbearing.reynolds._kernels.flux import (
+    _jacobian_both,
+    coupled_jacobian,
+    residual,
+    unit_coupled_row,
+)
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -464,15 +469,9 @@ def transient_jacobian(
         s[i] = c_eff * active[i] / n_z
     coupled_jacobian(jp, jh, s, n_z, jc)
     if n_clamped > 0:
-        width = 3 * n_z
         for k in range(n):
             if clamped[k]:
-                i = k // n_z
-                own = 0 if i == 0 else (2 if i == n_theta - 1 else 1)
-                base = k * width
-                for c in range(width):
-                    jc[base + c] = 0.0
-                jc[base + own * n_z + k % n_z] = lift_state[k]
+                unit_coupled_row(jc, k, lift_state[k], n_theta, n_z)
     for r in range(n):
         a0 = 0.0
         a1 = 0.0
@@ -708,7 +707,12 @@ def transient_newton_solve(
     refresh at its iterate when it contracts slowly (rate above 0.5: the
     iterate has left the region where this Jacobian is good); a stale one
     stops when it diverges (rate >= 1, or ``max_newton``), or asks for a
-    refresh when it would not converge within ``max_newton`` iterations. Twin:
+    refresh when it would not converge within ``max_newton`` iterations. Under
+    lift-off the iteration solves with the factor's branches fixed; once it has
+    converged, the cells that violate their branch move to the other one
+    (:func:`switch_branches`) and it goes on with the same factor, up to
+    ``MAX_SWITCHES`` times; more than ``MAX_MOVED_KEPT`` cells at once ask for a
+    refresh. Twin:
     :meth:`foilbearing.reynolds.transient.TransientFactor.newton_solve_py`.
 
     Returns

@@ -483,6 +483,23 @@ def coupled_jacobian(
                 out[base + rc * n_z + j + 1] += jp_data[no]
 
 
+@njit(cache=True, inline="always")
+def unit_coupled_row(data: DataArray, k: int, value: Any, n_theta: int, n_z: int) -> None:
+    """Make row k of a matrix on :func:`coupled_pattern` ``value·e_k`` (in place).
+
+    Row ``k = i n_z + j`` holds 3 n_z entries, θ-blocks in sorted column order:
+    its own block is first for i = 0, last for i = n_theta − 1, in the middle
+    otherwise. Twin: :func:`foilbearing.reynolds.steady.set_unit_rows`.
+    """
+    width = 3 * n_z
+    i = k // n_z
+    own = 0 if i == 0 else (2 if i == n_theta - 1 else 1)
+    base = k * width
+    for c in range(width):
+        data[base + c] = 0.0
+    data[base + own * n_z + k - i * n_z] = value
+
+
 @njit(cache=True)
 def lift_off_rows(
     P: FloatArray,
@@ -524,7 +541,6 @@ def lift_off_rows(
     """
     n_theta, n_z = P.shape
     n = n_theta * n_z
-    width = 3 * n_z
     count = 0
     for k in range(n):
         i = k // n_z
@@ -541,11 +557,7 @@ def lift_off_rows(
         for e in range(indptr[k], indptr[k + 1]):
             jh_data[e] = 0.0
         if coupled:
-            own = 0 if i == 0 else (2 if i == n_theta - 1 else 1)
-            base = k * width
-            for c in range(width):
-                coupled_data[base + c] = 0.0
-            coupled_data[base + own * n_z + j] = -d
+            unit_coupled_row(coupled_data, k, -d, n_theta, n_z)
         else:
             for e in range(indptr[k], indptr[k + 1]):
                 jp_data[e] = 0.0
