@@ -54,17 +54,22 @@ def test_fast_stepper_agrees_with_solve_ivp_bdf(subambient: str) -> None:
         assert np.max(np.abs(ours - theirs)) < 0.01 * np.ptp(theirs)
 
 
-def test_time_step_convergence_is_second_order() -> None:
+def test_time_step_convergence_has_the_order_of_the_bdf() -> None:
+    # Measured rates against 256 steps per revolution (BDF3): BDF2 2.00 and 2.04, BDF3 2.79
+    # and 2.61 (a little below 3: the lift-off boundary moves in cell-sized jumps).
     case = coarse(100.0, imbalance=1e-6)  # 1 g·mm: a gentle orbit from t = 0
     prof = constant_speed(20e3 * RPM, 0.01)
-    runs = {
-        n: simulate(case, prof, settings=OrbitSettings(steps_per_rev=n, sample_rate=20_000))
-        for n in (16, 32, 64, 256)
-    }
-    ref = runs[256]
-    err = [np.max(np.abs(runs[n].e_x - ref.e_x)) for n in (16, 32, 64)]
-    orders = [math.log2(err[k] / err[k + 1]) for k in range(2)]
-    assert all(1.5 < p < 2.8 for p in orders), (err, orders)
+
+    def run(order: int, n: int) -> np.ndarray:
+        settings = OrbitSettings(order=order, steps_per_rev=n, sample_rate=20_000)
+        return simulate(case, prof, settings=settings).e_x
+
+    ref = run(3, 256)
+    err = {(p, n): np.max(np.abs(run(p, n) - ref)) for p in (2, 3) for n in (16, 32, 64)}
+    for p, (lo, hi) in ((2, (1.7, 2.4)), (3, (2.4, 3.4))):
+        rates = [math.log2(err[p, n] / err[p, 2 * n]) for n in (16, 32)]
+        assert all(lo < r < hi for r in rates), (p, rates)
+    assert all(err[3, n] < err[2, n] / 3 for n in (16, 32, 64)), err
 
 
 def test_newton_error_is_well_below_the_time_step_error() -> None:
@@ -72,16 +77,17 @@ def test_newton_error_is_well_below_the_time_step_error() -> None:
     # error of the default step.
     case = coarse(100.0, imbalance=1e-6)
     prof = constant_speed(20e3 * RPM, 0.01)
-    tight = {"newton_tol": 0.01, "newton_fraction": 1e-4, "max_newton": 10}
+    tight = {"newton_tol": 0.01, "newton_fraction": 1e-5, "max_newton": 10}
+    n = OrbitSettings().steps_per_rev
     default = simulate(case, prof, settings=OrbitSettings(sample_rate=20_000))
-    exact16 = simulate(case, prof, settings=OrbitSettings(sample_rate=20_000, **tight))
-    exact32 = simulate(
-        case, prof, settings=OrbitSettings(steps_per_rev=32, sample_rate=20_000, **tight)
+    exact = simulate(case, prof, settings=OrbitSettings(sample_rate=20_000, **tight))
+    exact2 = simulate(
+        case, prof, settings=OrbitSettings(steps_per_rev=2 * n, sample_rate=20_000, **tight)
     )
-    newton_error = np.max(np.abs(default.e_x - exact16.e_x))
-    step_error = np.max(np.abs(exact16.e_x - exact32.e_x)) * 4 / 3  # Richardson, order 2
+    newton_error = np.max(np.abs(default.e_x - exact.e_x))
+    step_error = np.max(np.abs(exact.e_x - exact2.e_x)) * 8 / 7  # Richardson, order 3
     assert newton_error < 0.05 * step_error, (newton_error, step_error)
-    assert default.newton_iterations < exact16.newton_iterations
+    assert default.newton_iterations < exact.newton_iterations
 
 
 def test_newton_tolerance_does_not_move_the_divergence() -> None:
@@ -203,6 +209,8 @@ def test_bad_runs_fail_before_any_work() -> None:
         OrbitSimulation(case, prof, settings=OrbitSettings(sample_rate=2000.0))
     with pytest.raises(InputError, match="steps_per_rev"):
         OrbitSimulation(case, prof, settings=OrbitSettings(steps_per_rev=4))
+    with pytest.raises(InputError, match="orders 1 to 4"):
+        OrbitSimulation(case, prof, settings=OrbitSettings(order=5))
 
 
 def test_resume_continues_the_run() -> None:
@@ -214,6 +222,22 @@ def test_resume_continues_the_run() -> None:
     assert rest.time.size == whole.time.size
     # Equal within the Newton tolerance (the resumed run refactorises its matrix).
     np.testing.assert_allclose(rest.e_x, whole.e_x, atol=1e-3 * case.bearing.clearance)
+
+
+def test_resume_near_contact_follows_the_run() -> None:
+    # 8.5 g·mm at 12 krpm on the coarse grid: an orbit of 1.07 C peak-to-peak that grazes
+    # the film, with cells crossing the lift-off boundary at every pass. A BDF3 run resumed
+    # from its checkpoint once failed here ("time step collapsed") where the uninterrupted
+    # run went on. Resumed at two times, it completes and follows the uninterrupted run
+    # (measured 0.15 % of the extent: the last step before the stop differs).
+    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4))  # the case's voltages
+    prof = constant_speed(12e3 * RPM, 0.06)
+    whole = simulate(case, prof)
+    for stop in (0.02, 0.03):
+        rest = simulate(case, prof, resume=simulate(case, prof, stop_time=stop))
+        assert rest.status == "completed", rest.message
+        assert rest.time.size == whole.time.size
+        assert np.max(np.abs(rest.e_x - whole.e_x)) < 0.005 * np.ptp(whole.e_x)
 
 
 def test_controller_triggers_on_subsynchronous_motion_and_respects_slew_rate() -> None:

@@ -338,30 +338,43 @@ def test_slowly_contracting_fresh_factor_is_refreshed_not_abandoned(setup) -> No
     assert again[0] == transient.NEWTON_CONVERGED
 
 
-@pytest.mark.parametrize(("h1", "h2"), [(math.nan, math.nan), (2e-4, math.nan), (2e-4, 3e-4)])
-def test_bdf2_setup_matches_twin_and_extrapolates_a_parabola(h1: float, h2: float) -> None:
-    rng = np.random.default_rng(8)
-    n, h = 7, 1e-4
-    a, b, c = rng.standard_normal((3, n))
+@pytest.mark.parametrize("order", [1, 2, 3, 4])
+@pytest.mark.parametrize("count", [1, 2, 3, 5])
+def test_bdf_setup_is_exact_for_polynomials_of_its_order(order: int, count: int) -> None:
+    # Variable steps. With k = min(order, count) past storages, c0 Q(t_new) + hist is the
+    # derivative of the interpolant, exact for polynomials of degree k; the predictor through
+    # min(k + 1, count) past states is exact for polynomials of degree min(k + 1, count) − 1.
+    # Compiled kernel and NumPy twin (np.poly derivatives) agree.
+    rng = np.random.default_rng(8 + order + count)
+    n, t_new = 7, 1e-3
+    times = t_new - np.cumsum([1e-4, 2e-4, 1.5e-4, 3e-4, 2.5e-4])
+    k = min(order, count)
+    deg_q, deg_y = k, min(k + 1, count) - 1
+    cq, cy = rng.standard_normal((deg_q + 1, n)), rng.standard_normal((deg_y + 1, n))
 
-    def f(t: float) -> np.ndarray:
-        return a + b * t + c * t * t
+    def poly(c: np.ndarray, t: float) -> np.ndarray:
+        return sum(c[j] * t**j for j in range(c.shape[0]))
 
-    y, y1, y2 = f(0.0), f(-h1 if h1 == h1 else 0.0), f(-h1 - h2 if h2 == h2 else 0.0)
-    q_now, q_prev = rng.standard_normal((2, n))
+    def dpoly(c: np.ndarray, t: float) -> np.ndarray:
+        return sum(j * c[j] * t ** (j - 1) for j in range(1, c.shape[0]))
+
+    ys = np.array([poly(cy, t) for t in times])
+    qs = np.array([poly(cq, t) for t in times])
     atol = np.full(n, 1e-5)
     outs = [np.empty((3, n)) for _ in range(2)]
     c0s = [
-        setup_(y, y1, y2, q_now, q_prev, h, h1, h2, atol, 1e-4, *out)
-        for setup_, out in zip((kern.bdf2_setup, kern.bdf2_setup_py), outs, strict=True)
+        setup_(t_new, times, ys, qs, count, order, atol, 1e-4, *out)
+        for setup_, out in zip((kern.bdf_setup, kern.bdf_setup_py), outs, strict=True)
     ]
-    assert c0s[0] == pytest.approx(c0s[1], rel=1e-15)
-    np.testing.assert_allclose(outs[0], outs[1], rtol=1e-13)
-    guess = outs[0][0]
-    if h2 == h2:  # three points: a parabola is extrapolated exactly
-        np.testing.assert_allclose(guess, f(h), rtol=1e-9, atol=1e-12)
-    if h1 == h1:  # BDF2 with ρ = h/h1: c0 = (1 + 2ρ)/((1 + ρ) h)
+    assert c0s[0] == pytest.approx(c0s[1], rel=1e-12)
+    np.testing.assert_allclose(outs[0], outs[1], rtol=1e-9, atol=1e-9)
+    guess, hist, weights = outs[0]
+    np.testing.assert_allclose(c0s[0] * poly(cq, t_new) + hist, dpoly(cq, t_new), rtol=1e-8)
+    np.testing.assert_allclose(guess, poly(cy, t_new), rtol=1e-8, atol=1e-10)
+    np.testing.assert_allclose(weights, 1.0 / (atol + 1e-4 * np.abs(guess)), rtol=1e-14)
+    h, h1 = t_new - times[0], times[0] - times[1]
+    if k == 1:  # implicit Euler
+        assert c0s[0] == pytest.approx(1 / h, rel=1e-14)
+    elif k == 2:  # variable-step BDF2, ρ = h/h1: c0 = (1 + 2ρ)/((1 + ρ) h)
         rho = h / h1
         assert c0s[0] == pytest.approx((1 + 2 * rho) / ((1 + rho) * h), rel=1e-14)
-    else:
-        assert c0s[0] == pytest.approx(1 / h, rel=1e-15)

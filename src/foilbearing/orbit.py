@@ -1,13 +1,15 @@
 """Nonlinear orbit of the journal during a speed-up, with the actuator voltage changed on the run.
 
 The semi-discrete system of :mod:`foilbearing.reynolds.transient` (film, foil,
-journal; MODEL.md section 5) is integrated by a variable-step BDF2 in
-physical time with a modified Newton iteration: the sparse Jacobian is
-factorised once and reused over many steps, refreshed only when the Newton
-iteration slows down. The time step is a fixed fraction of the rotation period
-(``steps_per_rev``), so it shrinks as the rotor speeds up. The run starts from
-the static equilibrium without imbalance at the initial speed and voltages
-(the paper's procedure), then applies the imbalance. It stops cleanly at
+journal; MODEL.md section 5) is integrated by a variable-step BDF (order 3
+by default, ``OrbitSettings.order``) in physical time with a modified Newton
+iteration: the sparse Jacobian is factorised once and reused over many steps,
+refreshed only when the Newton iteration slows down. The time step is a fixed
+fraction of the rotation period (``steps_per_rev``), so it shrinks as the
+rotor speeds up. The run starts from the static equilibrium without imbalance
+at the initial speed and voltages (the paper's procedure), then applies the
+imbalance; while the history is shorter than the order, the order is lower
+and each missing past state halves the step. It stops cleanly at
 contact (minimum film below ``contact_film`` × C), on Ctrl-C or at the end of
 the speed profile, and keeps every sample computed until then.
 """
@@ -33,7 +35,7 @@ from foilbearing.reynolds.transient import (
     NEWTON_REFRESH,
     Inputs,
     TransientSystem,
-    bdf2_setup,
+    bdf_setup,
 )
 from foilbearing.static import solve_equilibrium
 from foilbearing.structure import base_preload, preload_shape
@@ -52,6 +54,14 @@ class OrbitSettings:
     ----------
     steps_per_rev
         Time steps per rotor revolution (Δt = 2π/(ω · steps_per_rev)).
+    order
+        Order of the variable-step BDF (1-4). The default, 3 at 24 steps per
+        revolution, keeps the orbit within 1 % of a converged run (0.8 % of the
+        orbit's extent on the benchmark segment, see ``docs/orbit-performance.md``);
+        BDF2 needs about 40 steps per revolution for the same. BDF3 is not
+        A-stable (A(86°)), but its stability wedge holds the film's decaying
+        modes, and the 1X and whirl motions (ωΔt <= 0.26) lie where it is
+        accurate.
     max_step
         Largest time step, s.
     sample_rate
@@ -73,8 +83,10 @@ class OrbitSettings:
     ``max_newton = 10``) converge the iteration far below the step's truncation
     error: what a partly converged iteration leaves acts as a small forcing that
     seeds the whirl (correcting the last update for the measured contraction,
-    Aitken-style, does not remove it). Measured on the default case, the
-    paper's speed-up, divergence speed in krpm, by ``newton_tol/newton_fraction``
+    Aitken-style, does not remove it). Measured on the default case with
+    BDF2 at 16 steps per revolution (the defaults before issue 13) and the
+    suction retained, the paper's speed-up, divergence speed in krpm, by
+    ``newton_tol/newton_fraction``
     (1/0.01: the defaults before 2026-11-22; last column: the defaults at 24
     steps per revolution):
 
@@ -97,7 +109,8 @@ class OrbitSettings:
     (``test_newton_error_is_well_below_the_time_step_error``).
     """
 
-    steps_per_rev: int = 16
+    steps_per_rev: int = 24
+    order: int = 3
     max_step: float = 1e-3
     sample_rate: float = 10_000.0
     contact_film: float = 0.005
@@ -114,6 +127,10 @@ class OrbitSettings:
         if self.steps_per_rev < 8:
             raise InputError(
                 f"steps_per_rev = {self.steps_per_rev}: at least 8 resolve the 1X motion"
+            )
+        if self.order not in (1, 2, 3, 4):
+            raise InputError(
+                f"order = {self.order!r}: the BDF stepper has orders 1 to 4 (default 3)"
             )
         if self.sample_rate < 4.0 * f_sync:
             raise InputError(
@@ -186,6 +203,7 @@ class OrbitResult:
             factorizations=self.factorizations,
             newton_iterations=self.newton_iterations,
             steps_per_rev=s.steps_per_rev,
+            bdf_order=s.order,
             max_step_s=s.max_step,
             sample_rate_Hz=s.sample_rate,
             contact_film=s.contact_film,
@@ -339,38 +357,32 @@ class OrbitSimulation:
 
 @dataclass
 class _State:
-    """Everything needed to continue a run: the last three accepted states and their steps."""
+    """Everything needed to continue a run: the last accepted state and those before it."""
 
     t: float
     y: FloatArray
-    y_prev: FloatArray | None = None
-    h_prev: float | None = None
-    y_prev2: FloatArray | None = None
-    h_prev2: float | None = None
+    #: (step that led to the newer state, state) for the earlier accepted states, newest first.
+    past: list[tuple[float, FloatArray]] = field(default_factory=list)
 
     def as_checkpoint(self) -> dict[str, Any]:
         out: dict[str, Any] = {"t": self.t, "y": self.y}
-        if self.y_prev is not None and self.h_prev is not None:
-            out.update(y_prev=self.y_prev, h_prev=self.h_prev)
-        if self.y_prev2 is not None and self.h_prev2 is not None:
-            out.update(y_prev2=self.y_prev2, h_prev2=self.h_prev2)
+        for k, (h, y) in enumerate(self.past):
+            suffix = "" if k == 0 else str(k + 1)
+            out[f"y_prev{suffix}"], out[f"h_prev{suffix}"] = y, h
         return out
 
     @classmethod
     def from_checkpoint(cls, data: dict[str, Any]) -> _State:
-        def scalar(key: str) -> float | None:
-            return float(np.ravel(data[key])[0]) if key in data else None
+        def scalar(key: str) -> float:
+            return float(np.ravel(data[key])[0])
 
-        t = scalar("t")
-        assert t is not None
-        return cls(
-            t,
-            np.asarray(data["y"], float),
-            data.get("y_prev"),
-            scalar("h_prev"),
-            data.get("y_prev2"),
-            scalar("h_prev2"),
-        )
+        past = []
+        for k in range(_MAX_ORDER):
+            suffix = "" if k == 0 else str(k + 1)
+            if f"y_prev{suffix}" not in data:
+                break
+            past.append((scalar(f"h_prev{suffix}"), np.asarray(data[f"y_prev{suffix}"], float)))
+        return cls(scalar("t"), np.asarray(data["y"], float), past)
 
 
 def simulate(
@@ -439,12 +451,15 @@ def _run(
     bar = _progress_bar(progress, t_end, st.t)
     volts = sim.volts(st.t)
     inp = sim.inputs(st.t, volts)
-    q_now = sys_.storage(st.y, inp)
-    q_prev = (
-        sys_.storage(st.y_prev, sim.inputs(st.t - st.h_prev, sim.volts(st.t - st.h_prev)))
-        if (st.y_prev is not None and st.h_prev is not None)
-        else None
-    )
+    # Accepted states, newest first: times, states y and storages Q (the BDF history).
+    depth = s.order + 1
+    times, ys, qs = np.empty(depth), np.empty((depth, sys_.size)), np.empty((depth, sys_.size))
+    count = 1 + min(len(st.past), s.order)
+    times[0], ys[0] = st.t, st.y
+    for j, (h_j, y_j) in enumerate(st.past[: count - 1]):
+        times[j + 1], ys[j + 1] = times[j] - h_j, y_j
+    for j in range(count):
+        qs[j] = sys_.storage(ys[j], sim.inputs(times[j], sim.volts(float(times[j]))))
     out.add(st.t, st.y, sim, volts, inp)
     lu, lu_c0 = None, math.nan
     work = (np.empty(sys_.size), np.empty(sys_.size))  # Newton residual and update buffers
@@ -456,6 +471,7 @@ def _run(
     status, message, contact = "completed", "", None
 
     def result(status: str, message: str) -> OrbitResult:
+        st.past = [(float(times[j] - times[j + 1]), ys[j + 1].copy()) for j in range(count - 1)]
         cp = st.as_checkpoint()
         if isinstance(sim.voltage, SubsyncController):
             trig = sim.voltage.triggered_at
@@ -476,25 +492,30 @@ def _run(
 
     try:
         while st.t < t_end - 1e-12:
-            t, y = st.t, st.y
+            t = st.t
             omega = sim.profile.state(t)[0]
-            h = min(s.max_step, 2 * math.pi / (omega * s.steps_per_rev), t_end - t)
+            h = h_nominal = min(s.max_step, 2 * math.pi / (omega * s.steps_per_rev))
+            if t_end - t < 2.0 * h:
+                # Land on t_end in one step up to 1.25 h, else in two equal ones: no sliver
+                # of a step, whose ratio to the next (after a resume) would upset the BDF.
+                h = t_end - t if t_end - t <= 1.25 * h else 0.5 * (t_end - t)
+            if count <= s.order:
+                # Start-up: the order rises with the history, and each missing past
+                # state halves the step, so that the low-order first steps stay
+                # below the error of the full-order ones.
+                h *= 2.0 ** (count - 1 - s.order)
             while True:
                 t_new = t + h
                 volts = sim.volts(t_new)
                 inp = sim.inputs(t_new, volts)
-                y1, h1, y2, h2 = y, math.nan, y, math.nan
-                if st.h_prev is not None and st.y_prev is not None and q_prev is not None:
-                    y1, h1 = st.y_prev, st.h_prev
-                    if st.h_prev2 is not None and st.y_prev2 is not None:
-                        y2, h2 = st.y_prev2, st.h_prev2
-                c0 = bdf2_setup(
-                    y, y1, y2, q_now, q_now if q_prev is None else q_prev, h, h1, h2,
-                    atol, s.rtol, guess, hist, weights,
-                )  # fmt: skip
-                branches = _predicted_branches(
-                    lift_s[0], lift_s[1], lift_s[2], h, st.h_prev, st.h_prev2
+                c0 = bdf_setup(
+                    t_new, times, ys, qs, count, s.order, atol, s.rtol, guess, hist, weights
                 )
+                branches = _predicted_branches(
+                    lift_s[0], lift_s[1], lift_s[2], h,
+                    t - times[1] if count > 1 else None,
+                    times[1] - times[2] if count > 2 else None,
+                )  # fmt: skip
                 ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _newton(
                     sim, guess, inp, c0, hist, weights, lu, lu_c0, work, branches
                 )
@@ -503,18 +524,24 @@ def _run(
                 if ok:
                     break
                 h *= 0.5
+                if count > 1 and h < 0.3 * h_nominal:
+                    # Failed twice: restart the order from this state (BDF1, then the
+                    # start-up), as a history that the film can no longer follow, e.g.
+                    # across a lift-off switch near contact, can stall the iteration.
+                    count = 1
                 if h < 1e-9:
                     raise FloatingPointError(f"time step collapsed at t = {t:.6f} s")
             counters[0] += 1
             lift_s = [_lift_coordinate(lu, sys_._slack), lift_s[0], lift_s[1]]
-            st.y_prev2, st.h_prev2 = st.y_prev, st.h_prev
-            st.y_prev, st.h_prev = y, h
-            st.y, st.t = y_new, t_new
-            q_prev, q_now = q_now, q_new
+            # Shift the history by one (rows are reused: no allocation).
+            times[1:], ys[1:], qs[1:] = times[:-1], ys[:-1], qs[:-1]
+            times[0], ys[0], qs[0] = t_new, y_new, q_new
+            count = min(count + 1, depth)
+            st.t, st.y = t_new, ys[0]
             out.add(t_new, y_new, sim, volts, inp, min_film=h_min)
             if isinstance(sim.voltage, SubsyncController):
-                for ts, ex in out.new_samples():
-                    sim.voltage.observe(ts, ex, sim.profile.phase(ts))
+                for t_s, ex in out.new_samples():
+                    sim.voltage.observe(t_s, ex, sim.profile.phase(t_s))
             if h_min < s.contact_film:
                 w = sim.profile.omega(t_new)
                 k = sys_.n + sys_.nt
@@ -551,6 +578,10 @@ def _run(
             f"{counters[0]} steps"
         )
     return result(status, message)
+
+
+#: Highest BDF order of the stepper.
+_MAX_ORDER = 4
 
 
 #: Factor refreshes at the iterate within one step before the step is retried or halved.

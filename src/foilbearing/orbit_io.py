@@ -43,6 +43,7 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
     a = ds.attrs
     settings = OrbitSettings(
         steps_per_rev=int(a["steps_per_rev"]),
+        order=int(a.get("bdf_order", 2)),  # files written before the order was stored: BDF2
         max_step=float(a["max_step_s"]),
         sample_rate=float(a["sample_rate_Hz"]),
         contact_film=float(a["contact_film"]),

@@ -92,6 +92,7 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
         "controller": None,
         "stop_time": None,
         "steps_per_rev": result.settings.steps_per_rev,
+        "order": result.settings.order,
         "sample_rate": f"{result.settings.sample_rate}Hz",
         "subambient": None,
     }

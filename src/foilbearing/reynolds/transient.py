@@ -61,13 +61,13 @@ __all__ = [
     "Inputs",
     "TransientFactor",
     "TransientSystem",
-    "bdf2_setup",
+    "bdf_setup",
 ]
 
 #: Newton outcomes of :meth:`TransientFactor.newton_solve` (see the kernel).
 NEWTON_CONVERGED, NEWTON_REFRESH = kern.NEWTON_CONVERGED, kern.NEWTON_REFRESH
-#: Variable-step BDF2 coefficient, history, predictor and weights (compiled).
-bdf2_setup = kern.bdf2_setup
+#: Variable-step BDF coefficient, history, predictor and weights (compiled).
+bdf_setup = kern.bdf_setup
 
 FloatArray = NDArray[np.float64]
 
@@ -770,6 +770,8 @@ class TransientFactor:
                     return kern.NEWTON_REFRESH, k, first_change, math.nan
             if fresh:
                 if since >= max_newton or conv >= 1.0:
+                    if switches > 0:
+                        return kern.NEWTON_REFRESH, k, first_change, math.nan
                     return kern.NEWTON_TOO_SLOW, k, first_change, math.nan
                 if conv > 0.5:
                     return kern.NEWTON_REFRESH, k, first_change, math.nan

@@ -3,8 +3,6 @@ solve and the compiled Newton loop (twins in :mod:`foilbearing.reynolds.transien
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 from numpy.typing import NDArray
@@ -712,7 +710,8 @@ def transient_newton_solve(
     converged, the cells that violate their branch move to the other one
     (:func:`switch_branches`) and it goes on with the same factor, up to
     ``MAX_SWITCHES`` times; more than ``MAX_MOVED_KEPT`` cells at once ask for a
-    refresh. Twin:
+    refresh, and so does a fresh factor that diverges after such a switch
+    (its rows no longer fit the switched cells). Twin:
     :meth:`foilbearing.reynolds.transient.TransientFactor.newton_solve_py`.
 
     Returns
@@ -768,6 +767,10 @@ def transient_newton_solve(
                 return NEWTON_REFRESH, k, first_change, np.nan
         if fresh:
             if since >= max_newton or conv >= 1.0:
+                if switches > 0:
+                    # Diverging since cells changed branch: the factor's rows no longer
+                    # fit them (a cell on the lift-off boundary); refresh with them.
+                    return NEWTON_REFRESH, k, first_change, np.nan
                 return NEWTON_TOO_SLOW, k, first_change, np.nan
             if conv > 0.5:
                 return NEWTON_REFRESH, k, first_change, np.nan
@@ -779,98 +782,99 @@ def transient_newton_solve(
 
 
 @njit(cache=True, nogil=True)
-def bdf2_setup(
-    y: FloatArray,
-    y1: FloatArray,
-    y2: FloatArray,
-    q_now: FloatArray,
-    q_prev: FloatArray,
-    h: float,
-    h1: float,
-    h2: float,
+def bdf_setup(
+    t_new: float,
+    times: FloatArray,
+    ys: FloatArray,
+    qs: FloatArray,
+    count: int,
+    order: int,
     atol: FloatArray,
     rtol: float,
     guess: FloatArray,
     hist: FloatArray,
     weights: FloatArray,
 ) -> float:
-    """Variable-step BDF2 coefficient, history, predictor and error weights of one step.
+    """Variable-step BDF coefficient, history, predictor and error weights of one step.
 
-    With the last step h1 (NaN: none, BDF1 from y) and the one before, h2
-    (NaN: none, linear extrapolation): ``c0 = (1 + 2ρ)/((1 + ρ) h)``,
-    ``hist = (−(1 + ρ) Q_n + ρ²/(1 + ρ) Q_{n−1})/h`` (ρ = h/h1), the predictor
-    extrapolates through y (t_n), y1 (t_n − h1) and y2 (t_n − h1 − h2), and
-    ``weights = 1/(atol + rtol |guess|)``. Twin: :func:`bdf2_setup_py`.
+    The last ``count`` accepted states are ``ys[j]`` at ``times[j]`` (newest
+    first) with storages ``qs[j]``. With k = min(order, count), the BDF
+    equation ``c0 Q(y) + hist − f(y) = 0`` states that the derivative at
+    t_new of the polynomial through (t_new, Q(y)) and the last k storages is f:
+    ``c0 = Σ_{i=1..k} 1/(t_new − t_i)`` and ``hist = Σ_j l'_j(t_new) Q_j``.
+    The predictor ``guess`` extrapolates the polynomial through the last
+    min(k + 1, count) states to t_new, and ``weights = 1/(atol + rtol |guess|)``.
+    Order 2 is the variable-step BDF2, ``c0 = (1 + 2ρ)/((1 + ρ) h)``, ρ = h/h1.
+    Twin: :func:`bdf_setup_py`.
 
     Returns
     -------
     float
         c0, 1/s.
     """
-    n = y.shape[0]
-    if h1 != h1:
-        c0 = 1.0 / h
-        for k in range(n):
-            hist[k] = -q_now[k] / h
-            guess[k] = y[k]
-    else:
-        rho = h / h1
-        c0 = (1.0 + 2.0 * rho) / ((1.0 + rho) * h)
-        a = -(1.0 + rho) / h
-        b = rho * rho / (1.0 + rho) / h
-        for k in range(n):
-            hist[k] = a * q_now[k] + b * q_prev[k]
-        if h2 != h2:
-            for k in range(n):
-                guess[k] = y[k] + rho * (y[k] - y1[k])
-        else:
-            # Lagrange extrapolation on the nodes 0, −h1, −h1 − h2 to +h
-            t1 = -h1
-            t2 = -h1 - h2
-            l0 = (h - t1) * (h - t2) / (t1 * t2)
-            l1 = h * (h - t2) / (t1 * (t1 - t2))
-            l2 = h * (h - t1) / (t2 * (t2 - t1))
-            for k in range(n):
-                guess[k] = l0 * y[k] + l1 * y1[k] + l2 * y2[k]
-    for k in range(n):
-        weights[k] = 1.0 / (atol[k] + rtol * abs(guess[k]))
+    n = guess.shape[0]
+    k = min(order, count)
+    c0 = 0.0
+    for i in range(k):
+        c0 += 1.0 / (t_new - times[i])
+    for m in range(n):
+        hist[m] = 0.0
+    for j in range(k):
+        # l'_j(t_new) of the node t_j among t_new, t_0 .. t_{k-1}: t_new is a root of l_j.
+        num = 1.0 / (times[j] - t_new)
+        for i in range(k):
+            if i != j:
+                num *= (t_new - times[i]) / (times[j] - times[i])
+        for m in range(n):
+            hist[m] += num * qs[j, m]
+    p = min(k + 1, count)
+    for m in range(n):
+        guess[m] = 0.0
+    for j in range(p):
+        lj = 1.0
+        for i in range(p):
+            if i != j:
+                lj *= (t_new - times[i]) / (times[j] - times[i])
+        for m in range(n):
+            guess[m] += lj * ys[j, m]
+    for m in range(n):
+        weights[m] = 1.0 / (atol[m] + rtol * abs(guess[m]))
     return c0
 
 
-def bdf2_setup_py(
-    y: FloatArray,
-    y1: FloatArray,
-    y2: FloatArray,
-    q_now: FloatArray,
-    q_prev: FloatArray,
-    h: float,
-    h1: float,
-    h2: float,
+def bdf_setup_py(
+    t_new: float,
+    times: FloatArray,
+    ys: FloatArray,
+    qs: FloatArray,
+    count: int,
+    order: int,
     atol: FloatArray,
     rtol: float,
     guess: FloatArray,
     hist: FloatArray,
     weights: FloatArray,
 ) -> float:
-    """NumPy twin of :func:`bdf2_setup`."""
-    if math.isnan(h1):
-        c0 = 1.0 / h
-        hist[:] = -q_now / h
-        guess[:] = y
-    else:
-        rho = h / h1
-        c0 = (1 + 2 * rho) / ((1 + rho) * h)
-        hist[:] = (-(1 + rho) * q_now + rho * rho / (1 + rho) * q_prev) / h
-        if math.isnan(h2):
-            guess[:] = y + rho * (y - y1)
-        else:
-            t1, t2 = -h1, -h1 - h2
-            l0 = (h - t1) * (h - t2) / (t1 * t2)
-            l1 = h * (h - t2) / (t1 * (t1 - t2))
-            l2 = h * (h - t1) / (t2 * (t2 - t1))
-            guess[:] = l0 * y + l1 * y1 + l2 * y2
+    """NumPy twin of :func:`bdf_setup`, by differentiating the interpolating polynomial."""
+    k = min(order, count)
+    nodes = np.concatenate([[t_new], times[:k]])
+    # Derivative at t_new of each Lagrange basis polynomial on the nodes.
+    deriv = np.empty(k + 1)
+    for j in range(k + 1):
+        others = np.delete(nodes, j)
+        basis = np.poly1d(np.poly(others)) / np.prod(nodes[j] - others)
+        deriv[j] = basis.deriv()(t_new)
+    hist[:] = deriv[1:] @ qs[:k] if k else 0.0
+    p = min(k + 1, count)
+    lw = np.array(
+        [
+            np.prod([(t_new - times[i]) / (times[j] - times[i]) for i in range(p) if i != j])
+            for j in range(p)
+        ]
+    )
+    guess[:] = lw @ ys[:p]
     weights[:] = 1.0 / (atol + rtol * np.abs(guess))
-    return c0
+    return float(deriv[0])
 
 
 @njit(cache=True)
