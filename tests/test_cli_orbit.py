@@ -58,6 +58,26 @@ def test_orbit_json_netcdf_and_resume(coarse_case: Path, tmp_path: Path, capsys)
     assert ds.attrs["sample_rate_Hz"] == 10_000.0
 
 
+def test_orbit_order_and_step_are_stored_and_resumed(coarse_case: Path, tmp_path: Path) -> None:
+    # --order and --steps-per-rev go into the file; the resumed run keeps them (its
+    # checkpoint holds the order's history), so stop + resume equals a run in one go
+    # within the last step's difference before the stop.
+    import xarray as xr
+
+    out, whole = tmp_path / "part.nc", tmp_path / "whole.nc"
+    base = ["orbit", str(coarse_case), "--speed", "12000rpm", "--duration", "0.04s"]
+    opts = ["--order", "2", "--steps-per-rev", "20"]
+    assert main([*base, *opts, "--out", str(whole)]) == 0
+    assert main([*base, *opts, "--stop-time", "0.02s", "--out", str(out)]) == 0
+    assert main(["orbit", "--resume", str(out)]) == 0
+    a, b = xr.load_dataset(out), xr.load_dataset(whole)
+    assert a.attrs["bdf_order"] == b.attrs["bdf_order"] == 2
+    assert a.attrs["steps_per_rev"] == 20 and a.attrs["status"] == "completed"
+    assert "checkpoint_y_prev2" in a and "checkpoint_y_prev3" not in a
+    assert a.time.size == b.time.size
+    assert float(abs(a.e_x - b.e_x).max()) < 0.01 * float(b.e_x.max() - b.e_x.min())
+
+
 @pytest.mark.parametrize(
     ("extra", "text"),
     [
