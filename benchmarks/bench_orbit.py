@@ -82,7 +82,6 @@ def readouts() -> None:
         for name, settings in (
             ("default", OrbitSettings()),
             ("converged", OrbitSettings(order=3, steps_per_rev=48, **TIGHT)),
-            ("BDF2, 16/rev", OrbitSettings(order=2, steps_per_rev=16)),
         ):
             res = simulate(case, prof, program, settings=settings)
             head = analyse_orbit(res).headline(res)

@@ -35,6 +35,7 @@ def coarse(volts: float = 100.0, **rotor):
     return case
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("subambient", ["lift-off", "retained"])
 def test_fast_stepper_agrees_with_solve_ivp_bdf(subambient: str) -> None:
     # Same semi-discrete system, two integrators: the orbits must agree within 1 % of the
@@ -90,6 +91,7 @@ def test_newton_error_is_well_below_the_time_step_error() -> None:
     assert default.newton_iterations < exact.newton_iterations
 
 
+@pytest.mark.slow
 def test_newton_tolerance_does_not_move_the_divergence() -> None:
     # The paper's 0 V speed-up on the default case: the divergence speed must not depend on
     # the Newton tolerance beyond the stated accuracy of the readings. Under lift-off this

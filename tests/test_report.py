@@ -209,6 +209,7 @@ def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return out
 
 
+@pytest.mark.slow
 def test_study_page_is_self_contained(study_out: Path) -> None:
     import matplotlib.image as mpimg
 

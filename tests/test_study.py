@@ -5,11 +5,13 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 import xarray as xr
 
 from foilbearing.cli import main
 
 
+@pytest.mark.slow
 def test_study_writes_figures_results_and_comparison(tmp_path: Path, capsys) -> None:
     assert main(["study", "--out", str(tmp_path), "--orbits", "none", "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)

@@ -272,10 +272,10 @@ def orbit_comparison(
     note = (
         "μ, rotor mass and imbalance are assumed (MODEL.md section 1); onset = sustained "
         "sub-synchronous amplitude > 1 µm (0.25 s windows, 1X removed by order tracking); "
-        "divergence speeds of runs controlled before their onset are good to 0.1 %, "
-        "those of uncontrolled runs to about 5 %: such a run ends when a whirl that grew "
+        "divergence speeds are good to about 2 %: a run ends when a whirl that grew "
         "over many revolutions reaches the clearance, from a seed that is partly "
-        "numerical (a converged run diverges later; docs/orbit-performance.md)"
+        "numerical (runs converged in the time step and the Newton tolerance diverge "
+        "1-2 % later; docs/orbit-performance.md)"
     )
     rows = []
     for run in runs:
