@@ -496,9 +496,10 @@ def _run(
             omega = sim.profile.state(t)[0]
             h = h_nominal = min(s.max_step, 2 * math.pi / (omega * s.steps_per_rev))
             if t_end - t < 2.0 * h:
-                # Land on t_end in one step up to 1.25 h, else in two equal ones: no sliver
-                # of a step, whose ratio to the next (after a resume) would upset the BDF.
-                h = t_end - t if t_end - t <= 1.25 * h else 0.5 * (t_end - t)
+                # Land on t_end in one step up to h, else in two equal ones: never longer
+                # than the cap, and no sliver of a step, whose ratio to the next (after a
+                # resume) would upset the BDF.
+                h = t_end - t if t_end - t <= h else 0.5 * (t_end - t)
             if count <= s.order:
                 # Start-up: the order rises with the history, and each missing past
                 # state halves the step, so that the low-order first steps stay
