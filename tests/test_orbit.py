@@ -232,7 +232,7 @@ def test_resume_near_contact_follows_the_run() -> None:
     # the film, with cells crossing the lift-off boundary at every pass. A BDF3 run resumed
     # from its checkpoint once failed here ("time step collapsed") where the uninterrupted
     # run went on. Resumed at two times, it completes and follows the uninterrupted run
-    # (measured 0.15 % of the extent: the last step before the stop differs).
+    # (measured 0.2-0.3 % of the extent: the last steps before the stop differ).
     case = replace(default_case(), grid=Grid(n_theta=32, n_z=4))  # the case's voltages
     prof = constant_speed(12e3 * RPM, 0.06)
     whole = simulate(case, prof)
