@@ -87,8 +87,10 @@ def run_spec_from_args(args: argparse.Namespace) -> dict[str, Any]:
         "voltage_ramp": args.voltage_ramp,
         "controller": args.controller,
         "stop_time": args.stop_time,
-        "steps_per_rev": args.steps_per_rev or OrbitSettings.steps_per_rev,
-        "order": args.order or OrbitSettings.order,
+        "steps_per_rev": (
+            OrbitSettings.steps_per_rev if args.steps_per_rev is None else args.steps_per_rev
+        ),
+        "order": OrbitSettings.order if args.order is None else args.order,
         "sample_rate": args.sample_rate,
         "subambient": args.subambient,
     }
