@@ -86,6 +86,7 @@ def test_orbit_order_and_step_are_stored_and_resumed(coarse_case: Path, tmp_path
         (["--voltage-ramp", "6s:6.5s:200V"], "max_voltage"),
         (["--sample-rate", "1000Hz"], "cannot resolve the synchronous frequency"),
         (["--controller", "threshold=2um,gain=3"], "KEY=VALUE"),
+        (["--steps-per-rev", "0"], "at least 8 resolve the 1X motion"),
     ],
 )
 def test_orbit_bad_input_fails_before_work(extra, text, capsys) -> None:
