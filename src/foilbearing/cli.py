@@ -163,9 +163,11 @@ def _parser() -> argparse.ArgumentParser:
     from foilbearing.cli_optimize import register as register_optimize
     from foilbearing.cli_orbit import register as register_orbit
     from foilbearing.cli_sweep import register as register_sweep
+    from foilbearing.cli_uncertainty import register as register_uncertainty
 
     register_orbit(sub)
     register_sweep(sub)
+    register_uncertainty(sub)
     register_optimize(sub)
 
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
@@ -176,6 +178,13 @@ def _parser() -> argparse.ArgumentParser:
         choices=("full", "none"),
         default="full",
         help="run the four speed-up orbits of Figs. 13-15 (default full)",
+    )
+    study.add_argument(
+        "--uncertainty",
+        choices=("quick", "full", "none"),
+        default="quick",
+        help="envelopes of what the paper leaves open, on the paper's case: quick (56 "
+        "evaluations, ~3 min on 2 cores), full (256) or none (default quick)",
     )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=_cmd_study)
@@ -477,7 +486,13 @@ def _cmd_study(args: argparse.Namespace) -> int:
     from foilbearing.study import run_study
 
     case = load_case(args.case)
-    summary = run_study(case, args.out, progress=not args.json, orbits=args.orbits == "full")
+    summary = run_study(
+        case,
+        args.out,
+        progress=not args.json,
+        orbits=args.orbits == "full",
+        uncertainty=args.uncertainty,
+    )
     if args.json:
         _emit(summary)
     return 0

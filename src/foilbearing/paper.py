@@ -25,6 +25,8 @@ PAPER: dict[str, Any] = {
     "r_squared": 0.9926,
     "k_p_N_per_m3": 1.30e9,
     "preload_150V_90krpm_um": (65.36, 54.06, 64.62),
+    # whip frequency read from the nonlinear speed-ups at 50/100/150 V (Figs. 14-15)
+    "whip_frequency_Hz": {50.0: 105.0, 100.0: 127.0, 150.0: 143.0},
 }
 
 

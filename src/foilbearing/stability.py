@@ -233,14 +233,18 @@ def onset_speed(
             assert prev_mode is not None
             lo_start = prev_mode.static
             lo, hi = float(speeds_arr[k - 1]), float(w)
+            # Brent evaluates the bracket's ends first and the root last: keep the modes
+            modes = {lo: prev_mode, hi: mode}
 
             def f(x: float, lo_start: StaticResult = lo_start) -> float:
-                scan.start = (lo_start.eps_x, lo_start.eps_y, lo_start.P)
-                return scan.mode(x).log_decrement
+                if x not in modes:
+                    scan.start = (lo_start.eps_x, lo_start.eps_y, lo_start.P)
+                    modes[x] = scan.mode(x)
+                return modes[x].log_decrement
 
             onset = brentq(f, lo, hi, xtol=1e-4 * hi, rtol=1e-6)
-            scan.start = (lo_start.eps_x, lo_start.eps_y, lo_start.P)
-            at = scan.mode(onset)
+            f(onset)
+            at = modes[onset]
             return OnsetResult(
                 onset,
                 at.whirl_ratio,

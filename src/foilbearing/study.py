@@ -20,8 +20,18 @@ __all__ = ["run_study"]
 REPO_EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "data"
 
 
+#: Evaluations of the study's uncertainty stage: "quick" is the Sobol estimator's least
+#: sample for the built-in file's 5 inputs (8 base rows), "full" the file's own.
+UNCERTAINTY_SAMPLES = {"quick": 56, "full": None}
+
+
 def run_study(
-    case: Case, out: Path, *, progress: bool = True, orbits: bool = True
+    case: Case,
+    out: Path,
+    *,
+    progress: bool = True,
+    orbits: bool = True,
+    uncertainty: str = "quick",
 ) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
 
@@ -35,6 +45,10 @@ def run_study(
         Print a line per stage to stderr.
     orbits
         Run the paper's four speed-up orbits (Figs. 13-15; the longest stage).
+    uncertainty
+        The envelopes of what the paper leaves open (the built-in uncertainty
+        file, on the paper's case only): ``"quick"`` (56 evaluations, about
+        3 minutes on 2 cores), ``"full"`` (the file's 256) or ``"none"``.
 
     Returns
     -------
@@ -79,6 +93,10 @@ def run_study(
     onsets = None
     if case.actuators is not None:
         onsets = _stability_stage(case, out, results, stage)
+
+    if uncertainty != "none" and _is_paper_case(case):
+        results["uncertainty"] = _uncertainty_stage(out, UNCERTAINTY_SAMPLES[uncertainty], stage)
+        write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     if orbits and case.actuators is not None:
         from foilbearing.study_orbits import paper_orbit_runs
@@ -198,6 +216,33 @@ def _stability_stage(
         for kind, per_volt in onsets.items()
     } | {"figures": [str(fig)]}
     return onsets
+
+
+def _is_paper_case(case: Case) -> bool:
+    from foilbearing.case import default_case_path
+
+    return case.source is not None and Path(case.source).resolve() == default_case_path().resolve()
+
+
+def _uncertainty_stage(out: Path, samples: int | None, stage: Any) -> dict[str, Any]:
+    """Envelopes and sensitivity indices of what the paper leaves open (issue 15)."""
+    from foilbearing.cli_uncertainty import write_uncertainty_figures
+    from foilbearing.uncertainty import load_uncertainty, run_uncertainty
+
+    spec = load_uncertainty(samples=samples)
+    stage(
+        f"uncertainty: {spec.n_points} evaluations of {len(spec.inputs)} uncertain inputs "
+        f"({spec.estimator} estimator) on a local Dask cluster"
+    )
+    folder = out / "uncertainty"
+    ds, summary = run_uncertainty(spec, folder, resume=folder.exists())
+    summary["figures"] = [str(p) for p in write_uncertainty_figures(ds, out)]
+    summary["command"] = (
+        f"foilbearing uncertainty --samples {spec.samples} --out {folder}"
+        if samples is not None
+        else f"foilbearing uncertainty --out {folder}"
+    )
+    return summary
 
 
 def _plain(x: Any) -> Any:

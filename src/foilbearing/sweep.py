@@ -26,7 +26,7 @@ import uuid
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager, nullcontext
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -41,11 +41,14 @@ __all__ = [
     "FIELD_KINDS",
     "Analysis",
     "Parameter",
+    "PointSet",
     "SweepSpec",
     "assemble",
+    "done_points",
     "load_sweep",
     "output_paths",
     "run_point",
+    "run_points",
     "run_sweep",
 ]
 
@@ -107,7 +110,7 @@ def _point_file(folder: Path, index: int) -> Path:
     return folder / "points" / f"{index:06d}.json"
 
 
-def _done_points(folder: Path) -> dict[int, dict[str, Any]]:
+def done_points(folder: Path) -> dict[int, dict[str, Any]]:
     done: dict[int, dict[str, Any]] = {}
     for f in sorted((folder / "points").glob("*.json")):
         rec = json.loads(f.read_text(encoding="utf-8"))
@@ -115,7 +118,7 @@ def _done_points(folder: Path) -> dict[int, dict[str, Any]]:
     return done
 
 
-def _prepare(spec: SweepSpec, folder: Path, resume: bool) -> dict[int, dict[str, Any]]:
+def _prepare(spec: PointSet, folder: Path, resume: bool) -> dict[int, dict[str, Any]]:
     meta = folder / "sweep.json"
     if meta.exists() or (folder / "points").exists():
         if not resume:
@@ -129,23 +132,14 @@ def _prepare(spec: SweepSpec, folder: Path, resume: bool) -> dict[int, dict[str,
             stored = None
         if stored != spec.fingerprint():
             raise InputError(
-                f"results folder {folder} holds another sweep (different case, analysis or "
-                "parameters): choose another --out"
+                f"results folder {folder} holds another sweep or sample (different case, analysis, "
+                "parameters or inputs): choose another --out"
             )
-        return _done_points(folder)
-    info = {
-        "fingerprint": spec.fingerprint(),
-        "sweep_file": spec.source,
-        "case_file": spec.case_file,
-        "analysis": spec.analysis,
-        "options": spec.options,
-        "parameters": [
-            {"name": p.name, "dim": p.dim, "values": list(p.raw), "si": list(p.values)}
-            for p in spec.parameters
-        ],
-        "case": spec.base,
-    }
-    write_text(meta, json.dumps(info, indent=1, default=str))
+        return done_points(folder)
+    write_text(
+        meta,
+        json.dumps({"fingerprint": spec.fingerprint(), **spec.describe()}, indent=1, default=str),
+    )
     return {}
 
 
@@ -172,6 +166,78 @@ def _client(scheduler: str | None, n_workers: int | None) -> Iterator[Any]:
         Client(cluster) as client,
     ):
         yield client
+
+
+class PointSet(Protocol):
+    """What the runner needs of a set of points: a sweep's grid, an uncertainty sample.
+
+    Each point is a case (its tables, validated by
+    :func:`~foilbearing.case.case_from_dict`) evaluated by one pure function.
+    """
+
+    @property
+    def options(self) -> dict[str, Any]: ...
+
+    @property
+    def n_points(self) -> int: ...
+
+    def point_data(self, index: int) -> dict[str, Any]: ...
+
+    def point_source(self, index: int) -> str: ...
+
+    def point_values(self, index: int) -> dict[str, Any]: ...
+
+    def fingerprint(self) -> str: ...
+
+    def describe(self) -> dict[str, Any]: ...
+
+
+def run_points(
+    points: PointSet,
+    folder: Path,
+    evaluate: Callable[[Case, Mapping[str, Any]], dict[str, Any]],
+    *,
+    client: Any = None,
+    scheduler: str | None = None,
+    n_workers: int | None = None,
+    resume: bool = False,
+    compute: bool = True,
+    progress: bool = False,
+    on_point: Callable[[dict[str, Any]], None] | None = None,
+) -> dict[str, Any]:
+    """Evaluate every point of ``points`` on Dask, writing each to ``folder/points/``.
+
+    The engine of :func:`run_sweep` and of the uncertainty analysis. Points
+    already in ``folder`` are skipped with ``resume`` (the folder's fingerprint
+    must match); with ``compute`` False nothing is evaluated. Parameters as
+    :func:`run_sweep`.
+
+    Returns
+    -------
+    dict
+        n_computed, n_skipped, n_failed (of all points in the folder).
+    """
+    from tqdm import tqdm
+
+    done = _prepare(points, folder, resume)
+    todo = [i for i in range(points.n_points) if i not in done] if compute else []
+    n_failed = sum(r["status"] != "ok" for r in done.values())
+    bar = tqdm(
+        total=points.n_points,
+        initial=len(done),
+        unit="pt",
+        disable=not progress,
+        dynamic_ncols=True,
+    )
+    bar.set_postfix(failed=n_failed)
+    try:
+        if todo:
+            prefix = uuid.uuid4().hex[:12]
+            with _client(scheduler, n_workers) if client is None else nullcontext(client) as cl:
+                n_failed += _run_points(points, todo, folder, cl, evaluate, prefix, bar, on_point)
+    finally:
+        bar.close()
+    return {"n_computed": len(todo), "n_skipped": len(done), "n_failed": n_failed}
 
 
 def run_sweep(
@@ -213,24 +279,20 @@ def run_sweep(
         n_points, n_ok, n_failed, n_missing, n_computed, n_skipped,
         results_folder, dataset, wall_time_s.
     """
-    from tqdm import tqdm
-
     t0 = time.perf_counter()
     folder, nc_path = output_paths(out)
-    done = _prepare(spec, folder, resume)
-    todo = [i for i in range(spec.n_points) if i not in done] if compute else []
-    n_failed = sum(r["status"] != "ok" for r in done.values())
-    bar = tqdm(
-        total=spec.n_points, initial=len(done), unit="pt", disable=not progress, dynamic_ncols=True
+    run = run_points(
+        spec,
+        folder,
+        ANALYSES[spec.analysis].evaluate,
+        client=client,
+        scheduler=scheduler,
+        n_workers=n_workers,
+        resume=resume,
+        compute=compute,
+        progress=progress,
+        on_point=on_point,
     )
-    bar.set_postfix(failed=n_failed)
-    try:
-        if todo:
-            evaluate, prefix = ANALYSES[spec.analysis].evaluate, uuid.uuid4().hex[:12]
-            with _client(scheduler, n_workers) if client is None else nullcontext(client) as cl:
-                n_failed += _run_points(spec, todo, folder, cl, evaluate, prefix, bar, on_point)
-    finally:
-        bar.close()
     ds = assemble(spec, out)
     status = ds["status"].values
     return {
@@ -238,8 +300,8 @@ def run_sweep(
         "n_ok": int((status == "ok").sum()),
         "n_failed": int((status == "failed").sum()),
         "n_missing": int((status == "missing").sum()),
-        "n_computed": len(todo),
-        "n_skipped": len(done),
+        "n_computed": run["n_computed"],
+        "n_skipped": run["n_skipped"],
         "results_folder": str(folder),
         "dataset": str(nc_path),
         "wall_time_s": time.perf_counter() - t0,
@@ -247,7 +309,7 @@ def run_sweep(
 
 
 def _run_points(
-    spec: SweepSpec,
+    spec: PointSet,
     todo: list[int],
     folder: Path,
     client: Any,
@@ -309,7 +371,7 @@ def assemble(spec: SweepSpec, out: str | Path, *, write: bool = True) -> Any:
     import xarray as xr
 
     folder, nc_path = output_paths(out)
-    records = _done_points(folder) if (folder / "points").exists() else {}
+    records = done_points(folder) if (folder / "points").exists() else {}
     shape, n = spec.shape, spec.n_points
     dims = tuple(p.dim for p in spec.parameters)
     status = np.full(n, "missing", dtype=object)

@@ -121,6 +121,20 @@ class SweepSpec:
         """The validated case of point ``index``."""
         return case_from_dict(self.point_data(index), source=self.point_source(index))
 
+    def describe(self) -> dict[str, Any]:
+        """What the results folder's ``sweep.json`` records of the sweep."""
+        return {
+            "sweep_file": self.source,
+            "case_file": self.case_file,
+            "analysis": self.analysis,
+            "options": self.options,
+            "parameters": [
+                {"name": p.name, "dim": p.dim, "values": list(p.raw), "si": list(p.values)}
+                for p in self.parameters
+            ],
+            "case": self.base,
+        }
+
     def fingerprint(self) -> str:
         """SHA-256 of everything that determines the results."""
         key = [self.base, self.analysis, self.options, [(p.name, p.raw) for p in self.parameters]]

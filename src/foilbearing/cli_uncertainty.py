@@ -1,0 +1,170 @@
+"""The ``foilbearing uncertainty`` subcommand: envelopes and sensitivity indices on Dask.
+
+``foilbearing uncertainty [UQ.toml] [--samples N] [--scheduler ADDRESS]
+[--workers N] [--resume] [--out DIR] [--plot DIR] [--json]`` draws the sample
+of the uncertainty file (``docs/uncertainty.md``; default: what the paper
+leaves open), evaluates every point on a local Dask cluster or an existing
+scheduler, writes each finished point to ``DIR/points/`` as it completes, and
+the percentiles and sensitivity indices to ``DIR/uncertainty.nc`` and
+``DIR/uncertainty.json``. Exit code 0 when every point is ok, 3 when some
+failed (recorded with their message), 2 for bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+from foilbearing.errors import InputError
+
+__all__ = ["cmd_uncertainty", "register"]
+
+
+def register(subparsers: Any) -> argparse.ArgumentParser:
+    """Add the ``uncertainty`` subcommand to ``subparsers``."""
+    p = subparsers.add_parser(
+        "uncertainty",
+        help="uncertainty envelopes and sensitivity indices of the predictions (Dask)",
+        description=__doc__.split("\n\n")[1] if __doc__ else None,
+    )
+    p.add_argument(
+        "uq_file",
+        type=Path,
+        nargs="?",
+        default=None,
+        metavar="UQ.toml",
+        help="uncertainty file (default: the built-in one, what the paper leaves open)",
+    )
+    p.add_argument(
+        "--samples",
+        type=int,
+        default=None,
+        metavar="N",
+        help="model evaluations (default: the file's samples)",
+    )
+    p.add_argument(
+        "--out",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="results folder (default: the file's name, in the current folder)",
+    )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        default=None,
+        help="address of a running dask.distributed scheduler (default: a local cluster)",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="worker processes of the local cluster (default: one per core)",
+    )
+    p.add_argument("--resume", action="store_true", help="continue DIR, skip finished points")
+    p.add_argument(
+        "--plot",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="write the band and index figures (PNG) to DIR",
+    )
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_uncertainty)
+    return p
+
+
+def cmd_uncertainty(args: argparse.Namespace) -> int:
+    """Run the ``uncertainty`` subcommand; returns the exit code (0 all ok, 3 some failed).
+
+    Raises
+    ------
+    InputError
+        Bad uncertainty file, case, sample count or results folder; nothing is
+        computed then.
+    """
+    from foilbearing.uncertainty import load_uncertainty, result_paths, run_uncertainty
+
+    if args.workers is not None and args.workers < 1:
+        raise InputError(f"--workers {args.workers}: expected at least 1")
+    if args.workers is not None and args.scheduler is not None:
+        raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")
+    spec = load_uncertainty(args.uq_file, samples=args.samples)
+    stem = args.uq_file.stem if args.uq_file is not None else "uncertainty_paper"
+    out = args.out if args.out is not None else Path(stem)
+    if not args.json:
+        print(
+            f"{spec.n_points} points ({spec.estimator} estimator, {spec.sampler} sample, "
+            f"{len(spec.inputs)} inputs) -> {out}/",
+            file=sys.stderr,
+        )
+    ds, summary = run_uncertainty(
+        spec,
+        out,
+        scheduler=args.scheduler,
+        n_workers=args.workers,
+        resume=args.resume,
+        progress=not args.json,
+    )
+    figures: list[str] = []
+    if args.plot is not None:
+        figures = [str(p) for p in write_uncertainty_figures(ds, args.plot)]
+    summary["figures"] = figures
+    if args.json:
+        print(json.dumps(summary, indent=2))
+        return 0 if summary["n_ok"] == summary["n_points"] else 3
+    print(
+        f"{summary['n_points']} points: {summary['n_ok']} ok, {summary['n_failed']} failed, "
+        f"{summary['n_missing']} missing in {summary['wall_time_s']:.1f} s",
+        file=sys.stderr,
+    )
+    print(_table(summary))
+    paths = result_paths(out)
+    print(f"points:  {paths['points']}/")
+    print(f"dataset: {paths['dataset']}")
+    for f in figures:
+        print(f"figure:  {f}")
+    return 0 if summary["n_ok"] == summary["n_points"] else 3
+
+
+def write_uncertainty_figures(ds: Any, folder: Path) -> list[Path]:
+    """The band and index figures as PNG files in ``folder``."""
+    from foilbearing.io import save_figure
+    from foilbearing.paper import PAPER
+    from foilbearing.plots.uncertainty import plot_bands, plot_indices
+
+    paper = PAPER if _is_paper(ds) else None
+    return [
+        save_figure(plot_bands(ds, paper), folder / "uncertainty_bands.png"),
+        save_figure(plot_indices(ds), folder / "uncertainty_indices.png"),
+    ]
+
+
+def _is_paper(ds: Any) -> bool:
+    from foilbearing.case import default_case_path
+
+    return Path(str(ds.attrs.get("case_file", ""))).resolve() == default_case_path().resolve()
+
+
+def _fmt(x: float | None) -> str:
+    return "–" if x is None or not math.isfinite(x) else f"{x:.4g}"
+
+
+def _table(summary: dict[str, Any]) -> str:
+    """Percentiles and the input with the largest index, one line per output."""
+    lines = [f"{'output':<44} {'p5':>9} {'p50':>9} {'p95':>9}  most influential (S1 / ST)"]
+    for name, o in summary["outputs"].items():
+        s1 = {k: v for k, v in o.get("first_order", {}).items() if v is not None}
+        st = {k: v for k, v in (o.get("total_order") or {}).items() if v is not None}
+        ranked = st or s1
+        top = max(ranked, key=lambda k: ranked[k]) if ranked else None
+        infl = "–" if top is None else f"{top} ({_fmt(s1.get(top))} / {_fmt(st.get(top))})"
+        lines.append(
+            f"{name:<44} {_fmt(o['p5']):>9} {_fmt(o['p50']):>9} {_fmt(o['p95']):>9}  {infl}"
+        )
+    return "\n".join(lines)

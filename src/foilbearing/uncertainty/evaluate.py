@@ -1,0 +1,170 @@
+"""One sample point: every output of an uncertainty analysis for one case.
+
+:func:`evaluate_sample` is the pure Dask task (module level, pickled by
+reference). It returns the outputs by name; each name carries its unit and
+where it is read, e.g. ``min_film_um[90 krpm, 150 V]`` or
+``onset_speed_krpm[0 V]``. An output that cannot be computed at a point (no
+equilibrium, an onset beyond the scan) is None there with the reason in
+``message``; the point fails only if no output could be computed.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from foilbearing.case import Case
+from foilbearing.errors import InputError, SolverError
+
+__all__ = ["evaluate_sample", "output_names"]
+
+RPM = math.pi / 30.0  # rad/s per rpm
+#: Static readouts: (name with unit, function of the StaticResult's headline).
+STATIC_QUANTITIES = (
+    "eccentricity_ratio",
+    "attitude_deg",
+    "min_film_um",
+    "power_loss_W",
+)
+STABILITY_QUANTITIES = ("onset_speed_krpm", "whirl_frequency_Hz")
+
+
+def _where(speed: float | None, volt: float | None, actuator: int | None = None) -> str:
+    parts = []
+    if speed is not None:
+        parts.append(f"{speed / RPM / 1e3:g} krpm")
+    parts.append("case voltages" if volt is None else f"{volt:g} V")
+    if actuator is not None:
+        parts.append(f"actuator {actuator + 1}")
+    return ", ".join(parts)
+
+
+def output_names(outputs: Mapping[str, Any], n_actuators: int) -> list[dict[str, Any]]:
+    """Every output of ``outputs`` with its labels, in a fixed order.
+
+    Returns
+    -------
+    list of dict
+        ``name`` (unit in it), ``quantity``, ``speed_krpm`` (NaN for an onset),
+        ``voltage_V`` (NaN for the case's own voltages), ``actuator`` (1-based,
+        0 when not per actuator).
+    """
+    nan = float("nan")
+    out = []
+    st = outputs.get("static")
+    if st:
+        for v in st["voltages_V"]:
+            for w in st["speeds_rad_s"]:
+                labels = {"speed_krpm": w / RPM / 1e3, "voltage_V": nan if v is None else v}
+                for q in STATIC_QUANTITIES:
+                    out.append(
+                        {"name": f"{q}[{_where(w, v)}]", "quantity": q, **labels, "actuator": 0}
+                    )
+                for a in range(n_actuators):
+                    out.append(
+                        {
+                            "name": f"preload_um[{_where(w, v, a)}]",
+                            "quantity": "preload_um",
+                            **labels,
+                            "actuator": a + 1,
+                        }
+                    )
+    stab = outputs.get("stability")
+    if stab:
+        for v in stab["voltages_V"]:
+            for q in STABILITY_QUANTITIES:
+                out.append(
+                    {
+                        "name": f"{q}[{_where(None, v)}]",
+                        "quantity": q,
+                        "speed_krpm": nan,
+                        "voltage_V": nan if v is None else v,
+                        "actuator": 0,
+                    }
+                )
+    return out
+
+
+def evaluate_sample(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
+    """Static readouts and linear onsets of one sampled case.
+
+    Parameters
+    ----------
+    case
+        The sampled case.
+    options
+        The uncertainty file's outputs (:func:`~foilbearing.uncertainty.spec.load_uncertainty`):
+        ``static`` (speeds, rad/s; voltages, V or None) and ``stability``
+        (scan speeds, rad/s; voltages).
+
+    Returns
+    -------
+    dict
+        ``outputs`` (name → value or None), ``message`` (why some are None),
+        ``converged`` (False when none could be computed).
+    """
+    values: dict[str, float | None] = {}
+    why: list[str] = []
+    if options.get("static"):
+        _static(case, options["static"], values, why)
+    if options.get("stability"):
+        _stability(case, options["stability"], values, why)
+    ok = any(v is not None for v in values.values())
+    return {"outputs": values, "message": "; ".join(why), "converged": ok}
+
+
+def _at(case: Case, volt: float | None) -> Case:
+    return case if volt is None else case.with_voltages(volt)
+
+
+def _static(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
+    from foilbearing.film import film_model
+    from foilbearing.static import solve_equilibrium
+
+    n_act = len(case.actuators.angles) if case.actuators is not None else 0
+    for volt in opts["voltages_V"]:
+        c = _at(case, volt)
+        model, start = film_model(c), None
+        for w in opts["speeds_rad_s"]:  # increasing: each equilibrium starts from the last
+            st = solve_equilibrium(c, speed=w, model=model, start=start)
+            if not st.converged and start is not None:
+                st = solve_equilibrium(c, speed=w, model=model)
+            where = _where(w, volt)
+            if not st.converged:
+                why.append(f"no equilibrium at {where}: {st.message}")
+                for q in STATIC_QUANTITIES:
+                    values[f"{q}[{where}]"] = None
+                for a in range(n_act):
+                    values[f"preload_um[{_where(w, volt, a)}]"] = None
+                continue
+            start = (st.eps_x, st.eps_y, st.P)
+            values[f"eccentricity_ratio[{where}]"] = st.eccentricity
+            values[f"attitude_deg[{where}]"] = math.degrees(st.attitude_angle)
+            values[f"min_film_um[{where}]"] = st.min_film * 1e6
+            values[f"power_loss_W[{where}]"] = st.power_loss
+            for a in range(n_act):
+                values[f"preload_um[{_where(w, volt, a)}]"] = float(st.preload[a]) * 1e6
+
+
+def _stability(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
+    from foilbearing.stability import onset_speed
+
+    speeds = opts["speeds_rad_s"]
+    for volt in opts["voltages_V"]:
+        where = _where(None, volt)
+        onset = whirl = None
+        try:
+            res = onset_speed(_at(case, volt), speeds)
+        except (InputError, SolverError) as exc:
+            why.append(f"no onset at {where}: {exc}")
+        else:
+            if res.onset_speed is None:
+                why.append(f"stable over the scan at {where} (up to {speeds[-1] / RPM:.0f} rpm)")
+            elif res.onset_speed <= speeds[0]:
+                why.append(f"unstable already at {speeds[0] / RPM:.0f} rpm at {where}")
+            else:
+                onset = res.onset_speed / RPM / 1e3
+                whirl = (res.whirl_frequency or float("nan")) / (2.0 * math.pi)
+        values[f"onset_speed_krpm[{where}]"] = onset
+        values[f"whirl_frequency_Hz[{where}]"] = whirl

@@ -1,0 +1,487 @@
+"""The uncertainty file: uncertain inputs, their distributions, the outputs and the sample.
+
+:func:`load_uncertainty` reads an uncertainty file (``docs/uncertainty.md``),
+converts every distribution's parameters to SI, draws the sample and validates
+the case of every sample point before any work (:class:`UncertaintySpec`).
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy import stats
+
+from foilbearing.case import case_from_dict, default_case_path, load_case
+from foilbearing.errors import InputError
+from foilbearing.sweep_analyses import value_list
+from foilbearing.sweep_file import FIELD_KINDS
+from foilbearing.uncertainty.design import ESTIMATORS, SAMPLERS, minimum_samples, unit_sample
+from foilbearing.units import SI_UNITS, ureg
+
+__all__ = [
+    "DISTRIBUTIONS",
+    "Distribution",
+    "UncertainInput",
+    "UncertaintySpec",
+    "default_uncertainty_path",
+    "load_uncertainty",
+]
+
+RPM = math.pi / 30.0  # rad/s per rpm
+DISTRIBUTIONS = ("uniform", "normal", "log-uniform")
+#: Case fields an uncertainty file may not make uncertain: the outputs set them.
+_SET_BY_OUTPUTS = ("operation.speed", "actuators.voltages")
+#: A normal input's case is validated at mean ± this many σ (P(outside) = 6e-7).
+_NORMAL_REACH = 5.0
+
+
+@dataclass(frozen=True)
+class Distribution:
+    """One input's distribution, parameters in SI.
+
+    ``uniform`` and ``log-uniform`` on [low, high]; ``normal`` with mean and σ.
+    """
+
+    kind: str
+    a: float  # low, or the mean
+    b: float  # high, or σ
+
+    def ppf(self, u: np.ndarray) -> np.ndarray:
+        """Values at probabilities ``u`` in (0, 1) (the inverse CDF), SI."""
+        if self.kind == "uniform":
+            return self.a + u * (self.b - self.a)
+        if self.kind == "log-uniform":
+            return np.exp(math.log(self.a) + u * (math.log(self.b) - math.log(self.a)))
+        return np.asarray(stats.norm.ppf(u, loc=self.a, scale=self.b))
+
+    @property
+    def reach(self) -> tuple[float, float]:
+        """The values the sample can take (a normal's: mean ± 5σ), SI."""
+        if self.kind == "normal":
+            return self.a - _NORMAL_REACH * self.b, self.a + _NORMAL_REACH * self.b
+        return self.a, self.b
+
+
+@dataclass(frozen=True)
+class UncertainInput:
+    """One uncertain case field: its dotted path, kind, display unit and distribution."""
+
+    name: str  # the case field, e.g. "bearing.clearance"
+    kind: str  # quantity kind (units.SI_UNITS)
+    unit: str  # the unit its values were written in ("um"; SI for plain numbers)
+    scale: float  # SI per display unit
+    distribution: Distribution
+    written: dict[str, Any]  # the table as written
+
+
+@dataclass(frozen=True)
+class UncertaintySpec:
+    """A validated uncertainty analysis: case tables, inputs, outputs and the sample.
+
+    ``design`` is the sample, shape (n_points, n_inputs), SI. With the Sobol
+    estimator its rows come in groups of n_inputs + 2 (A, AB_1 … AB_D, B:
+    :mod:`foilbearing.uncertainty.design`).
+    """
+
+    source: str
+    title: str
+    case_file: str
+    base: dict[str, Any]
+    inputs: tuple[UncertainInput, ...]
+    outputs: dict[str, Any]
+    samples: int  # as asked
+    sampler: str
+    estimator: str
+    seed: int
+    design: np.ndarray
+
+    @property
+    def options(self) -> dict[str, Any]:
+        """The outputs, passed to each point's evaluation."""
+        return self.outputs
+
+    @property
+    def n_points(self) -> int:
+        """Number of model evaluations (rows of the design)."""
+        return int(self.design.shape[0])
+
+    def point_values(self, index: int) -> dict[str, Any]:
+        """The point's input values, in the units they were written in."""
+        return {
+            inp.name: float(self.design[index, k]) / inp.scale for k, inp in enumerate(self.inputs)
+        }
+
+    def point_source(self, index: int) -> str:
+        """Where a point comes from, for messages: file, index and values."""
+        vals = ", ".join(
+            f"{inp.name} = {v:.6g} {inp.unit}".rstrip()
+            for inp, v in zip(self.inputs, self.point_values(index).values(), strict=True)
+        )
+        return f"{self.source}, sample {index} ({vals})"
+
+    def point_data(self, index: int) -> dict[str, Any]:
+        """The case tables of sample point ``index`` (a new dict, SI numbers written in)."""
+        data = copy.deepcopy(self.base)
+        for k, inp in enumerate(self.inputs):
+            _write_field(data, inp.name, float(self.design[index, k]))
+        return data
+
+    def describe(self) -> dict[str, Any]:
+        """What the results folder records of the analysis."""
+        return {
+            "uncertainty_file": self.source,
+            "case_file": self.case_file,
+            "inputs": {i.name: i.written for i in self.inputs},
+            "outputs": self.outputs,
+            "samples": self.samples,
+            "n_points": self.n_points,
+            "sampler": self.sampler,
+            "estimator": self.estimator,
+            "seed": self.seed,
+            "case": self.base,
+        }
+
+    def fingerprint(self) -> str:
+        """SHA-256 of everything that determines the results."""
+        key = [
+            self.base,
+            self.outputs,
+            [
+                (i.name, i.distribution.kind, i.distribution.a, i.distribution.b)
+                for i in self.inputs
+            ],
+            self.sampler,
+            self.estimator,
+            self.seed,
+            self.n_points,
+        ]
+        return hashlib.sha256(json.dumps(key, sort_keys=True, default=str).encode()).hexdigest()
+
+
+def default_uncertainty_path() -> Path:
+    """The built-in uncertainty file: what the paper leaves open (issue 15's example)."""
+    from importlib import resources
+
+    return Path(str(resources.files("foilbearing") / "cases" / "uncertainty_paper.toml"))
+
+
+_TOP_KEYS = {
+    "title",
+    "case",
+    "set",
+    "samples",
+    "sampler",
+    "estimator",
+    "seed",
+    "inputs",
+    "outputs",
+}
+
+
+def load_uncertainty(
+    path: str | Path | None = None, *, samples: int | None = None
+) -> UncertaintySpec:
+    """Read an uncertainty file, draw the sample and validate every point's case.
+
+    Parameters
+    ----------
+    path
+        The uncertainty file (default: :func:`default_uncertainty_path`).
+    samples
+        Number of model evaluations, overriding the file's ``samples``.
+
+    Raises
+    ------
+    InputError
+        Bad TOML, an unknown key or field, a distribution with bad parameters
+        (low ≥ high, σ ≤ 0, a reach outside the field's allowed range), a bad
+        output table, or a sample too small for the estimator; the message
+        names the file, the key and the value. Nothing is computed then.
+    """
+    path = Path(path) if path is not None else default_uncertainty_path()
+    src = str(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError("uncertainty file not found", source=src) from None
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise InputError(f"cannot read the uncertainty file: {exc}", source=src) from None
+    for key in data:
+        if key not in _TOP_KEYS:
+            raise InputError(f"unknown key {key!r} (allowed: {sorted(_TOP_KEYS)})", source=src)
+    case_ref = data.get("case", "default")
+    if not isinstance(case_ref, str):
+        raise InputError(f"case = {case_ref!r}: expected a path or 'default'", source=src)
+    case_path = default_case_path() if case_ref == "default" else path.parent / case_ref
+    load_case(case_path)  # errors name the case file
+    base = tomllib.loads(case_path.read_text(encoding="utf-8"))
+    fixed = data.get("set", {})
+    if not isinstance(fixed, dict):
+        raise InputError("[set] must be a table of 'field = value' entries", source=src)
+    for name, value in _flatten_set(fixed):
+        if name not in FIELD_KINDS:
+            raise InputError(
+                f"set.{name}: unknown field (allowed: {', '.join(FIELD_KINDS)})", source=src
+            )
+        _write_field(base, name, value)
+    case = case_from_dict(copy.deepcopy(base), source=f"{src} [set]")
+    sampler = _choice(data, "sampler", "sobol", SAMPLERS, src)
+    estimator = _choice(data, "estimator", "sobol", ESTIMATORS, src)
+    seed = data.get("seed", 1)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise InputError(f"seed = {seed!r}: expected an integer ≥ 0", source=src)
+    inputs = _inputs(data.get("inputs"), base, src)
+    n_in = len(inputs)
+    where = "--samples" if samples is not None else f"{src}: samples"
+    n = samples if samples is not None else data.get("samples", 256)
+    least = minimum_samples(estimator, n_in)
+    if isinstance(n, bool) or not isinstance(n, int) or n < least:
+        raise InputError(
+            f"{where} = {n!r}: the {estimator!r} estimator with {n_in} inputs needs at least "
+            f"{least} samples" + (f" (a multiple of {n_in + 2})" if estimator == "sobol" else "")
+        )
+    outputs = _outputs(data.get("outputs"), case, src)
+    u = unit_sample(n_in, n, sampler, estimator, seed)
+    design = np.column_stack([inp.distribution.ppf(u[:, k]) for k, inp in enumerate(inputs)])
+    spec = UncertaintySpec(
+        src,
+        str(data.get("title", "")),
+        str(case_path),
+        base,
+        inputs,
+        outputs,
+        n,
+        sampler,
+        estimator,
+        seed,
+        design,
+    )
+    for index in range(spec.n_points):
+        case_from_dict(spec.point_data(index), source=spec.point_source(index))
+    return spec
+
+
+def _choice(
+    data: dict[str, Any], key: str, default: str, allowed: tuple[str, ...], src: str
+) -> str:
+    value = data.get(key, default)
+    if value not in allowed:
+        raise InputError(f"{key} = {value!r}: expected one of {list(allowed)}", source=src)
+    return str(value)
+
+
+def _inputs(table: Any, base: dict[str, Any], src: str) -> tuple[UncertainInput, ...]:
+    if not isinstance(table, dict) or not table:
+        raise InputError(
+            "[inputs] is missing or empty: name at least one case field, e.g. "
+            '"bearing.clearance" = { distribution = "uniform", low = "80 um", '
+            'high = "120 um" }',
+            source=src,
+        )
+    allowed = [f for f, k in FIELD_KINDS.items() if k != "integer" and f not in _SET_BY_OUTPUTS]
+    out = []
+    for name, spec in _flatten_inputs(table):
+        if name not in allowed:
+            why = (
+                "set by the outputs (their speeds and voltages)"
+                if name in _SET_BY_OUTPUTS
+                else "an integer (grid) field"
+                if name in FIELD_KINDS
+                else "unknown field"
+            )
+            raise InputError(f"inputs.{name}: {why} (allowed: {', '.join(allowed)})", source=src)
+        kind = FIELD_KINDS[name]
+        dist, unit, scale = _distribution(name, kind, spec, src)
+        out.append(UncertainInput(name, kind, unit, scale, dist, dict(spec)))
+        _check_reach(name, dist, base, src)
+    return tuple(out)
+
+
+def _flatten_set(table: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
+    out: list[tuple[str, Any]] = []
+    for key, value in table.items():
+        if isinstance(value, dict):
+            out.extend(_flatten_set(value, f"{prefix}{key}."))
+        else:
+            out.append((f"{prefix}{key}", value))
+    return out
+
+
+def _flatten_inputs(table: dict[str, Any], prefix: str = "") -> list[tuple[str, dict[str, Any]]]:
+    """(dotted field, distribution table) pairs: a table with ``distribution`` is a leaf."""
+    out = []
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict) and "distribution" not in value:
+            out.extend(_flatten_inputs(value, f"{name}."))
+        else:
+            out.append((name, value))
+    return out
+
+
+_PARAMETERS = {
+    "uniform": ("low", "high"),
+    "log-uniform": ("low", "high"),
+    "normal": ("mean", "std"),
+}
+
+
+def _distribution(name: str, kind: str, spec: Any, src: str) -> tuple[Distribution, str, float]:
+    where = f"inputs.{name}"
+    if not isinstance(spec, dict):
+        raise InputError(
+            f"{where} = {spec!r}: expected a table such as "
+            '{ distribution = "uniform", low = ..., high = ... }',
+            source=src,
+        )
+    dist = spec.get("distribution")
+    if dist not in _PARAMETERS:
+        raise InputError(
+            f"{where}.distribution = {dist!r}: expected one of {list(DISTRIBUTIONS)}", source=src
+        )
+    keys = _PARAMETERS[dist]
+    extra = set(spec) - {"distribution", *keys}
+    missing = [k for k in keys if k not in spec]
+    if extra or missing:
+        raise InputError(
+            f"{where}: a {dist} distribution takes {keys[0]} and {keys[1]}"
+            + (f" (unknown: {sorted(extra)})" if extra else f" (missing: {missing})"),
+            source=src,
+        )
+    a, b = value_list([spec[k] for k in keys], kind, where, src)
+    if dist == "normal" and not b > 0.0:
+        raise InputError(f"{where}.std = {spec['std']!r}: expected σ > 0", source=src)
+    if dist != "normal" and not a < b:
+        raise InputError(
+            f"{where}: low = {spec['low']!r} ≥ high = {spec['high']!r}: expected low < high",
+            source=src,
+        )
+    if dist == "log-uniform" and not a > 0.0:
+        raise InputError(f"{where}.low = {spec['low']!r}: a log-uniform needs low > 0", source=src)
+    unit, scale = _display_unit(spec[keys[0]], kind)
+    return Distribution(dist, a, b), unit, scale
+
+
+def _display_unit(first: Any, kind: str) -> tuple[str, float]:
+    """The unit a value was written in and its size in SI (SI for plain numbers)."""
+    si = SI_UNITS.get(kind, "")
+    if not isinstance(first, str) or not si:
+        return si, 1.0
+    try:
+        q = ureg.Quantity(first)
+        unit = f"{q.units:~}".replace(" ", "")
+        return unit, float(ureg.Quantity(1.0, q.units).to(si).m)
+    except Exception:  # pint reads it differently: show SI
+        return si, 1.0
+
+
+def _check_reach(name: str, dist: Distribution, base: dict[str, Any], src: str) -> None:
+    """The case must be valid at both ends of the input's reach (others at the base case)."""
+    for end, value in zip(("low", "high"), dist.reach, strict=True):
+        data = copy.deepcopy(base)
+        _write_field(data, name, value)
+        try:
+            case_from_dict(data, source=src)
+        except InputError as exc:
+            what = "mean ± 5σ" if dist.kind == "normal" else end
+            raise InputError(
+                f"inputs.{name}: the distribution reaches {value:.6g} {SI_UNITS[FIELD_KINDS[name]]}"
+                f" ({what}), outside the field's allowed range: {exc.detail}",
+                source=src,
+            ) from None
+
+
+def _outputs(table: Any, case: Any, src: str) -> dict[str, Any]:
+    """The outputs table: static readouts and linear onsets, speeds in rad/s, voltages in V."""
+    table = {} if table is None else table
+    if not isinstance(table, dict):
+        raise InputError("[outputs] must be a table", source=src)
+    allowed = {"static", "stability"}
+    for key in table:
+        if key not in allowed:
+            raise InputError(
+                f"outputs.{key}: unknown output (allowed: {sorted(allowed)}; orbit readouts "
+                "are not yet an uncertainty output)",
+                source=src,
+            )
+    if not table:
+        table = {"static": {}, "stability": {}}
+    out: dict[str, Any] = {}
+    if "static" in table:
+        st = _table(table["static"], "outputs.static", {"speeds", "voltages"}, src)
+        speeds = value_list(
+            st.get("speeds", [case.operation.speed]), "speed", "outputs.static.speeds", src
+        )
+        if any(s <= 0.0 for s in speeds):
+            raise InputError(f"outputs.static.speeds = {st['speeds']!r}: expected > 0", source=src)
+        out["static"] = {
+            "speeds_rad_s": sorted(speeds),
+            "voltages_V": _voltages(st, case, "outputs.static.voltages", src),
+        }
+    if "stability" in table:
+        st = _table(table["stability"], "outputs.stability", {"voltages", "speed_range"}, src)
+        raw = st.get("speed_range", ["5000 rpm", "150000 rpm", "5000 rpm"])
+        if not isinstance(raw, list) or len(raw) != 3:
+            raise InputError(
+                f"outputs.stability.speed_range = {raw!r}: expected [START, STOP, STEP], "
+                "e.g. ['5000 rpm', '150000 rpm', '5000 rpm']",
+                source=src,
+            )
+        start, stop, step = value_list(raw, "speed", "outputs.stability.speed_range", src)
+        if not 0.0 < start < stop or step <= 0.0 or (stop - start) / step > 1000:
+            raise InputError(
+                f"outputs.stability.speed_range = {raw!r}: need 0 < START < STOP, STEP > 0, "
+                "at most 1000 steps",
+                source=src,
+            )
+        n = round((stop - start) / step) + 1
+        out["stability"] = {
+            "speeds_rad_s": [start + k * step for k in range(n)],
+            "voltages_V": _voltages(st, case, "outputs.stability.voltages", src),
+        }
+    return out
+
+
+def _table(value: Any, where: str, keys: set[str], src: str) -> dict[str, Any]:
+    if not isinstance(value, dict):
+        raise InputError(f"[{where}] must be a table", source=src)
+    unknown = set(value) - keys
+    if unknown:
+        raise InputError(
+            f"{where}: unknown key(s) {sorted(unknown)} (allowed: {sorted(keys)})", source=src
+        )
+    return value
+
+
+def _voltages(table: dict[str, Any], case: Any, where: str, src: str) -> list[float | None]:
+    """Common actuator voltages, V; [None] (the case's own voltages) when not given."""
+    if "voltages" not in table:
+        return [None]
+    if case.actuators is None:
+        raise InputError(f"{where}: the case has no [actuators]", source=src)
+    volts = value_list(table["voltages"], "voltage", where, src)
+    top = case.actuators.max_voltage
+    for v in volts:
+        if not 0.0 <= v <= top:
+            raise InputError(
+                f"{where} = {table['voltages']!r}: expected voltages in [0, {top:g}] V "
+                "(actuators.max_voltage)",
+                source=src,
+            )
+    return list(volts)
+
+
+def _write_field(data: dict[str, Any], path: str, value: Any) -> None:
+    *tables, key = path.split(".")
+    node = data
+    for t in tables:
+        node = node.setdefault(t, {})
+    node[key] = value
