@@ -236,7 +236,9 @@ def onset_speed(
             # Brent evaluates the bracket's ends first and the root last: keep the modes
             modes = {lo: prev_mode, hi: mode}
 
-            def f(x: float, lo_start: StaticResult = lo_start) -> float:
+            def f(
+                x: float, lo_start: StaticResult = lo_start, modes: dict[float, Any] = modes
+            ) -> float:
                 if x not in modes:
                     scan.start = (lo_start.eps_x, lo_start.eps_y, lo_start.P)
                     modes[x] = scan.mode(x)
