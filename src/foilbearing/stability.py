@@ -231,16 +231,15 @@ def onset_speed(
                     "unstable already at the lowest speed of the scan",
                 )
             assert prev_mode is not None
-            lo_start = prev_mode.static
             lo, hi = float(speeds_arr[k - 1]), float(w)
-            # Brent evaluates the bracket's ends first and the root last: keep the modes
+            # Brent evaluates the bracket's ends first and the root last: keep the modes;
+            # each new equilibrium starts from the one nearest in speed.
             modes = {lo: prev_mode, hi: mode}
 
-            def f(
-                x: float, lo_start: StaticResult = lo_start, modes: dict[float, Any] = modes
-            ) -> float:
+            def f(x: float, modes: dict[float, WhirlMode] = modes) -> float:
                 if x not in modes:
-                    scan.start = (lo_start.eps_x, lo_start.eps_y, lo_start.P)
+                    near = modes[min(modes, key=lambda s: abs(s - x))].static
+                    scan.start = (near.eps_x, near.eps_y, near.P)
                     modes[x] = scan.mode(x)
                 return modes[x].log_decrement
 
