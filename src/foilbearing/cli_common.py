@@ -9,7 +9,13 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from foilbearing.case import Case
 
-__all__ = ["add_case_arg", "add_subambient_arg", "apply_subambient"]
+__all__ = [
+    "add_case_arg",
+    "add_dask_args",
+    "add_subambient_arg",
+    "apply_subambient",
+    "check_dask_args",
+]
 
 
 def add_case_arg(p: argparse.ArgumentParser) -> None:
@@ -38,3 +44,31 @@ def add_subambient_arg(p: argparse.ArgumentParser) -> None:
 def apply_subambient(case: Case, model: str | None) -> Case:
     """The case with ``--subambient`` applied (unchanged when the option is absent)."""
     return case if model is None else case.with_subambient(model)
+
+
+def add_dask_args(p: argparse.ArgumentParser, what: str) -> None:
+    """``--scheduler``, ``--workers`` and ``--resume``: where the points of ``what`` run."""
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        default=None,
+        help="address of a running dask.distributed scheduler (default: a local cluster)",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="worker processes of the local cluster (default: one per core)",
+    )
+    p.add_argument("--resume", action="store_true", help=f"continue {what}, skip finished points")
+
+
+def check_dask_args(args: argparse.Namespace) -> None:
+    """One-line errors for ``--workers`` below 1 or given with ``--scheduler``."""
+    from foilbearing.errors import InputError
+
+    if args.workers is not None and args.workers < 1:
+        raise InputError(f"--workers {args.workers}: expected at least 1")
+    if args.workers is not None and args.scheduler is not None:
+        raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")

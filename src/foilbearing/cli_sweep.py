@@ -17,6 +17,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from foilbearing.cli_common import add_dask_args, check_dask_args
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_sweep", "register"]
@@ -38,20 +39,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
         help="writes RESULT.d/ (one file per point) and RESULT.nc "
         "(default: the sweep file's name, in the current folder)",
     )
-    p.add_argument(
-        "--scheduler",
-        metavar="ADDRESS",
-        default=None,
-        help="address of a running dask.distributed scheduler (default: a local cluster)",
-    )
-    p.add_argument(
-        "--workers",
-        type=int,
-        default=None,
-        metavar="N",
-        help="worker processes of the local cluster (default: one per core)",
-    )
-    p.add_argument("--resume", action="store_true", help="continue RESULT.d, skip finished points")
+    add_dask_args(p, "RESULT.d")
     p.add_argument(
         "--assemble",
         action="store_true",
@@ -73,10 +61,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     """
     from foilbearing.sweep import load_sweep, output_paths, run_sweep
 
-    if args.workers is not None and args.workers < 1:
-        raise InputError(f"--workers {args.workers}: expected at least 1")
-    if args.workers is not None and args.scheduler is not None:
-        raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")
+    check_dask_args(args)
     spec = load_sweep(args.sweep_file)
     out = args.out if args.out is not None else Path(args.sweep_file.stem)
     folder, _ = output_paths(out)

@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.errors import InputError
+from foilbearing.cli_common import add_dask_args, check_dask_args
 
 __all__ = ["cmd_uncertainty", "register"]
 
@@ -53,20 +53,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
         metavar="DIR",
         help="results folder (default: the file's name, in the current folder)",
     )
-    p.add_argument(
-        "--scheduler",
-        metavar="ADDRESS",
-        default=None,
-        help="address of a running dask.distributed scheduler (default: a local cluster)",
-    )
-    p.add_argument(
-        "--workers",
-        type=int,
-        default=None,
-        metavar="N",
-        help="worker processes of the local cluster (default: one per core)",
-    )
-    p.add_argument("--resume", action="store_true", help="continue DIR, skip finished points")
+    add_dask_args(p, "DIR")
     p.add_argument(
         "--plot",
         type=Path,
@@ -90,10 +77,7 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
     """
     from foilbearing.uncertainty import load_uncertainty, result_paths, run_uncertainty
 
-    if args.workers is not None and args.workers < 1:
-        raise InputError(f"--workers {args.workers}: expected at least 1")
-    if args.workers is not None and args.scheduler is not None:
-        raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")
+    check_dask_args(args)
     spec = load_uncertainty(args.uq_file, samples=args.samples)
     stem = args.uq_file.stem if args.uq_file is not None else "uncertainty_paper"
     out = args.out if args.out is not None else Path(stem)

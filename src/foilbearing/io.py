@@ -13,7 +13,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-__all__ = ["atomic_path", "save_figure", "write_text", "write_with"]
+__all__ = ["atomic_path", "read_toml", "save_figure", "write_text", "write_with"]
 
 
 @contextmanager
@@ -56,3 +56,23 @@ def write_with(target: str | Path, writer: Callable[[Path], None]) -> Path:
     with atomic_path(target) as tmp:
         writer(tmp)
     return Path(target)
+
+
+def read_toml(path: Path, what: str) -> dict[str, Any]:
+    """The tables of TOML file ``path``; ``what`` names it in errors ("sweep file").
+
+    Raises
+    ------
+    InputError
+        The file is missing, unreadable or not valid TOML (one line, naming it).
+    """
+    import tomllib
+
+    from foilbearing.errors import InputError
+
+    try:
+        return tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError(f"{what} not found", source=str(path)) from None
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise InputError(f"cannot read the {what}: {exc}", source=str(path)) from None

@@ -146,20 +146,25 @@ def _stability_options(table: Mapping[str, Any], source: str) -> dict[str, Any]:
             f"[stability] {sorted(table)}: the only option is speed_range", source=source
         )
     raw = table.get("speed_range", ["5000 rpm", "150000 rpm", "5000 rpm"])
+    return {"speeds_rad_s": speed_scan(raw, "stability.speed_range", source)}
+
+
+def speed_scan(raw: Any, where: str, source: str) -> list[float]:
+    """The scan speeds (rad/s) of ``[START, STOP, STEP]`` in a sweep or uncertainty file."""
     if not isinstance(raw, list) or len(raw) != 3:
         raise InputError(
-            f"stability.speed_range = {raw!r}: expected [START, STOP, STEP], "
+            f"{where} = {raw!r}: expected [START, STOP, STEP], "
             "e.g. ['5000 rpm', '150000 rpm', '5000 rpm']",
             source=source,
         )
-    start, stop, step = value_list(raw, "speed", "stability.speed_range", source)
+    start, stop, step = value_list(raw, "speed", where, source)
     if not 0.0 < start < stop or step <= 0.0 or (stop - start) / step > 1000:
         raise InputError(
-            f"stability.speed_range = {raw!r}: need 0 < START < STOP, STEP > 0, at most 1000 steps",
+            f"{where} = {raw!r}: need 0 < START < STOP, STEP > 0, at most 1000 steps",
             source=source,
         )
     n = round((stop - start) / step) + 1
-    return {"speeds_rad_s": [start + k * step for k in range(n)]}
+    return [start + k * step for k in range(n)]
 
 
 #: Analysis kinds by name. Add a kind (e.g. ``"orbit"``) with one more entry.

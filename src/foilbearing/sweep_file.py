@@ -21,6 +21,7 @@ import numpy as np
 
 from foilbearing.case import Case, case_from_dict, default_case_path, load_case
 from foilbearing.errors import InputError
+from foilbearing.io import read_toml
 from foilbearing.sweep_analyses import ANALYSES, value_list
 from foilbearing.units import SI_UNITS, ureg
 
@@ -153,12 +154,7 @@ def load_sweep(path: str | Path) -> SweepSpec:
     """
     path = Path(path)
     src = str(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError("sweep file not found", source=src) from None
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise InputError(f"cannot read the sweep file: {exc}", source=src) from None
+    data = read_toml(path, "sweep file")
     analysis = data.get("analysis", "static")
     if analysis not in ANALYSES:
         raise InputError(f"analysis = {analysis!r}: expected one of {sorted(ANALYSES)}", source=src)

@@ -21,7 +21,8 @@ from scipy import stats
 
 from foilbearing.case import case_from_dict, default_case_path, load_case
 from foilbearing.errors import InputError
-from foilbearing.sweep_analyses import value_list
+from foilbearing.io import read_toml
+from foilbearing.sweep_analyses import speed_scan, value_list
 from foilbearing.sweep_file import FIELD_KINDS
 from foilbearing.uncertainty.design import ESTIMATORS, SAMPLERS, minimum_samples, unit_sample
 from foilbearing.units import SI_UNITS, ureg
@@ -208,12 +209,7 @@ def load_uncertainty(
     """
     path = Path(path) if path is not None else default_uncertainty_path()
     src = str(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError("uncertainty file not found", source=src) from None
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise InputError(f"cannot read the uncertainty file: {exc}", source=src) from None
+    data = read_toml(path, "uncertainty file")
     for key in data:
         if key not in _TOP_KEYS:
             raise InputError(f"unknown key {key!r} (allowed: {sorted(_TOP_KEYS)})", source=src)
@@ -429,22 +425,8 @@ def _outputs(table: Any, case: Any, src: str) -> dict[str, Any]:
     if "stability" in table:
         st = _table(table["stability"], "outputs.stability", {"voltages", "speed_range"}, src)
         raw = st.get("speed_range", ["5000 rpm", "150000 rpm", "5000 rpm"])
-        if not isinstance(raw, list) or len(raw) != 3:
-            raise InputError(
-                f"outputs.stability.speed_range = {raw!r}: expected [START, STOP, STEP], "
-                "e.g. ['5000 rpm', '150000 rpm', '5000 rpm']",
-                source=src,
-            )
-        start, stop, step = value_list(raw, "speed", "outputs.stability.speed_range", src)
-        if not 0.0 < start < stop or step <= 0.0 or (stop - start) / step > 1000:
-            raise InputError(
-                f"outputs.stability.speed_range = {raw!r}: need 0 < START < STOP, STEP > 0, "
-                "at most 1000 steps",
-                source=src,
-            )
-        n = round((stop - start) / step) + 1
         out["stability"] = {
-            "speeds_rad_s": [start + k * step for k in range(n)],
+            "speeds_rad_s": speed_scan(raw, "outputs.stability.speed_range", src),
             "voltages_V": _voltages(st, case, "outputs.stability.voltages", src),
         }
     return out
