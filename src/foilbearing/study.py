@@ -234,7 +234,7 @@ def _uncertainty_stage(out: Path, samples: int | None, stage: Any) -> dict[str, 
         f"uncertainty: {spec.n_points} evaluations of {len(spec.inputs)} uncertain inputs "
         f"({spec.estimator} estimator) on a local Dask cluster"
     )
-    folder = out / "uncertainty"
+    folder = out / f"uncertainty_{spec.n_points}pts"  # a rerun of the same sample resumes it
     ds, summary = run_uncertainty(spec, folder, resume=folder.exists())
     summary["figures"] = [str(p) for p in write_uncertainty_figures(ds, out)]
     summary["command"] = (
