@@ -204,7 +204,7 @@ def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
     from foilbearing.study import run_study
 
     out = tmp_path_factory.mktemp("study")
-    run_study(default_case(), out, progress=False, orbits=False)
+    run_study(default_case(), out, progress=False, orbits=False, uncertainty="none")
     write_report(out)
     return out
 
