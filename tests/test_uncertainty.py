@@ -197,6 +197,11 @@ def test_percentiles_of_a_monotone_output_are_its_values_at_the_input_percentile
             '[outputs.static]\nvoltages = ["200 V"]\n',
             "expected voltages in [0, 150] V",
         ),
+        (
+            '[inputs]\n"foil.loss_factor" = { distribution = "uniform", low = 0.1, high = 0.2 }\n'
+            '[outputs.orbit]\nvoltage_ramp = ["6 s", "6.5 s"]\n',
+            "give the voltages it ramps to",
+        ),
     ],
 )
 def test_bad_file_is_one_line_before_any_work(
@@ -344,3 +349,41 @@ def test_the_study_s_stage_and_its_report_section(tmp_path: Path, monkeypatch) -
     assert "What the unknowns allow" in html
     assert f"{film['p95']:.4g}" in html and "min_film_um[90 krpm, 150 V]" in html
     assert html.count("data:image/png;base64,") == 2
+
+
+@pytest.mark.slow
+def test_orbit_outputs_are_the_orbit_command_s_readouts(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The opt-in orbit outputs of a sample are what ``foilbearing orbit --json``
+    reads from the same speed-up (two entry points, one run each): 0 V on a coarse
+    48 × 6 grid, 3 to 12 krpm at 500 rad/s², where the 8.5 g·mm run has a
+    sub-synchronous onset but no divergence yet; the missing divergence is None,
+    with its reason in the point's message."""
+    import tomlkit
+
+    data = tomlkit.parse(default_case_path().read_text(encoding="utf-8"))
+    data["grid"]["n_theta"], data["grid"]["n_z"] = 48, 6
+    (tmp_path / "coarse.toml").write_text(tomlkit.dumps(data), encoding="utf-8")
+    path = _write(
+        tmp_path,
+        'case = "coarse.toml"\nsamples = 24\n[inputs]\n'
+        '"foil.loss_factor" = { distribution = "uniform", low = 0.05, high = 0.2 }\n'
+        "[outputs.orbit]\n"
+        'speed_ramp = ["3000 rpm", "12000 rpm", "500 rad/s**2"]\nvoltages = ["0 V"]\n',
+    )
+    spec = load_uncertainty(path)
+    point = spec.point_data(0)
+    rec = run_point(0, point, spec.point_source(0), evaluate_sample, spec.options)
+    assert rec["status"] == "ok", rec
+    got = rec["result"]["outputs"]
+    (tmp_path / "point.toml").write_text(tomlkit.dumps(point), encoding="utf-8")
+    argv = ["orbit", str(tmp_path / "point.toml"), "--speed-ramp", "3000rpm:12000rpm:500rad/s**2"]
+    assert main([*argv, "--json"]) == 0
+    direct = json.loads(capsys.readouterr().out)
+    assert direct["onset_speed_rpm"] is not None and direct["divergence_speed_rpm"] is None
+    assert got["orbit_onset_krpm[0 V]"] == pytest.approx(direct["onset_speed_rpm"] / 1e3)
+    assert got["orbit_whip_frequency_Hz[0 V]"] == pytest.approx(direct["whip_frequency_Hz"])
+    assert got["orbit_max_subsync_um[0 V]"] == pytest.approx(direct["max_subsync_amplitude_um"])
+    assert got["orbit_divergence_krpm[0 V]"] is None
+    assert "no divergence up to" in rec["result"]["message"]

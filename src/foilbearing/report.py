@@ -414,7 +414,8 @@ def _uncertainty(d: dict[str, Any], case: dict[str, Any]) -> str:
         f"{escape(str(d.get('estimator')))} estimator on a {escape(str(d.get('sampler')))} "
         "sample. Inputs: "
         + escape("; ".join(f"{k} {v.get('distribution', '')}" for k, v in inputs.items()))
-        + ". Static readouts hold the case's load; onsets are linear (rigid rotor). "
+        + ". Static readouts hold the case's load; onset speeds and whirl frequencies are "
+        "linear (rigid rotor), and orbit_* readouts, where asked for, come from speed-ups. "
         "The indices' 95 % half-widths shrink as 1/√N: rerun with "
         f"<code>{escape(str(d.get('command', 'foilbearing uncertainty')))}</code> and a larger "
         "<code>--samples</code> for sharper ones.</p>"

@@ -19,6 +19,10 @@ _STATIC = (
 _STABILITY = (
     ("onset_speed_krpm", "linear onset speed (krpm)"),
     ("whirl_frequency_Hz", "whirl frequency at onset (Hz)"),
+    ("orbit_onset_krpm", "speed-up: sub-synchronous onset (krpm)"),
+    ("orbit_whip_frequency_Hz", "speed-up: whip frequency (Hz)"),
+    ("orbit_divergence_krpm", "speed-up: divergence (krpm)"),
+    ("orbit_max_subsync_um", "speed-up: largest sub-synchronous (µm)"),
 )
 
 
@@ -27,8 +31,9 @@ def _select(ds: Any, quantity: str) -> Any:
 
 
 def _band(ax: Any, x: np.ndarray, pct: np.ndarray, label: str, color: Any) -> None:
-    order = np.argsort(x)
-    x, lo, mid, hi = x[order], pct[0][order], pct[1][order], pct[2][order]
+    keep = np.isfinite(x) & np.isfinite(pct).all(axis=0)
+    order = np.argsort(x[keep])
+    x, lo, mid, hi = (a[keep][order] for a in (x, pct[0], pct[1], pct[2]))
     if x.size > 1:
         ax.fill_between(x, lo, hi, color=color, alpha=0.25, lw=0)
     ax.errorbar(
@@ -64,7 +69,7 @@ def plot_bands(ds: Any, paper: dict[str, Any] | None = None) -> Figure:
         sub = _select(ds, q)
         pct = sub["percentile"].values
         volts = sub["voltage_V"].values
-        if q in ("onset_speed_krpm", "whirl_frequency_Hz"):
+        if q in dict(_STABILITY):
             x = np.where(np.isfinite(volts), volts, 0.0)
             _band(ax, x, pct, "median; band 5-95 %", "C0")
             ax.set_xlabel("actuator voltage (V)")
@@ -97,6 +102,17 @@ def plot_bands(ds: Any, paper: dict[str, Any] | None = None) -> Figure:
             ax.set_xlabel("speed (krpm)")
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
+        if not np.isfinite(pct).any():
+            ax.text(
+                0.5,
+                0.5,
+                "none in the sample\n(the points' messages say why)",
+                ha="center",
+                va="center",
+                transform=ax.transAxes,
+                color="0.4",
+            )
+            continue
         ax.legend(fontsize=7)
     for ax in axes[len(panels) :]:
         ax.set_visible(False)

@@ -28,6 +28,21 @@ STATIC_QUANTITIES = (
     "power_loss_W",
 )
 STABILITY_QUANTITIES = ("onset_speed_krpm", "whirl_frequency_Hz")
+#: Readouts of a speed-up (the orbit's signal analysis, MODEL.md section 5).
+ORBIT_QUANTITIES = (
+    "orbit_onset_krpm",
+    "orbit_whip_frequency_Hz",
+    "orbit_divergence_krpm",
+    "orbit_max_subsync_um",
+)
+
+
+def _orbit_where(volt: float | None, ramp: list[float] | None) -> str:
+    if volt is None:
+        return "case voltages"
+    if ramp is None:
+        return f"{volt:g} V"
+    return f"{volt:g} V ramp {ramp[0]:g}-{ramp[1]:g} s"
 
 
 def _where(speed: float | None, volt: float | None, actuator: int | None = None) -> str:
@@ -83,6 +98,20 @@ def output_names(outputs: Mapping[str, Any], n_actuators: int) -> list[dict[str,
                         "actuator": 0,
                     }
                 )
+    orb = outputs.get("orbit")
+    if orb:
+        for v in orb["voltages_V"]:
+            where = _orbit_where(v, orb["voltage_ramp_s"])
+            for q in ORBIT_QUANTITIES:
+                out.append(
+                    {
+                        "name": f"{q}[{where}]",
+                        "quantity": q,
+                        "speed_krpm": nan,
+                        "voltage_V": nan if v is None else v,
+                        "actuator": 0,
+                    }
+                )
     return out
 
 
@@ -110,6 +139,8 @@ def evaluate_sample(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
         _static(case, options["static"], values, why)
     if options.get("stability"):
         _stability(case, options["stability"], values, why)
+    if options.get("orbit"):
+        _orbit(case, options["orbit"], values, why)
     ok = any(v is not None for v in values.values())
     return {"outputs": values, "message": "; ".join(why), "converged": ok}
 
@@ -168,3 +199,34 @@ def _stability(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why:
                 whirl = (res.whirl_frequency or float("nan")) / (2.0 * math.pi)
         values[f"onset_speed_krpm[{where}]"] = onset
         values[f"whirl_frequency_Hz[{where}]"] = whirl
+
+
+def _orbit(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
+    """One speed-up per voltage, read as ``foilbearing orbit`` reads it (default settings)."""
+    from foilbearing.control import linear_ramp, voltage_ramp
+    from foilbearing.orbit import simulate
+    from foilbearing.orbit_analysis import analyse_orbit
+
+    profile = linear_ramp(*opts["speed_ramp"])
+    ramp = opts["voltage_ramp_s"]
+    for volt in opts["voltages_V"]:
+        where = _orbit_where(volt, ramp)
+        c, program = case, None
+        if volt is not None and ramp is None:
+            c = case.with_voltages(volt)
+        elif volt is not None:
+            program = voltage_ramp(ramp[0], ramp[1], volt)
+        result = simulate(c, profile, program)
+        head = analyse_orbit(result).headline(result)
+        onset, div = head["onset_speed_rpm"], head["divergence_speed_rpm"]
+        values[f"orbit_onset_krpm[{where}]"] = None if onset is None else onset / 1e3
+        values[f"orbit_whip_frequency_Hz[{where}]"] = head["whip_frequency_Hz"]
+        values[f"orbit_divergence_krpm[{where}]"] = None if div is None else div / 1e3
+        values[f"orbit_max_subsync_um[{where}]"] = head["max_subsync_amplitude_um"]
+        if result.status not in ("completed", "contact"):
+            why.append(f"speed-up at {where} {result.status}: {result.message}")
+        elif div is None:
+            end = head["end_speed_rpm"] or 0.0
+            why.append(f"speed-up at {where}: no divergence up to {end:.0f} rpm")
+        if onset is None:
+            why.append(f"speed-up at {where}: no sustained sub-synchronous motion")

@@ -400,13 +400,11 @@ def _outputs(table: Any, case: Any, src: str) -> dict[str, Any]:
     table = {} if table is None else table
     if not isinstance(table, dict):
         raise InputError("[outputs] must be a table", source=src)
-    allowed = {"static", "stability"}
+    allowed = {"static", "stability", "orbit"}
     for key in table:
         if key not in allowed:
             raise InputError(
-                f"outputs.{key}: unknown output (allowed: {sorted(allowed)}; orbit readouts "
-                "are not yet an uncertainty output)",
-                source=src,
+                f"outputs.{key}: unknown output (allowed: {sorted(allowed)})", source=src
             )
     if not table:
         table = {"static": {}, "stability": {}}
@@ -429,7 +427,45 @@ def _outputs(table: Any, case: Any, src: str) -> dict[str, Any]:
             "speeds_rad_s": speed_scan(raw, "outputs.stability.speed_range", src),
             "voltages_V": _voltages(st, case, "outputs.stability.voltages", src),
         }
+    if "orbit" in table:
+        out["orbit"] = _orbit_outputs(table["orbit"], case, src)
     return out
+
+
+def _orbit_outputs(value: Any, case: Any, src: str) -> dict[str, Any]:
+    """A speed-up per voltage: the ramp (start, stop, rad/s; rad/s²) and the voltage program."""
+    where = "outputs.orbit"
+    st = _table(value, where, {"speed_ramp", "voltages", "voltage_ramp"}, src)
+    raw = st.get("speed_ramp", ["3000 rpm", "90000 rpm", "500 rad/s**2"])
+    if not isinstance(raw, list) or len(raw) != 3:
+        raise InputError(
+            f"{where}.speed_ramp = {raw!r}: expected [START, STOP, ACCELERATION], "
+            "e.g. ['3000 rpm', '90000 rpm', '500 rad/s**2']",
+            source=src,
+        )
+    w0, w1 = value_list(raw[:2], "speed", f"{where}.speed_ramp", src)
+    (accel,) = value_list(raw[2:], "angular_acceleration", f"{where}.speed_ramp", src)
+    if not 0.0 < w0 < w1 or accel <= 0.0:
+        raise InputError(
+            f"{where}.speed_ramp = {raw!r}: need 0 < START < STOP and ACCELERATION > 0",
+            source=src,
+        )
+    ramp = None
+    if "voltage_ramp" in st:
+        if "voltages" not in st:
+            raise InputError(f"{where}.voltage_ramp: give the voltages it ramps to", source=src)
+        ramp = list(value_list(st["voltage_ramp"], "time", f"{where}.voltage_ramp", src))
+        if len(ramp) != 2 or not 0.0 <= ramp[0] <= ramp[1]:
+            raise InputError(
+                f"{where}.voltage_ramp = {st['voltage_ramp']!r}: expected [START, END] times, "
+                "0 ≤ START ≤ END, e.g. ['6.0 s', '6.5 s'] (the paper's)",
+                source=src,
+            )
+    return {
+        "speed_ramp": [w0, w1, accel],
+        "voltages_V": _voltages(st, case, f"{where}.voltages", src),
+        "voltage_ramp_s": ramp,
+    }
 
 
 def _table(value: Any, where: str, keys: set[str], src: str) -> dict[str, Any]:
