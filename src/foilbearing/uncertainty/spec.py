@@ -242,7 +242,8 @@ def load_uncertainty(
     if isinstance(n, bool) or not isinstance(n, int) or n < least:
         raise InputError(
             f"{where} = {n!r}: the {estimator!r} estimator with {n_in} inputs needs at least "
-            f"{least} samples" + (f" (a multiple of {n_in + 2})" if estimator == "sobol" else "")
+            f"{least} samples"
+            + (f" (it uses whole groups of {n_in + 2})" if estimator == "sobol" else "")
         )
     outputs = _outputs(data.get("outputs"), case, src)
     u = unit_sample(n_in, n, sampler, estimator, seed)
