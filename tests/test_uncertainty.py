@@ -387,3 +387,28 @@ def test_orbit_outputs_are_the_orbit_command_s_readouts(
     assert got["orbit_max_subsync_um[0 V]"] == pytest.approx(direct["max_subsync_amplitude_um"])
     assert got["orbit_divergence_krpm[0 V]"] is None
     assert "no divergence up to" in rec["result"]["message"]
+
+
+@pytest.mark.slow
+def test_points_without_any_output_are_failed_and_recorded(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A scan that starts above every onset (100 krpm at 150 V; the onset is near
+    55 krpm) gives no onset anywhere: each point is recorded as failed with its
+    reason, the run completes, the exit code is 3 and the percentiles are null."""
+    path = _write(
+        tmp_path,
+        "samples = 24\n" + COARSE + "[inputs]\n"
+        '"foil.loss_factor" = { distribution = "uniform", low = 0.05, high = 0.2 }\n'
+        '[outputs.stability]\nvoltages = ["150 V"]\n'
+        'speed_range = ["100000 rpm", "150000 rpm", "10000 rpm"]\n',
+    )
+    out = tmp_path / "r"
+    argv = ["uncertainty", str(path), "--out", str(out), "--workers", "1", "--json"]
+    assert main(argv) == 3
+    summary = json.loads(capsys.readouterr().out)
+    assert (summary["n_failed"], summary["n_ok"]) == (24, 0)
+    assert summary["outputs"]["onset_speed_krpm[150 V]"]["p50"] is None
+    ds = xr.load_dataset(out / "uncertainty.nc")
+    assert all("unstable already at 100000 rpm" in e for e in ds["error"].values)
+    assert len(list((out / "points").glob("*.json"))) == 24
