@@ -16,6 +16,7 @@ Run: .venv/bin/python benchmarks/bench_uncertainty.py [--samples N]
 from __future__ import annotations
 
 import argparse
+import math
 import tempfile
 import time
 from pathlib import Path
@@ -33,7 +34,8 @@ def _warm() -> None:
     from foilbearing.case import default_case
     from foilbearing.stability import onset_speed
 
-    onset_speed(default_case().with_voltages(150.0), [50000 * 3.14159 / 30, 60000 * 3.14159 / 30])
+    rpm = math.pi / 30.0
+    onset_speed(default_case().with_voltages(150.0), [50000 * rpm, 60000 * rpm])
 
 
 def main() -> None:

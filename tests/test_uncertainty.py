@@ -98,7 +98,7 @@ def test_log_uniform_is_uniform_in_the_logarithm(tmp_path: Path) -> None:
 
 def test_inputs_a_static_equilibrium_does_not_see_get_zero_indices(tmp_path: Path) -> None:
     """The equilibrium under a given load does not depend on the rotor mass or the
-    foil's loss factor (MODEL.md sections 3 and 5: both enter only the dynamics).
+    foil's loss factor: both enter only the dynamics (the foil damping, the journal's inertia).
     With the Saltelli design both estimators then give exactly 0, whatever N;
     the clearance, which sets the film, carries the variance."""
     path = _write(

@@ -45,6 +45,7 @@ __all__ = [
     "Shims",
     "default_case",
     "default_case_path",
+    "is_default_case_file",
     "load_case",
 ]
 
@@ -294,6 +295,11 @@ class Case:
 def default_case_path() -> Path:
     """Path of the built-in default case: the paper's C-GFB (MODEL.md section 1)."""
     return Path(str(resources.files("foilbearing") / "cases" / "cgfb.toml"))
+
+
+def is_default_case_file(path: str | Path | None) -> bool:
+    """Whether ``path`` is the built-in case file (the paper's C-GFB)."""
+    return path is not None and Path(path).resolve() == default_case_path().resolve()
 
 
 def default_case() -> Case:

@@ -75,6 +75,7 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
         Bad uncertainty file, case, sample count or results folder; nothing is
         computed then.
     """
+    from foilbearing.figures import write_uncertainty_figures
     from foilbearing.uncertainty import load_uncertainty, result_paths, run_uncertainty
 
     check_dask_args(args)
@@ -114,25 +115,6 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
     for f in figures:
         print(f"figure:  {f}")
     return 0 if summary["n_ok"] == summary["n_points"] else 3
-
-
-def write_uncertainty_figures(ds: Any, folder: Path) -> list[Path]:
-    """The band and index figures as PNG files in ``folder``."""
-    from foilbearing.io import save_figure
-    from foilbearing.paper import PAPER
-    from foilbearing.plots.uncertainty import plot_bands, plot_indices
-
-    paper = PAPER if _is_paper(ds) else None
-    return [
-        save_figure(plot_bands(ds, paper), folder / "uncertainty_bands.png"),
-        save_figure(plot_indices(ds), folder / "uncertainty_indices.png"),
-    ]
-
-
-def _is_paper(ds: Any) -> bool:
-    from foilbearing.case import default_case_path
-
-    return Path(str(ds.attrs.get("case_file", ""))).resolve() == default_case_path().resolve()
 
 
 def _fmt(x: float | None) -> str:

@@ -7,7 +7,12 @@ from typing import Any
 
 from foilbearing.case import Case
 
-__all__ = ["write_identification_figures", "write_static_figures", "write_structure_figures"]
+__all__ = [
+    "write_identification_figures",
+    "write_static_figures",
+    "write_structure_figures",
+    "write_uncertainty_figures",
+]
 
 
 def write_structure_figures(case: Case, folder: Path) -> list[Path]:
@@ -52,4 +57,22 @@ def write_static_figures(ds: Any, folder: Path) -> list[Path]:
         save_figure(sp.plot_actuator_pressure(ds), folder / "fig10_actuator_pressure.png"),
         save_figure(sp.plot_preload(ds), folder / "fig11_preload.png"),
         save_figure(sp.plot_eccentricity(ds), folder / "fig12_eccentricity.png"),
+    ]
+
+
+def write_uncertainty_figures(ds: Any, folder: Path) -> list[Path]:
+    """The uncertainty bands and indices (a ``foilbearing uncertainty`` dataset) as PNG files.
+
+    The paper's points are drawn on the bands only when the sample's case is the
+    built-in one (the paper's C-GFB).
+    """
+    from foilbearing.case import is_default_case_file
+    from foilbearing.io import save_figure
+    from foilbearing.paper import PAPER
+    from foilbearing.plots.uncertainty import plot_bands, plot_indices
+
+    paper = PAPER if is_default_case_file(ds.attrs.get("case_file")) else None
+    return [
+        save_figure(plot_bands(ds, paper), folder / "uncertainty_bands.png"),
+        save_figure(plot_indices(ds), folder / "uncertainty_indices.png"),
     ]

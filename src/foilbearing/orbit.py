@@ -128,9 +128,9 @@ class OrbitSettings:
             raise InputError(
                 f"steps_per_rev = {self.steps_per_rev}: at least 8 resolve the 1X motion"
             )
-        if self.order not in (1, 2, 3, 4):
+        if self.order not in range(1, _MAX_ORDER + 1):
             raise InputError(
-                f"order = {self.order!r}: the BDF stepper has orders 1 to 4 (default 3)"
+                f"order = {self.order!r}: the BDF stepper has orders 1 to {_MAX_ORDER} (default 3)"
             )
         if self.sample_rate < 4.0 * f_sync:
             raise InputError(

@@ -12,7 +12,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from foilbearing.case import Case
+from foilbearing.case import Case, is_default_case_file
 from foilbearing.io import write_text
 
 __all__ = ["run_study"]
@@ -94,7 +94,7 @@ def run_study(
     if case.actuators is not None:
         onsets = _stability_stage(case, out, results, stage)
 
-    if uncertainty != "none" and _is_paper_case(case):
+    if uncertainty != "none" and is_default_case_file(case.source):
         results["uncertainty"] = _uncertainty_stage(out, UNCERTAINTY_SAMPLES[uncertainty], stage)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
@@ -218,15 +218,9 @@ def _stability_stage(
     return onsets
 
 
-def _is_paper_case(case: Case) -> bool:
-    from foilbearing.case import default_case_path
-
-    return case.source is not None and Path(case.source).resolve() == default_case_path().resolve()
-
-
 def _uncertainty_stage(out: Path, samples: int | None, stage: Any) -> dict[str, Any]:
     """Envelopes and sensitivity indices of what the paper leaves open (issue 15)."""
-    from foilbearing.cli_uncertainty import write_uncertainty_figures
+    from foilbearing.figures import write_uncertainty_figures
     from foilbearing.uncertainty import load_uncertainty, run_uncertainty
 
     spec = load_uncertainty(samples=samples)

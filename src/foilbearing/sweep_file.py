@@ -25,7 +25,7 @@ from foilbearing.io import read_toml
 from foilbearing.sweep_analyses import ANALYSES, value_list
 from foilbearing.units import SI_UNITS, ureg
 
-__all__ = ["FIELD_KINDS", "Parameter", "SweepSpec", "load_sweep"]
+__all__ = ["FIELD_KINDS", "Parameter", "SweepSpec", "base_tables", "load_sweep", "write_field"]
 
 _KINDS_FIELDS = {
     "length": "bearing.radius bearing.length bearing.clearance foil.bump.thickness "
@@ -115,7 +115,7 @@ class SweepSpec:
         data = copy.deepcopy(self.base)
         ijk = np.unravel_index(index, self.shape)
         for p, i in zip(self.parameters, ijk, strict=True):
-            _write_field(data, p.path, p.raw[int(i)], p.index)
+            write_field(data, p.path, p.raw[int(i)], p.index)
         return data
 
     def point_case(self, index: int) -> Case:
@@ -162,18 +162,8 @@ def load_sweep(path: str | Path) -> SweepSpec:
     for key in data:
         if key not in allowed or (key in ANALYSES and key != analysis):
             raise InputError(f"unknown key {key!r} (allowed: {sorted(allowed)})", source=src)
-    case_ref = data.get("case", "default")
-    if not isinstance(case_ref, str):
-        raise InputError(f"case = {case_ref!r}: expected a path or 'default'", source=src)
-    case_path = default_case_path() if case_ref == "default" else path.parent / case_ref
-    base_case = load_case(case_path)  # errors name the case file
-    base = tomllib.loads(case_path.read_text(encoding="utf-8"))
+    case_path, base, base_case = base_tables(data, path)
     n_act = len(base_case.actuators.angles) if base_case.actuators is not None else 0
-    fixed = _flatten(data.get("set", {}), "set", src)
-    for name, value in fixed.items():
-        fpath, idx, _ = _resolve(name, n_act, "set", src)
-        _write_field(base, fpath, value, idx)
-    case_from_dict(copy.deepcopy(base), source=f"{src} [set]")
     table = data.get(analysis, {})
     if not isinstance(table, dict):
         raise InputError(f"[{analysis}] must be a table", source=src)
@@ -188,6 +178,29 @@ def load_sweep(path: str | Path) -> SweepSpec:
     for index in range(spec.n_points):
         spec.point_case(index)
     return spec
+
+
+def base_tables(data: dict[str, Any], path: Path) -> tuple[Path, dict[str, Any], Case]:
+    """The case a sweep or uncertainty file ``path`` (read as ``data``) starts from.
+
+    Its ``case`` (a path relative to the file, or ``"default"``) with the fixed
+    edits of its ``[set]`` table written in (any case field, ``voltage`` or
+    ``voltage[i]``), validated. Returns the case file's path, the edited tables
+    and the validated case.
+    """
+    src = str(path)
+    case_ref = data.get("case", "default")
+    if not isinstance(case_ref, str):
+        raise InputError(f"case = {case_ref!r}: expected a path or 'default'", source=src)
+    case_path = default_case_path() if case_ref == "default" else path.parent / case_ref
+    base_case = load_case(case_path)  # errors name the case file
+    base = tomllib.loads(case_path.read_text(encoding="utf-8"))
+    n_act = len(base_case.actuators.angles) if base_case.actuators is not None else 0
+    fixed = _flatten(data.get("set", {}), "set", src)
+    for name, value in fixed.items():
+        fpath, idx, _ = _resolve(name, n_act, "set", src)
+        write_field(base, fpath, value, idx)
+    return case_path, base, case_from_dict(copy.deepcopy(base), source=f"{src} [set]")
 
 
 def _flatten(table: Any, where: str, src: str) -> dict[str, Any]:
@@ -270,7 +283,8 @@ def _coordinates(raw: list[Any], values: tuple[Any, ...], kind: str) -> tuple[st
     return unit or si, coords
 
 
-def _write_field(data: dict[str, Any], path: str, value: Any, index: int | None) -> None:
+def write_field(data: dict[str, Any], path: str, value: Any, index: int | None = None) -> None:
+    """Write ``value`` at the dotted ``path`` of the case tables (actuator ``index`` of a list)."""
     *tables, key = path.split(".")
     node = data
     for t in tables:

@@ -28,7 +28,7 @@ STATIC_QUANTITIES = (
     "power_loss_W",
 )
 STABILITY_QUANTITIES = ("onset_speed_krpm", "whirl_frequency_Hz")
-#: Readouts of a speed-up (the orbit's signal analysis, MODEL.md section 5).
+#: Readouts of a speed-up (the orbit's signal analysis, :mod:`foilbearing.orbit_analysis`).
 ORBIT_QUANTITIES = (
     "orbit_onset_krpm",
     "orbit_whip_frequency_Hz",

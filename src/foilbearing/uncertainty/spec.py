@@ -11,7 +11,6 @@ import copy
 import hashlib
 import json
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -19,11 +18,11 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
-from foilbearing.case import case_from_dict, default_case_path, load_case
+from foilbearing.case import case_from_dict
 from foilbearing.errors import InputError
 from foilbearing.io import read_toml
 from foilbearing.sweep_analyses import speed_scan, value_list
-from foilbearing.sweep_file import FIELD_KINDS
+from foilbearing.sweep_file import FIELD_KINDS, base_tables, write_field
 from foilbearing.uncertainty.design import ESTIMATORS, SAMPLERS, minimum_samples, unit_sample
 from foilbearing.units import SI_UNITS, ureg
 
@@ -132,7 +131,7 @@ class UncertaintySpec:
         """The case tables of sample point ``index`` (a new dict, SI numbers written in)."""
         data = copy.deepcopy(self.base)
         for k, inp in enumerate(self.inputs):
-            _write_field(data, inp.name, float(self.design[index, k]))
+            write_field(data, inp.name, float(self.design[index, k]))
         return data
 
     def describe(self) -> dict[str, Any]:
@@ -213,22 +212,7 @@ def load_uncertainty(
     for key in data:
         if key not in _TOP_KEYS:
             raise InputError(f"unknown key {key!r} (allowed: {sorted(_TOP_KEYS)})", source=src)
-    case_ref = data.get("case", "default")
-    if not isinstance(case_ref, str):
-        raise InputError(f"case = {case_ref!r}: expected a path or 'default'", source=src)
-    case_path = default_case_path() if case_ref == "default" else path.parent / case_ref
-    load_case(case_path)  # errors name the case file
-    base = tomllib.loads(case_path.read_text(encoding="utf-8"))
-    fixed = data.get("set", {})
-    if not isinstance(fixed, dict):
-        raise InputError("[set] must be a table of 'field = value' entries", source=src)
-    for name, value in _flatten_set(fixed):
-        if name not in FIELD_KINDS:
-            raise InputError(
-                f"set.{name}: unknown field (allowed: {', '.join(FIELD_KINDS)})", source=src
-            )
-        _write_field(base, name, value)
-    case = case_from_dict(copy.deepcopy(base), source=f"{src} [set]")
+    case_path, base, case = base_tables(data, path)
     sampler = _choice(data, "sampler", "sobol", SAMPLERS, src)
     estimator = _choice(data, "estimator", "sobol", ESTIMATORS, src)
     seed = data.get("seed", 1)
@@ -300,16 +284,6 @@ def _inputs(table: Any, base: dict[str, Any], src: str) -> tuple[UncertainInput,
         out.append(UncertainInput(name, kind, unit, scale, dist, dict(spec)))
         _check_reach(name, dist, base, src)
     return tuple(out)
-
-
-def _flatten_set(table: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
-    out: list[tuple[str, Any]] = []
-    for key, value in table.items():
-        if isinstance(value, dict):
-            out.extend(_flatten_set(value, f"{prefix}{key}."))
-        else:
-            out.append((f"{prefix}{key}", value))
-    return out
 
 
 def _flatten_inputs(table: dict[str, Any], prefix: str = "") -> list[tuple[str, dict[str, Any]]]:
@@ -384,7 +358,7 @@ def _check_reach(name: str, dist: Distribution, base: dict[str, Any], src: str) 
     """The case must be valid at both ends of the input's reach (others at the base case)."""
     for end, value in zip(("low", "high"), dist.reach, strict=True):
         data = copy.deepcopy(base)
-        _write_field(data, name, value)
+        write_field(data, name, value)
         try:
             case_from_dict(data, source=src)
         except InputError as exc:
@@ -496,11 +470,3 @@ def _voltages(table: dict[str, Any], case: Any, where: str, src: str) -> list[fl
                 source=src,
             )
     return list(volts)
-
-
-def _write_field(data: dict[str, Any], path: str, value: Any) -> None:
-    *tables, key = path.split(".")
-    node = data
-    for t in tables:
-        node = node.setdefault(t, {})
-    node[key] = value
