@@ -22,7 +22,7 @@ from foilbearing.static import solve_equilibrium
 from foilbearing.sweep import run_point
 from foilbearing.uncertainty import load_uncertainty, run_uncertainty, summarise, summary_json
 from foilbearing.uncertainty.design import unit_sample
-from foilbearing.uncertainty.evaluate import evaluate_sample
+from foilbearing.uncertainty.evaluate import ONSET_REL_TOL, evaluate_sample
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "uncertainty_paper.toml"
 COARSE = "[set]\ngrid.n_theta = 48\ngrid.n_z = 6\n"
@@ -320,9 +320,9 @@ def test_the_linear_onset_does_not_see_the_imbalance_and_falls_with_rotor_mass(
     assert abs(st - 1.0) <= float(onset["total_order_conf"].sel(input="rotor.mass")), st
     mass = ds["x"].sel(input="rotor.mass").values
     order = np.argsort(mass)
-    # within Brent's tolerance (1e-4 of the bracket's top, onset_speed): two runs differ by 2
+    # within Brent's tolerance (ONSET_REL_TOL of the bracket's top): two runs differ by 2
     y = onset["y"].values[order]
-    assert np.all(np.diff(y) <= 2e-4 * y.max())
+    assert np.all(np.diff(y) <= 2 * ONSET_REL_TOL * y.max())
     assert y[0] > y[-1] + 10 * 2e-4 * y.max()
 
 

@@ -190,6 +190,7 @@ def onset_speed(
     *,
     model: FilmModel | None = None,
     progress: Callable[[str], None] | None = None,
+    rel_tol: float = 1e-4,
 ) -> OnsetResult:
     """Lowest speed at which the least stable whirl mode's log decrement becomes negative.
 
@@ -201,6 +202,8 @@ def onset_speed(
         Increasing scan speeds, rad/s (default 5 to 150 krpm in 5 krpm steps).
     model
         Film model of the case (built if omitted).
+    rel_tol
+        Brent's tolerance on the onset, relative to the bracket's upper speed.
     """
     if speeds is None:
         speeds = [rpm * RPM for rpm in range(5_000, 150_001, 5_000)]
@@ -243,7 +246,7 @@ def onset_speed(
                     modes[x] = scan.mode(x)
                 return modes[x].log_decrement
 
-            onset = brentq(f, lo, hi, xtol=1e-4 * hi, rtol=1e-6)
+            onset = brentq(f, lo, hi, xtol=rel_tol * hi, rtol=1e-6)
             f(onset)
             at = modes[onset]
             return OnsetResult(
