@@ -6,20 +6,13 @@ import json
 from pathlib import Path
 
 import pytest
-import tomlkit
 
-from foilbearing.case import default_case_path
 from foilbearing.cli import main
 
 
 @pytest.fixture()
-def coarse_case(tmp_path: Path) -> Path:
-    data = tomlkit.parse(default_case_path().read_text())
-    data["grid"]["n_theta"] = 32
-    data["grid"]["n_z"] = 4
-    path = tmp_path / "coarse.toml"
-    path.write_text(tomlkit.dumps(data))
-    return path
+def coarse_case(write_case) -> Path:
+    return write_case("coarse", n_theta=32, n_z=4)
 
 
 def test_orbit_json_netcdf_and_resume(coarse_case: Path, tmp_path: Path, capsys) -> None:

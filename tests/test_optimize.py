@@ -12,7 +12,7 @@ import pytest
 import tomlkit
 
 import foilbearing.optimize as opt
-from foilbearing.case import default_case_path, load_case
+from foilbearing.case import load_case
 from foilbearing.cli_optimize import cmd_optimize, register
 from foilbearing.errors import InputError
 
@@ -20,13 +20,8 @@ RPM = math.pi / 30.0
 
 
 @pytest.fixture(scope="module")
-def coarse_path(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    data = tomlkit.parse(default_case_path().read_text())
-    data["grid"]["n_theta"] = 32
-    data["grid"]["n_z"] = 4
-    path = tmp_path_factory.mktemp("cases") / "coarse.toml"
-    path.write_text(tomlkit.dumps(data))
-    return path
+def coarse_path(write_case) -> Path:
+    return write_case("coarse", n_theta=32, n_z=4)
 
 
 @pytest.fixture(scope="module")

@@ -280,3 +280,27 @@ def test_paper_protocol_with_a_light_imbalance_control_delays_the_divergence() -
         div[volts] = analyse_orbit(res).divergence_speed_rpm or math.inf
     assert 43.6e3 < div[0.0] < 80e3
     assert div[150.0] > 1.05 * div[0.0]
+
+
+def test_power_loss_at_rest_is_the_static_power_loss() -> None:
+    """Without imbalance the journal rests at the static equilibrium, and the orbit's power
+    loss (the static drag law on the orbit's own pressure and film) equals the static one:
+    the two analyses share the discretisation, so they agree to round-off. With a voltage
+    ramp the power loss follows the preload (measured: more preload, more drag)."""
+    from foilbearing.orbit_analysis import mean_power_loss
+
+    case = coarse(100.0, imbalance=0.0)
+    w = 30_000 * RPM
+    static = solve_equilibrium(case, speed=w)
+    run = simulate(case, constant_speed(w, 0.02), progress=False)
+    assert run.power_loss is not None and np.all(np.isfinite(run.power_loss))
+    assert run.power_loss == pytest.approx(static.power_loss, rel=1e-7)
+    assert mean_power_loss(run) == pytest.approx(static.power_loss, rel=1e-7)
+    ramp = simulate(
+        case, constant_speed(w, 0.5), voltage_ramp(0.0, 0.03, 150.0, 0.0), progress=False
+    )
+    assert ramp.power_loss is not None
+    high = solve_equilibrium(case.with_voltages(150.0), speed=w).power_loss
+    low = solve_equilibrium(case.with_voltages(0.0), speed=w).power_loss
+    assert ramp.power_loss[0] == pytest.approx(low, rel=1e-3)
+    assert ramp.power_loss[-1] == pytest.approx(high, rel=1e-3)

@@ -199,7 +199,7 @@ def test_no_summary_is_an_input_error(tmp_path: Path) -> None:
 
 @pytest.fixture(scope="module")
 def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The study without orbits (about 15 s), once for this module."""
+    """The study without orbits (about 50 s, 35 of them the voltage schedule), once."""
     from foilbearing import default_case
     from foilbearing.study import run_study
 
@@ -223,7 +223,12 @@ def test_study_page_is_self_contained(study_out: Path) -> None:
     body = html.unescape("".join(page.text))
     for row in summary["paper_comparison"]:
         assert row["quantity"] in body and row["ours"] in body
-    order = [k for k in ("identification", "structure", "static", "coefficients", "stability")]
+    order = ["identification", "structure", "static", "coefficients", "stability", "schedule"]
+    # the schedule's section: every grid speed in its table, its figure embedded
+    sched = summary["schedule"]["schedule"]
+    assert len(sched["speeds_rpm"]) == 17 and "schedule.png" in str(summary["schedule"])
+    section = text[text.index('<section id="schedule"') :]
+    assert all(f"<td class=num>{w / 1e3:.0f}</td>" in section for w in sched["speeds_rpm"])
     assert [text.index(f'<section id="{k}"') for k in order] == sorted(
         text.index(f'<section id="{k}"') for k in order
     )

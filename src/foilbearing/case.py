@@ -43,13 +43,19 @@ __all__ = [
     "Operation",
     "Rotor",
     "Shims",
+    "TableReader",
     "default_case",
     "default_case_path",
     "is_default_case_file",
     "load_case",
+    "per_item_quantities",
 ]
 
 GRAVITY = 9.80665  # m/s², standard gravity
+RPM = math.pi / 30.0  # rad/s per rpm
+#: Default top of the speeds an analysis may be asked for, rad/s (150 000 rpm, the top
+#: of the default onset scan); a case sets its own with ``[operation] max_speed``.
+MAX_SPEED_DEFAULT = 150_000 * RPM
 
 
 @dataclass(frozen=True)
@@ -198,10 +204,11 @@ class Rotor:
 
 @dataclass(frozen=True)
 class Operation:
-    """Operating point: static load along +X and rotor speed."""
+    """Operating point: static load along +X and rotor speed, and the speeds analyses may use."""
 
     load: float  # N
     speed: float  # rad/s
+    max_speed: float = MAX_SPEED_DEFAULT  # rad/s, the top of any speed range asked for
 
 
 @dataclass(frozen=True)
@@ -336,7 +343,7 @@ def load_case(path: str | Path | None = None) -> Case:
 
 def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
     """Build and validate a :class:`Case` from the parsed TOML tables."""
-    root = _Table(data, "", source)
+    root = TableReader(data, "", source)
     title = root.string("title", "")
     bearing_t = root.table("bearing")
     bearing = Bearing(
@@ -370,8 +377,15 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
     operation = Operation(
         load=op_t.nonnegative("load", "force"),
         speed=op_t.positive("speed", "speed"),
+        max_speed=op_t.positive("max_speed", "speed", default=MAX_SPEED_DEFAULT),
     )
     op_t.done()
+    if operation.speed > operation.max_speed:
+        raise InputError(
+            f"operation.speed = {operation.speed / RPM:.0f} rpm is above operation.max_speed = "
+            f"{operation.max_speed / RPM:.0f} rpm: raise max_speed or lower the speed",
+            source=source,
+        )
     grid = Grid()
     if "grid" in data:
         grid_t = root.table("grid")
@@ -384,7 +398,7 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
     return Case(bearing, gas, rotor, operation, grid, foil, actuators, shims, title, source)
 
 
-def _read_foil(t: _Table) -> Foil:
+def _read_foil(t: TableReader) -> Foil:
     loss = t.nonnegative("loss_factor", "dimensionless", default=0.0)
     if loss > 1.0:
         raise t.error("loss_factor", loss, "0 to 1 (0.05-0.2 is typical for bump foils)")
@@ -424,11 +438,11 @@ def _read_foil(t: _Table) -> Foil:
     return Foil(bump_stiffness=k_b, loss_factor=loss, bump=bump, subambient=subambient)
 
 
-def _read_actuators(t: _Table, bearing: Bearing) -> Actuators:
+def _read_actuators(t: TableReader, bearing: Bearing) -> Actuators:
     angles = t.angles("angles")
     n = len(angles)
     volts = t.raw("voltages", default=0.0)
-    voltages = _per_item_quantities(volts, n, "voltage", t, "voltages")
+    voltages = per_item_quantities(volts, n, "voltage", t, "voltages")
     act = Actuators(
         angles=angles,
         stinger_arc=t.angle_arc("stinger_arc"),
@@ -473,11 +487,11 @@ def _check_actuators(act: Actuators, bearing: Bearing, source: str | None) -> No
             )
 
 
-def _read_shims(t: _Table, bearing: Bearing) -> Shims:
+def _read_shims(t: TableReader, bearing: Bearing) -> Shims:
     angles = t.angles("angles")
     arc = t.angle_arc("arc")
     raw = t.raw("thickness")
-    thick = _per_item_quantities(raw, len(angles), "length", t, "thickness")
+    thick = per_item_quantities(raw, len(angles), "length", t, "thickness")
     for i, d in enumerate(thick):
         if not 0.0 <= d < bearing.clearance:
             raise InputError(
@@ -490,7 +504,7 @@ def _read_shims(t: _Table, bearing: Bearing) -> Shims:
     return Shims(angles, arc, thick)
 
 
-def _check_arcs(angles: tuple[float, ...], arc: float, t: _Table, name: str) -> None:
+def _check_arcs(angles: tuple[float, ...], arc: float, t: TableReader, name: str) -> None:
     if len(angles) < 2:
         return
     s = np.sort(np.asarray(angles))
@@ -516,7 +530,10 @@ def _per_item(value: Any, n: int, field: str, source: str | None) -> tuple[float
     return items
 
 
-def _per_item_quantities(raw: Any, n: int, kind: str, t: _Table, name: str) -> tuple[float, ...]:
+def per_item_quantities(
+    raw: Any, n: int, kind: str, t: TableReader, name: str
+) -> tuple[float, ...]:
+    """Field ``name`` of table ``t`` as ``n`` SI values: one quantity for all, or a list of 1 or n."""
     if isinstance(raw, list):
         if len(raw) not in (1, n):
             raise t.error(name, raw, f"1 or {n} values (one per angle)")
@@ -528,7 +545,7 @@ def _per_item_quantities(raw: Any, n: int, kind: str, t: _Table, name: str) -> t
     return (parse_quantity(raw, kind, field=f"{t.prefix}{name}", source=t.source),) * n
 
 
-class _Table:
+class TableReader:
     """One TOML table being read: tracks the fields used, so unknown ones are reported."""
 
     def __init__(self, data: Any, name: str, source: str | None) -> None:
@@ -552,11 +569,11 @@ class _Table:
             return default
         return self.data[key]
 
-    def table(self, key: str) -> _Table:
+    def table(self, key: str) -> TableReader:
         if key not in self.data:
             raise InputError(f"table [{self.prefix}{key}] is missing", source=self.source)
         self.used.add(key)
-        return _Table(self.data[key], f"{self.prefix}{key}", self.source)
+        return TableReader(self.data[key], f"{self.prefix}{key}", self.source)
 
     def string(self, key: str, default: str) -> str:
         value = self.raw(key, default)

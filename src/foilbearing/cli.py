@@ -162,6 +162,7 @@ def _parser() -> argparse.ArgumentParser:
 
     from foilbearing.cli_optimize import register as register_optimize
     from foilbearing.cli_orbit import register as register_orbit
+    from foilbearing.cli_schedule import register as register_schedule
     from foilbearing.cli_sweep import register as register_sweep
     from foilbearing.cli_uncertainty import register as register_uncertainty
 
@@ -169,6 +170,7 @@ def _parser() -> argparse.ArgumentParser:
     register_sweep(sub)
     register_uncertainty(sub)
     register_optimize(sub)
+    register_schedule(sub)
 
     study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
     add_case_arg(study)
@@ -185,6 +187,13 @@ def _parser() -> argparse.ArgumentParser:
         default="quick",
         help="envelopes of what the paper leaves open, on the paper's case: quick (56 "
         "evaluations, ~3 min on 2 cores), full (256) or none (default quick)",
+    )
+    study.add_argument(
+        "--schedule",
+        choices=("full", "none"),
+        default="full",
+        help="the voltage schedule for a controller (C-GFB), verified in speed-ups when "
+        "--orbits full (default full)",
     )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=_cmd_study)
@@ -492,6 +501,7 @@ def _cmd_study(args: argparse.Namespace) -> int:
         progress=not args.json,
         orbits=args.orbits == "full",
         uncertainty=args.uncertainty,
+        schedule=args.schedule == "full",
     )
     if args.json:
         _emit(summary)

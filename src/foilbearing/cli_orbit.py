@@ -52,6 +52,13 @@ def register(sub: Any) -> None:
         metavar="K=V,...",
         help="closed loop: threshold=2um,target=150V,slew=1000V/s,window=0.1s",
     )
+    p.add_argument(
+        "--voltage-schedule",
+        default=None,
+        metavar="SCHEDULE.toml",
+        help="voltages per speed from a schedule file (foilbearing schedule --out), followed "
+        "at the file's slew rate",
+    )
     p.add_argument("--stop-time", default=None, help="end the run at this simulated time, e.g. 5s")
     p.add_argument(
         "--steps-per-rev",
@@ -86,6 +93,7 @@ def run_spec_from_args(args: argparse.Namespace) -> dict[str, Any]:
         "duration": args.duration,
         "voltage_ramp": args.voltage_ramp,
         "controller": args.controller,
+        "voltage_schedule": _schedule_spec(args.voltage_schedule),
         "stop_time": args.stop_time,
         "steps_per_rev": (
             OrbitSettings.steps_per_rev if args.steps_per_rev is None else args.steps_per_rev
@@ -94,6 +102,16 @@ def run_spec_from_args(args: argparse.Namespace) -> dict[str, Any]:
         "sample_rate": args.sample_rate,
         "subambient": args.subambient,
     }
+
+
+def _schedule_spec(path: str | None) -> dict[str, str] | None:
+    """The schedule file's path and text: a resumed run uses the text it started with."""
+    if path is None:
+        return None
+    from foilbearing.io import read_toml
+
+    read_toml(Path(path), "schedule file")  # a missing or broken file fails here, in one line
+    return {"path": str(path), "text": Path(path).read_text(encoding="utf-8")}
 
 
 def _q(text: str, kind: str, field: str) -> float:
@@ -131,8 +149,21 @@ def _build(spec: dict[str, Any]) -> tuple[Any, ...]:
             _q(parts[2], "angular_acceleration", "--speed-ramp ACCELERATION"),
         )
     program: Any = None
-    if spec["voltage_ramp"] is not None and spec["controller"] is not None:
-        raise InputError("--voltage-ramp and --controller: choose one")
+    chosen = [
+        f"--{k.replace('_', '-')}"
+        for k in ("voltage_ramp", "controller", "voltage_schedule")
+        if spec.get(k) is not None
+    ]
+    if len(chosen) > 1:
+        raise InputError(f"{' and '.join(chosen)}: choose one voltage program")
+    if spec.get("voltage_schedule") is not None:
+        import tomllib
+
+        from foilbearing.schedule_file import parse_schedule
+
+        given = spec["voltage_schedule"]
+        schedule = parse_schedule(tomllib.loads(given["text"]), case, given["path"])
+        program = schedule.program(profile)
     if spec["voltage_ramp"] is not None:
         parts = spec["voltage_ramp"].split(":")
         if len(parts) != 3:

@@ -26,11 +26,21 @@ from scipy.stats import qmc
 from foilbearing.case import Case
 from foilbearing.errors import InputError, SolverError
 
-__all__ = ["PAPER_VOLTAGES", "VoltageOptimum", "maximize_onset", "minimize_drag"]
+__all__ = [
+    "FAILED_MERIT",
+    "PAPER_VOLTAGES",
+    "EvaluationCache",
+    "VoltageOptimum",
+    "local_search",
+    "maximize_onset",
+    "minimize_drag",
+    "start_points",
+    "voltage_box",
+]
 
 RPM = math.pi / 30.0
 PAPER_VOLTAGES = (0.0, 50.0, 100.0, 150.0)  # V, the paper's equal-voltage choices
-_FAILED = 1e30  # merit of a point without a result; finite so that Powell's line search copes
+FAILED_MERIT = 1e30  # merit of a point without a result; finite so that Powell's line search copes
 Voltages = tuple[float, ...]
 
 
@@ -114,11 +124,11 @@ def _finite(x: float) -> float | None:
     return x if math.isfinite(x) else None
 
 
-class _BudgetSpent(Exception):
+class BudgetSpent(Exception):
     """Raised inside the local search when the evaluation budget is used up."""
 
 
-class _Cache:
+class EvaluationCache:
     """Evaluations by voltage set (rounded to 1 mV), with a hard cap on their number.
 
     ``evaluate(v)`` returns ``(value, merit)``: the objective in SI (NaN if the
@@ -145,9 +155,9 @@ class _Cache:
         v = self.key(x)
         if v not in self.points:
             if len(self.points) >= self.max_evaluations:
-                raise _BudgetSpent
+                raise BudgetSpent
             value, merit = self.evaluate(v)
-            self.points[v] = (value, merit if math.isfinite(merit) else _FAILED)
+            self.points[v] = (value, merit if math.isfinite(merit) else FAILED_MERIT)
             if self.progress is not None:
                 self.progress(f"{len(self.points):3d}: {list(v)} V -> {self.show(value)}")
         return self.points[v][1]
@@ -157,8 +167,8 @@ class _Cache:
         return min(keys, key=lambda v: self.points[v][1])
 
 
-def _search(
-    cache: _Cache, starts: Sequence[Voltages], method: str, xatol: float, fatol: float
+def local_search(
+    cache: EvaluationCache, starts: Sequence[Voltages], method: str, xatol: float, fatol: float
 ) -> tuple[bool, str]:
     """Evaluate ``starts``, then a bounded local search from the best; returns (converged, msg)."""
     lo, hi = cache.lo, cache.hi
@@ -181,14 +191,14 @@ def _search(
             options = {"xtol": xatol / max(float(np.max(hi - lo)), 1.0), "ftol": 1e-6}
         res = minimize(cache.merit, x0, method=method, bounds=bounds, options=options)
         return bool(res.success), f"{method}: {res.message}"
-    except _BudgetSpent:
+    except BudgetSpent:
         return False, (
             f"stopped at the budget of {cache.max_evaluations} evaluations before the "
             f"{method} tolerances were met: raise max_evaluations to go on"
         )
 
 
-def _box(
+def voltage_box(
     case: Case, bounds: Sequence[tuple[float, float]] | None, method: str, max_evaluations: int
 ) -> tuple[np.ndarray, ...]:
     """Lower and upper voltage bounds, V, after checking the inputs (before any work)."""
@@ -216,7 +226,7 @@ def _box(
     return lo, hi
 
 
-def _starts(lo: np.ndarray, hi: np.ndarray, n_random: int) -> tuple[list[Voltages], ...]:
+def start_points(lo: np.ndarray, hi: np.ndarray, n_random: int) -> tuple[list[Voltages], ...]:
     """The paper's equal voltages clipped to the box, then a seeded Latin hypercube."""
     equal = list(dict.fromkeys(tuple(np.clip(v, lo, hi).tolist()) for v in PAPER_VOLTAGES))
     lhs = qmc.scale(qmc.LatinHypercube(d=lo.size, seed=0).random(n_random), lo, hi + 1e-12)
@@ -295,7 +305,7 @@ def maximize_onset(
     -------
     VoltageOptimum with ``value`` the onset speed, rad/s.
     """
-    lo, hi = _box(case, bounds, method, max_evaluations)
+    lo, hi = voltage_box(case, bounds, method, max_evaluations)
     default = [r * RPM for r in range(5_000, 150_001, 5_000)]
     scan = np.asarray(sorted(default if speeds is None else speeds), dtype=float)
     if scan.size < 2 or not scan[0] > 0.0 or not np.all(np.isfinite(scan)):
@@ -307,9 +317,11 @@ def maximize_onset(
         onset, stable[v] = (math.nan, False) if c is None else _onset_of(c, scan)
         return onset, -onset / (1000.0 * RPM)  # minimise −onset in krpm
 
-    cache = _Cache(evaluate, lo, hi, max_evaluations, progress, lambda x: f"{x / RPM:.0f} rpm")
-    equal, extra = _starts(lo, hi, n_random)
-    converged, message = _search(cache, equal + extra, method, xatol=0.5, fatol=1e-3)
+    cache = EvaluationCache(
+        evaluate, lo, hi, max_evaluations, progress, lambda x: f"{x / RPM:.0f} rpm"
+    )
+    equal, extra = start_points(lo, hi, n_random)
+    converged, message = local_search(cache, equal + extra, method, xatol=0.5, fatol=1e-3)
     return _optimum("onset", cache, equal, converged, message, stable=stable)
 
 
@@ -358,7 +370,7 @@ def minimize_drag(
     from foilbearing.film import film_model
     from foilbearing.static import solve_equilibrium
 
-    lo, hi = _box(case, bounds, method, max_evaluations)
+    lo, hi = voltage_box(case, bounds, method, max_evaluations)
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError(f"speed = {speed!r} rad/s: expected a finite speed > 0")
     if load is not None:
@@ -377,21 +389,23 @@ def minimize_drag(
         except SolverError:
             st = None
         if st is None or not st.converged:
-            return math.nan, _FAILED
+            return math.nan, FAILED_MERIT
         films[v] = st.min_film
         deficit = max(0.0, (h_req - st.min_film) / case.bearing.clearance)
         merit = st.drag_torque * 1e3 * (1.0 + 100.0 * deficit) + 10.0 * deficit  # mN·m
         return (st.drag_torque if deficit == 0.0 else math.nan), merit
 
-    cache = _Cache(evaluate, lo, hi, max_evaluations, progress, lambda x: f"{x * 1e3:.5f} mN·m")
-    equal, extra = _starts(lo, hi, n_random)
-    converged, message = _search(cache, equal + extra, method, xatol=0.5, fatol=1e-5)
+    cache = EvaluationCache(
+        evaluate, lo, hi, max_evaluations, progress, lambda x: f"{x * 1e3:.5f} mN·m"
+    )
+    equal, extra = start_points(lo, hi, n_random)
+    converged, message = local_search(cache, equal + extra, method, xatol=0.5, fatol=1e-5)
     return _optimum("drag", cache, equal, converged, message, speed=speed, films=films)
 
 
 def _optimum(
     objective: Literal["onset", "drag"],
-    cache: _Cache,
+    cache: EvaluationCache,
     equal: Sequence[Voltages],
     converged: bool,
     message: str,

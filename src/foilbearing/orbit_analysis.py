@@ -26,7 +26,7 @@ from foilbearing.signals import (
     waterfall,
 )
 
-__all__ = ["OrbitAnalysis", "analyse_orbit", "write_orbit_figures"]
+__all__ = ["OrbitAnalysis", "analyse_orbit", "mean_power_loss", "write_orbit_figures"]
 
 #: Sub-synchronous amplitude that counts as onset: 1 µm, 1 % of the paper's clearance.
 ONSET_THRESHOLD = 1e-6
@@ -57,8 +57,25 @@ class OrbitAnalysis:
             "status": result.status,
             "message": result.message,
             "end_speed_rpm": float(result.speed[-1] * 30 / math.pi) if result.speed.size else None,
+            "mean_power_loss_W": mean_power_loss(result),
             "steps": result.steps,
         }
+
+
+def mean_power_loss(result: OrbitResult, until_rpm: float | None = None) -> float | None:
+    """Time average of the film's power loss over the run (up to ``until_rpm``), W.
+
+    None for a run without the power loss recorded or without samples.
+    """
+    p = result.power_loss
+    if p is None or result.time.size < 2:
+        return None
+    keep = np.isfinite(p)
+    if until_rpm is not None:
+        keep &= result.speed * 30 / math.pi <= until_rpm
+    if keep.sum() < 2:
+        return None
+    return float(np.trapezoid(p[keep], result.time[keep]) / np.ptp(result.time[keep]))
 
 
 def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) -> OrbitAnalysis:

@@ -71,6 +71,7 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
         int(a["factorizations"]),
         int(a["newton_iterations"]),
         checkpoint=checkpoint,
+        power_loss=ds.power_loss.values if "power_loss" in ds else None,
     )
     if result.status in ("completed", "contact"):
         raise InputError(

@@ -34,6 +34,7 @@ STAGES: tuple[tuple[str, str], ...] = (
     ("stability", "Linear stability"),
     ("orbits", "Speed-up orbits (Figs. 13-15)"),
     ("uncertainty", "What the unknowns allow: uncertainty envelopes (beyond the paper)"),
+    ("schedule", "A voltage schedule for the controller (beyond the paper)"),
 )
 
 _SUBSYNC = "Fig. 15: filtered sub-synchronous amplitude of the vertical journal motion (oil whip)."
@@ -63,6 +64,13 @@ _CAPTIONS = {
     "never fitted to them (its whip frequencies come from nonlinear speed-ups).",
     "uncertainty_indices.png": "Beyond the paper: first-order (filled) and total (outline) "
     "sensitivity indices of each uncertain input, with 95 % bootstrap half-widths.",
+    "schedule.png": "Beyond the paper: the voltage schedule, least-drag actuator voltages "
+    "with a log decrement of at least the margin at each speed; its log decrement and its "
+    "power loss beside a constant 150 V.",
+    "schedule_subsync.png": "Beyond the paper: sub-synchronous amplitude of the paper's "
+    "speed-up (1 g·mm) on the schedule, beside 0 V, 150 V from the start and the paper's "
+    "ramp at 6.0-6.5 s.",
+    "schedule_power.png": "Beyond the paper: film power loss during the same four speed-ups.",
     "fig15_subsync.png": _SUBSYNC,
     "fig15_subsync_control.png": _SUBSYNC + " Variant: control before our 0 V run's divergence.",
     "fig15_subsync_1gmm.png": _SUBSYNC + " Variant: the protocol as published, 1 g·mm imbalance.",
@@ -439,6 +447,67 @@ def _uncertainty(d: dict[str, Any], case: dict[str, Any]) -> str:
     return intro + _table(heads, rows, num=(1, 2, 3))
 
 
+def _schedule(d: dict[str, Any], case: dict[str, Any]) -> str:
+    sched = d.get("schedule") or {}
+    limit = sched.get("limit_speed_rpm")
+    speeds = sched.get("speeds_rpm") or []
+    top = f"{speeds[-1] / 1e3:.0f} krpm" if speeds else "the top speed"
+    note = (
+        f'<p class="note">At each speed the voltages of least power loss with a log decrement '
+        f"of the least stable whirl mode of at least {_f(sched.get('margin'), 'g')} (linear "
+        "analysis), smoothed for an amplifier slew rate of "
+        f"{_f(sched.get('slew_rate_V_per_s'), 'g')} V/s during a speed-up at "
+        f"{_f(sched.get('acceleration_rad_per_s2'), 'g')} rad/s². "
+        + (
+            f"No voltage keeps the rotor stable above {limit / 1e3:.1f} krpm."
+            if limit is not None
+            else f"The schedule keeps the margin up to {top}."
+        )
+        + f" File: <code>{escape(Path(str(d.get('schedule_file', 'schedule.toml'))).name)}</code> "
+        "(<code>foilbearing orbit --voltage-schedule</code> runs it).</p>"
+    )
+    rows = []
+    for k, w in enumerate(speeds):
+
+        def at(key: str, k: int = k) -> Any:
+            values = sched.get(key) or []
+            return values[k] if k < len(values) else None
+
+        rows.append(
+            [
+                _f(w / 1e3, ".0f"),
+                _f(at("voltages_V"), ".1f"),
+                _f(at("log_decrement"), ".3f"),
+                _f(at("whirl_frequency_Hz"), ".0f"),
+                _f(at("power_loss_W"), ".2f"),
+                _f(at("power_loss_150V_W"), ".2f"),
+            ]
+        )
+    heads = ["speed (krpm)", "voltages (V)", "log dec", "whirl (Hz)", "power (W)", "at 150 V (W)"]
+    body = note + _table(heads, rows, num=(0, 2, 3, 4, 5))
+    ver = d.get("verification")
+    if isinstance(ver, dict):
+        common = (ver.get("common_range_rpm") or [None, None])[1]
+        body += (
+            f'<p class="note">The paper\'s speed-up ({escape(str(ver.get("speed_up")))}) with '
+            f"{_f(ver.get('imbalance_g_mm'), 'g')} g·mm imbalance on four voltage programs. "
+            "Onset: sustained sub-synchronous motion (nonlinear, read from the run; not the "
+            "linear onset). Mean power: over each run, and over the speeds all four reach "
+            f"(3 to {_f(None if common is None else common / 1e3, '.1f')} krpm).</p>"
+        )
+        cols: list[Column] = [
+            ("run", _key("run"), ""),
+            ("sub-sync onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+            ("whip (Hz)", _key("whip_frequency_Hz"), ".0f"),
+            ("divergence (krpm)", _krpm("divergence_speed_rpm"), ".1f"),
+            ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
+            ("mean power, run (W)", _key("mean_power_loss_W"), ".2f"),
+            ("mean power, common speeds (W)", _key("mean_power_loss_common_W"), ".2f"),
+        ]
+        body += _records([r for r in ver.get("runs", []) if isinstance(r, dict)], cols)
+    return body
+
+
 _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "identification": _identification,
     "structure": _structure,
@@ -447,6 +516,7 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "stability": _stability,
     "orbits": _orbits,
     "uncertainty": _uncertainty,
+    "schedule": _schedule,
 }
 
 

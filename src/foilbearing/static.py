@@ -24,7 +24,13 @@ from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
 from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
 
-__all__ = ["EquilibriumOptions", "StaticResult", "film_at_position", "solve_equilibrium"]
+__all__ = [
+    "EquilibriumOptions",
+    "StaticResult",
+    "drag_torque",
+    "film_at_position",
+    "solve_equilibrium",
+]
 
 FloatArray = NDArray[np.float64]
 RPM = math.pi / 30.0
@@ -527,7 +533,7 @@ def _result(
         preload = base - np.maximum(p_act, 0.0) / model.actuator_stiffness
     else:
         preload = base
-    torque = _drag_torque(case, g, P, H, omega)
+    torque = drag_torque(case, g, P, H, omega)
     return StaticResult(
         case=case,
         model=model,
@@ -550,7 +556,7 @@ def _result(
     )
 
 
-def _drag_torque(case: Case, g: Any, P: FloatArray, H: FloatArray, omega: float) -> float:
+def drag_torque(case: Case, g: Any, P: FloatArray, H: FloatArray, omega: float) -> float:
     """Viscous torque on the journal, N·m (beyond the paper).
 
     Shear on the journal surface from the Couette-Poiseuille profile,

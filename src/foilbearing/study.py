@@ -32,6 +32,7 @@ def run_study(
     progress: bool = True,
     orbits: bool = True,
     uncertainty: str = "quick",
+    schedule: bool = True,
 ) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
 
@@ -49,6 +50,9 @@ def run_study(
         The envelopes of what the paper leaves open (the built-in uncertainty
         file, on the paper's case only): ``"quick"`` (56 evaluations, about
         3 minutes on 2 cores), ``"full"`` (the file's 256) or ``"none"``.
+    schedule
+        The voltage schedule a controller should apply (C-GFB only; beyond the
+        paper), verified in speed-ups when ``orbits`` is set.
 
     Returns
     -------
@@ -98,11 +102,22 @@ def run_study(
         results["uncertainty"] = _uncertainty_stage(out, UNCERTAINTY_SAMPLES[uncertainty], stage)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
+    orbit_runs: dict[str, Any] = {}  # OrbitResult by label, for the schedule's comparison
     if orbits and case.actuators is not None:
         from foilbearing.study_orbits import paper_orbit_runs
 
         stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
-        results["orbits"] = paper_orbit_runs(case, out, stage)
+        results["orbits"] = paper_orbit_runs(case, out, stage, results=orbit_runs)
+        write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
+
+    if schedule and case.actuators is not None:
+        from foilbearing.study_schedule import schedule_stage
+
+        stage(
+            "voltage schedule: least-drag voltages with log decrement >= 0.1, 10-90 krpm"
+            + ("; verified in speed-ups" if orbits else "")
+        )
+        results["schedule"] = schedule_stage(case, out, stage, previous=orbit_runs, verify=orbits)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     from foilbearing.paper import (

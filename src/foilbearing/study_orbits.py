@@ -44,23 +44,45 @@ SENSITIVITY_IMBALANCE = 1e-6  # kg·m (1 g·mm)
 
 @dataclass(frozen=True)
 class OrbitRun:
-    """One speed-up: final voltage, its ramp (None: no control) and the imbalance (kg·m)."""
+    """One speed-up: final voltage, its ramp (None: no control) and the imbalance (kg·m).
+
+    A ramp of (0, 0) holds the final voltage from the start. With ``schedule`` (a
+    :class:`foilbearing.schedule.SpeedSchedule`) the voltages follow it instead,
+    and ``volts`` and ``ramp`` are not used.
+    """
 
     volts: float
     ramp: tuple[float, float] | None
     imbalance: float
     series: str
+    schedule: Any = None
+
+    @property
+    def constant(self) -> bool:
+        """The final voltage is held from the start."""
+        return self.ramp == (0.0, 0.0)
 
     @property
     def label(self) -> str:
-        tail = "" if self.ramp is None else f"_ramp{self.ramp[0]:.2f}s"
-        return f"{self.volts:g}V{tail}_{self.imbalance * 1e6:g}gmm"
+        if self.schedule is not None:
+            head = "schedule"
+        elif self.constant:
+            head = f"{self.volts:g}V_constant"
+        else:
+            tail = "" if self.ramp is None else f"_ramp{self.ramp[0]:.2f}s"
+            head = f"{self.volts:g}V{tail}"
+        return f"{head}_{self.imbalance * 1e6:g}gmm"
 
     def describe(self) -> str:
+        imbalance = f"imbalance {self.imbalance * 1e6:g} g·mm"
+        if self.schedule is not None:
+            return f"voltage schedule, {imbalance}"
+        if self.constant:
+            return f"{self.volts:g} V from the start, {imbalance}"
         control = (
             "none" if self.ramp is None else f"ramp at {self.ramp[0]:.2f}-{self.ramp[1]:.2f} s"
         )
-        return f"{self.volts:g} V, control {control}, imbalance {self.imbalance * 1e6:g} g·mm"
+        return f"{self.volts:g} V, control {control}, {imbalance}"
 
 
 def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None) -> dict[str, Any]:
@@ -72,8 +94,15 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
     from foilbearing.orbit_io import to_netcdf
 
     case = replace(case, rotor=replace(case.rotor, imbalance=run.imbalance))
-    program = None if run.ramp is None else voltage_ramp(*run.ramp, run.volts)
     profile = linear_ramp(3000 * RPM, 90000 * RPM, 500.0)
+    program = None if run.ramp is None else voltage_ramp(*run.ramp, run.volts)
+    schedule_spec = None
+    if run.schedule is not None:
+        from foilbearing.schedule_file import schedule_toml
+
+        program = run.schedule.program(profile)
+        text = schedule_toml(run.schedule, case.title)
+        schedule_spec = {"path": str(out / "schedule.toml"), "text": text}
     last = [0.0]
 
     def progress(t: float, w: float) -> None:
@@ -88,8 +117,11 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
         "speed_ramp": "3000rpm:90000rpm:500rad/s**2",
         "speed": None,
         "duration": None,
-        "voltage_ramp": None if ramp is None else f"{ramp[0]}s:{ramp[1]}s:{run.volts}V",
+        "voltage_ramp": (
+            None if ramp is None or schedule_spec else f"{ramp[0]}s:{ramp[1]}s:{run.volts}V"
+        ),
         "controller": None,
+        "voltage_schedule": schedule_spec,
         "stop_time": None,
         "steps_per_rev": result.settings.steps_per_rev,
         "order": result.settings.order,
@@ -157,8 +189,12 @@ def paper_orbit_runs(
     *,
     workers: int | None = None,
     stop_time: float | None = None,
+    results: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
-    """Run the speed-ups (see the module docstring), write their figures and Fig. 15."""
+    """Run the speed-ups (see the module docstring), write their figures and Fig. 15.
+
+    ``results``, if given, receives each run's ``OrbitResult`` by its label.
+    """
     from foilbearing.io import save_figure
     from foilbearing.orbit_analysis import write_orbit_figures
     from foilbearing.plots.orbit import plot_subsync
@@ -208,6 +244,8 @@ def paper_orbit_runs(
         for fut in as_completed(futures):
             finish(fut.result())
     order = list(dict.fromkeys([zero.label, *done, *(r.label for r in runs)]))
+    if results is not None:
+        results.update({k: run["result"] for k, run in done.items()})
     figures = []
     for series in dict.fromkeys(done[k]["headline"]["series"] for k in order):
         keys = [

@@ -35,6 +35,8 @@ SI_UNITS: dict[str, str] = {
     "frequency": "Hz",
     "angular_acceleration": "rad/s**2",
     "voltage": "V",
+    "slew_rate": "V/s",
+    "power": "W",
     "time": "s",
     "stiffness": "N/m",
     "stiffness_per_area": "N/m**3",
