@@ -12,6 +12,7 @@ what is allowed.
 
 from __future__ import annotations
 
+import json
 import math
 import tomllib
 from dataclasses import dataclass, field, replace
@@ -233,6 +234,18 @@ class Case:
     shims: Shims | None = None
     title: str = ""
     source: str | None = None
+    #: The optional ``[study]`` table as JSON text, read and checked by
+    #: :func:`foilbearing.study_plan.study_plan` (it belongs to the study, not the bearing).
+    study_table: str | None = None
+
+    @property
+    def kind(self) -> str:
+        """``"C-GFB"`` (actuators), ``"shimmed GFB"``, ``"GFB"`` (passive foil) or ``"rigid"``."""
+        if self.foil is None:
+            return "rigid"
+        if self.actuators is not None:
+            return "C-GFB"
+        return "shimmed GFB" if self.shims is not None else "GFB"
 
     def bearing_number(self, speed: float | None = None) -> float:
         """Λ = 6 μ ω R² / (p_a C²) at ``speed`` (rad/s; default: the operating speed)."""
@@ -394,8 +407,23 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
             n_z=grid_t.integer("n_z", 2, 256, default=Grid.n_z),
         )
         grid_t.done()
+    study = root.raw("study", default=None)
+    if study is not None and not isinstance(study, dict):
+        raise InputError(f"[study] must be a table, got {study!r}", source=source)
     root.done()
-    return Case(bearing, gas, rotor, operation, grid, foil, actuators, shims, title, source)
+    return Case(
+        bearing,
+        gas,
+        rotor,
+        operation,
+        grid,
+        foil,
+        actuators,
+        shims,
+        title,
+        source,
+        study_table=None if study is None else json.dumps(study, default=str),
+    )
 
 
 def _read_foil(t: TableReader) -> Foil:

@@ -199,7 +199,11 @@ class OrbitResult:
                 "speed": ("time", self.speed / RPM, {"units": "rpm"}),
                 "phase": ("time", self.phase, {"units": "rad", "long_name": "rotation angle"}),
                 "min_film": ("time", self.min_film * 1e6, {"units": "um"}),
-                "voltage": (("time", "actuator"), self.voltages.reshape(-1, n_act), {"units": "V"}),
+                "voltage": (
+                    ("time", "actuator"),
+                    self.voltages.reshape(self.time.size, n_act),
+                    {"units": "V"},
+                ),
             },
             coords={"time": ("time", self.time, {"units": "s"})},
         )

@@ -27,6 +27,13 @@ PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 #: Stage keys of summary.json in the paper's order, with section titles.
 STAGES: tuple[tuple[str, str], ...] = (
+    ("plan", "The study's plan"),
+    ("reference_comparison", "Our numbers beside the case's reference values"),
+    ("bearing_static", "Static performance against speed"),
+    ("load_capacity", "Load capacity"),
+    ("bearing_coefficients", "Dynamic force coefficients"),
+    ("bearing_stability", "Linear stability"),
+    ("bearing_orbit", "Speed-up orbit"),
     ("identification", "Identification of the PZT stacks (Figs. 5-6)"),
     ("structure", "Foil structure and base preloads (Figs. 7-8)"),
     ("static", "Static performance, C-GFB and shimmed GFB (Figs. 9-12)"),
@@ -206,6 +213,18 @@ def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
     ran = [t.split(" (")[0] for k, t in STAGES if isinstance(summary.get(k), dict)]
     grid = case.get("grid") or {}
     kind = f" ({case['bearing_type']})" if case.get("bearing_type") else ""
+    if isinstance(summary.get("plan"), dict):
+        text = (
+            "<p>What <code>foilbearing study</code> computed for the case "
+            f"<b>{escape(str(case.get('title', '?')))}</b>{escape(kind)}: every analysis that "
+            f"applies to this kind of bearing, on the plan below. Stages: "
+            f"{escape('; '.join(ran[1:]) or 'none')}. Reynolds grid "
+            f"{_f(grid.get('n_theta'), 'd')} × {_f(grid.get('n_z'), 'd')} (θ × half length). "
+            "The paper's numbers belong to the paper's bearing and are not shown here; a "
+            "<code>[study.reference]</code> table in the case file puts measured values beside "
+            "ours.</p>"
+        )
+        return text + _records([case], [c for c in _CASE_COLUMNS if c[1](case) is not None])
     text = (
         "<p>What <code>foilbearing study</code> computed for the case "
         f"<b>{escape(str(case.get('title', '?')))}</b>{escape(kind)}, reproducing Park, Kim and "
@@ -219,20 +238,25 @@ def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
         f"{_f(case.get('imbalance_g_mm'), '.3g')} g·mm. Reynolds grid "
         f"{_f(grid.get('n_theta'), 'd')} × {_f(grid.get('n_z'), 'd')} (θ × half length).</p>"
     )
-    cols: list[Column] = [
-        ("radius (mm)", _key("radius_mm"), ".4g"),
-        ("length (mm)", _key("length_mm"), ".4g"),
-        ("clearance (µm)", _key("clearance_um"), ".4g"),
-        ("load (N)", _key("load_N"), ".4g"),
-        ("speed (rpm)", _key("speed_rpm"), ".6g"),
-        ("k_b (N/m³)", _key("k_b_N_per_m3"), ".4g"),
-        ("loss factor", _key("loss_factor"), ".3g"),
-        ("actuators at (°)", _key("actuator_angles_deg"), ".0f"),
-        ("stinger arc (°)", _key("stinger_arc_deg"), ".3g"),
-        ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
-        ("k_sp (N/m³)", _key("k_sp_N_per_m3"), ".4g"),
-    ]
-    return text + _records([case], [c for c in cols if c[1](case) is not None])
+    return text + _records([case], [c for c in _CASE_COLUMNS if c[1](case) is not None])
+
+
+_CASE_COLUMNS: list[Column] = [
+    ("radius (mm)", lambda r: r.get("radius_mm"), ".4g"),
+    ("length (mm)", lambda r: r.get("length_mm"), ".4g"),
+    ("clearance (µm)", lambda r: r.get("clearance_um"), ".4g"),
+    ("load (N)", lambda r: r.get("load_N"), ".4g"),
+    ("speed (rpm)", lambda r: r.get("speed_rpm"), ".6g"),
+    ("rotor mass (kg)", lambda r: r.get("rotor_mass_kg"), ".3g"),
+    ("k_b (N/m³)", lambda r: r.get("k_b_N_per_m3"), ".4g"),
+    ("loss factor", lambda r: r.get("loss_factor"), ".3g"),
+    ("actuators at (°)", lambda r: r.get("actuator_angles_deg"), ".0f"),
+    ("stinger arc (°)", lambda r: r.get("stinger_arc_deg"), ".3g"),
+    ("k_p (N/m³)", lambda r: r.get("k_p_N_per_m3"), ".4g"),
+    ("k_sp (N/m³)", lambda r: r.get("k_sp_N_per_m3"), ".4g"),
+    ("shims at (°)", lambda r: r.get("shim_angles_deg"), ".0f"),
+    ("shim thickness (µm)", lambda r: r.get("shim_thickness_um"), ".3g"),
+]
 
 
 def _comparison(rows: list[dict[str, Any]]) -> str:
@@ -508,6 +532,99 @@ def _schedule(d: dict[str, Any], case: dict[str, Any]) -> str:
     return body
 
 
+def _plan(d: dict[str, Any], case: dict[str, Any]) -> str:
+    rows = [[k, _f(v, ".6g") if not isinstance(v, dict) else escape(str(v) or "none")]
+            for k, v in d.items()]  # fmt: skip
+    note = (
+        '<p class="note">Derived from the case; a <code>[study]</code> table in the case file '
+        "sets any of it (docs/case-format.md).</p>"
+    )
+    return note + _table(["plan", "value"], rows)
+
+
+def _point_columns() -> list[Column]:
+    return [
+        ("eccentricity", _key("eccentricity"), ".4f"),
+        ("attitude (°)", _key("attitude_deg"), ".1f"),
+        ("min film (µm)", _key("min_film_um"), ".2f"),
+        (
+            "drag (mN·m)",
+            lambda r: None if r.get("drag_torque_Nm") is None else r["drag_torque_Nm"] * 1e3,
+            ".4f",
+        ),
+        ("power loss (W)", _key("power_loss_W"), ".3f"),
+        ("converged", _key("converged"), ""),
+        ("what to try", _key("message"), ""),
+    ]
+
+
+def _bearing_static(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [("speed (krpm)", _krpm("speed_rpm"), ".1f"), *_point_columns()]
+    return _records([p for p in d.get("points", []) if isinstance(p, dict)], cols)
+
+
+def _load_capacity(d: dict[str, Any], case: dict[str, Any]) -> str:
+    note = (
+        f'<p class="note">At {_f(d.get("speed_rpm"), ".6g")} rpm: largest load carried '
+        f"{_f(d.get('largest_load_carried_N'), '.4g')} N ({escape(str(d.get('note', '')))}).</p>"
+    )
+    cols: list[Column] = [("load (N)", _key("load_N"), ".4g"), *_point_columns()]
+    return note + _records([p for p in d.get("points", []) if isinstance(p, dict)], cols)
+
+
+def _bearing_coefficients(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [("speed (krpm)", _krpm("speed_rpm"), ".1f")]
+    for i, a in enumerate("XY"):
+        for j, b in enumerate("XY"):
+            cols.append((f"K{a}{b} (N/m)", _entry("K_N_per_m", 2 * i + j), ".4g"))
+    for i, a in enumerate("XY"):
+        for j, b in enumerate("XY"):
+            cols.append((f"C{a}{b} (N·s/m)", _entry("C_N_s_per_m", 2 * i + j), ".4g"))
+    note = '<p class="note">Synchronous: the excitation at the running speed.</p>'
+    return note + _records([r for r in d.get("synchronous", []) if isinstance(r, dict)], cols)
+
+
+def _bearing_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
+    onset = d.get("onset") or {}
+    note = (
+        f'<p class="note">Linear onset speed {_f(onset.get("onset_speed_rpm"), ".6g")} rpm, '
+        f"whirl frequency {_f(onset.get('whirl_frequency_Hz'), '.4g')} Hz "
+        f"({escape(str(onset.get('message', '')))}).</p>"
+    )
+    cols: list[Column] = [
+        ("speed (krpm)", _krpm("speed_rpm"), ".1f"),
+        ("log decrement", _key("log_decrement"), ".4f"),
+        ("whirl ratio", _key("whirl_ratio"), ".3f"),
+        ("whirl (Hz)", _key("whirl_frequency_Hz"), ".1f"),
+        ("message", _key("message"), ""),
+    ]
+    return note + _records([m for m in d.get("modes", []) if isinstance(m, dict)], cols)
+
+
+def _bearing_orbit(d: dict[str, Any], case: dict[str, Any]) -> str:
+    rows = [
+        ["sub-synchronous onset (krpm)", _f(_krpm("onset_speed_rpm")(d), ".1f")],
+        ["whip frequency (Hz)", _f(d.get("whip_frequency_Hz"), ".0f")],
+        ["divergence (krpm)", _f(_krpm("divergence_speed_rpm")(d), ".1f")],
+        ["largest sub-synchronous amplitude (µm)", _f(d.get("max_subsync_amplitude_um"), ".2f")],
+        ["end speed (krpm)", _f(_krpm("end_speed_rpm")(d), ".1f")],
+        ["mean power loss (W)", _f(d.get("mean_power_loss_W"), ".2f")],
+        ["how it ended", str(d.get("message", ""))],
+    ]
+    return _table(["readout", "value"], rows, num=(1,))
+
+
+def _reference(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [
+        ("quantity", _key("quantity"), ""),
+        ("reference", _key("reference"), ".5g"),
+        ("ours", _key("ours"), ".5g"),
+        ("deviation (%)", _key("deviation_percent"), "+.1f"),
+        ("how ours was read", _key("note"), ""),
+    ]
+    return _records([r for r in d.get("rows", []) if isinstance(r, dict)], cols)
+
+
 _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "identification": _identification,
     "structure": _structure,
@@ -517,6 +634,13 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "orbits": _orbits,
     "uncertainty": _uncertainty,
     "schedule": _schedule,
+    "plan": _plan,
+    "bearing_static": _bearing_static,
+    "load_capacity": _load_capacity,
+    "bearing_coefficients": _bearing_coefficients,
+    "bearing_stability": _bearing_stability,
+    "bearing_orbit": _bearing_orbit,
+    "reference_comparison": _reference,
 }
 
 

@@ -140,7 +140,7 @@ class StaticResult:
             "voltages_V": (
                 list(self.case.actuators.voltages) if self.case.actuators is not None else []
             ),
-            "bearing": _bearing_kind(self.case),
+            "bearing": self.case.kind,
             "bearing_number": self.bearing_number,
             "eccentricity": self.eccentricity,
             "eps_X": self.eps_x,
@@ -203,14 +203,6 @@ def _attr(value: Any) -> Any:
     if isinstance(value, list):
         return np.asarray(value, dtype=float) if value else np.zeros(0)
     return value
-
-
-def _bearing_kind(case: Case) -> str:
-    if case.actuators is not None:
-        return "C-GFB"
-    if case.shims is not None:
-        return "shimmed GFB"
-    return "GFB" if case.foil is not None else "rigid"
 
 
 def _check_speed(case: Case, speed: float | None) -> float:

@@ -59,8 +59,12 @@ def run_study(
     The headline numbers of every stage, unit-named keys.
     """
     from foilbearing.figures import write_identification_figures, write_structure_figures
+    from foilbearing.study_plan import check_load_is_carried, study_plan
     from foilbearing.summary import case_summary, format_summary, structure_summary
 
+    plan = study_plan(case)  # the [study] table is checked before any work
+    if case.actuators is None:
+        check_load_is_carried(case, plan)
     out.mkdir(parents=True, exist_ok=True)
     results: dict[str, Any] = {}
     t0 = time.perf_counter()
@@ -86,31 +90,36 @@ def run_study(
             str(p) for p in write_identification_figures(ident, out)
         ]
 
-    stage("structure: k_b, k_assy, base preloads; Figs. 7-8")
+    stage(
+        "structure: k_b, k_assy, base preloads; Figs. 7-8"
+        if case.actuators is not None
+        else "structure: bump stiffness"
+    )
     results["structure"] = structure_summary(case, [0.0, 50.0, 100.0, 150.0])
     results["structure"]["figures"] = [str(p) for p in write_structure_figures(case, out)]
 
-    sweep = None
-    if case.actuators is not None:
-        sweep = _static_stage(case, out, results, stage)
+    if case.actuators is None:
+        from foilbearing.study_bearing import bearing_study
 
-    onsets = None
-    if case.actuators is not None:
-        onsets = _stability_stage(case, out, results, stage)
+        results |= bearing_study(case, plan, out, stage, orbits=orbits)
+        return _finish(case, out, results, stage, progress)
+
+    sweep = _static_stage(case, out, results, stage)
+    onsets = _stability_stage(case, out, results, stage)
 
     if uncertainty != "none" and is_default_case_file(case.source):
         results["uncertainty"] = _uncertainty_stage(out, UNCERTAINTY_SAMPLES[uncertainty], stage)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     orbit_runs: dict[str, Any] = {}  # OrbitResult by label, for the schedule's comparison
-    if orbits and case.actuators is not None:
+    if orbits:
         from foilbearing.study_orbits import paper_orbit_runs
 
         stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
         results["orbits"] = paper_orbit_runs(case, out, stage, results=orbit_runs)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
-    if schedule and case.actuators is not None:
+    if schedule:
         from foilbearing.study_schedule import schedule_stage
 
         stage(
@@ -120,6 +129,20 @@ def run_study(
         results["schedule"] = schedule_stage(case, out, stage, previous=orbit_runs, verify=orbits)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
+    if is_default_case_file(case.source):  # the paper's numbers fit the paper's bearing only
+        _paper_comparison(case, out, results, sweep, onsets, progress)
+    return _finish(case, out, results, stage, progress)
+
+
+def _paper_comparison(
+    case: Case,
+    out: Path,
+    results: dict[str, Any],
+    sweep: Any,
+    onsets: dict[str, dict[float, Any]] | None,
+    progress: bool,
+) -> None:
+    """Our numbers beside the paper's (paper_comparison.md and the summary)."""
     from foilbearing.paper import (
         markdown_table,
         orbit_comparison,
@@ -152,12 +175,17 @@ def run_study(
     )
     if progress:
         print(table)
+
+
+def _finish(
+    case: Case, out: Path, results: dict[str, Any], stage: Any, progress: bool
+) -> dict[str, Any]:
+    """Write summary.json and report.html."""
     from foilbearing.report import write_report
 
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
     report = write_report(out)
     results["report"] = str(report)
-
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
     stage(f"done: results in {out}/, report {report}")
     return results

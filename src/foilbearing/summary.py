@@ -12,7 +12,7 @@ from typing import Any
 from foilbearing.case import Case
 from foilbearing.structure import walowit_anno_bump_stiffness
 
-__all__ = ["case_summary", "format_summary", "structure_summary", "sweep_points"]
+__all__ = ["BEARING_TYPES", "case_summary", "format_summary", "structure_summary", "sweep_points"]
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 
@@ -35,7 +35,7 @@ def case_summary(case: Case) -> dict[str, Any]:
         "imbalance_g_mm": case.rotor.imbalance * 1e6,
         "imbalance_radius_um": case.rotor.imbalance_radius * 1e6,
         "grid": {"n_theta": case.grid.n_theta, "n_z": case.grid.n_z},
-        "bearing_type": _bearing_type(case),
+        "bearing_type": BEARING_TYPES[case.kind],
     }
     if case.foil is not None:
         out["k_b_N_per_m3"] = case.foil.bump_stiffness
@@ -68,14 +68,13 @@ def case_summary(case: Case) -> dict[str, Any]:
     return out
 
 
-def _bearing_type(case: Case) -> str:
-    if case.foil is None:
-        return "rigid gas journal bearing"
-    if case.actuators is not None:
-        return "C-GFB (PZT-controlled gas foil bearing)"
-    if case.shims is not None:
-        return "shimmed gas foil bearing"
-    return "gas foil bearing"
+#: What each kind of bearing (``Case.kind``) is called in summaries and reports.
+BEARING_TYPES = {
+    "rigid": "rigid gas journal bearing",
+    "C-GFB": "C-GFB (PZT-controlled gas foil bearing)",
+    "shimmed GFB": "shimmed gas foil bearing",
+    "GFB": "gas foil bearing",
+}
 
 
 def format_summary(summary: dict[str, Any]) -> str:

@@ -1,0 +1,312 @@
+"""The study of any bearing other than the paper's C-GFB: every analysis that applies.
+
+Runs the plan of :func:`foilbearing.study_plan.study_plan` on a passive gas foil
+bearing, a shimmed one or a rigid gas journal bearing, each stage writing its
+figures into the output folder as it finishes:
+
+1. **static** against speed at the case load (continuation in speed): eccentricity,
+   attitude angle, minimum film, drag torque and power loss; film and pressure
+   maps at the plan's map speeds;
+2. **load capacity** at the case speed: the same readouts against load, the case
+   load halved then doubled until the film closes (or the plan's loads);
+3. **dynamic coefficients**: the eight synchronous K and C against speed, and
+   against excitation frequency at the plan's frequency speeds;
+4. **linear stability**: the onset speed and whirl frequency (scan continued up
+   to ``onset_top``), and the log decrement of the least stable whirl mode at
+   every plan speed (the stability map of a bearing without voltages);
+5. **orbit**: a speed-up over the plan's speeds with the case's imbalance:
+   waterfall, sub-synchronous amplitude, onset and divergence.
+
+A point that does not converge is recorded with its message and what to try;
+it does not stop the study.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from foilbearing.case import RPM, Case
+from foilbearing.errors import InputError, SolverError
+from foilbearing.study_plan import REFERENCE_KEYS, StudyPlan
+
+__all__ = ["bearing_study", "reference_rows"]
+
+#: The film "closes" for the load-capacity curve below this fraction of C.
+CLOSED_FILM = 0.02
+FREQUENCY_RATIOS = (0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0)  # of the speed, for K(ω), C(ω)
+_TRY = "try a finer speed step in [study] speed_range, or a lower load"
+
+
+def _readouts(st: Any) -> dict[str, Any]:
+    return {
+        "speed_rpm": st.speed / RPM,
+        "load_N": st.case.operation.load,
+        "eccentricity": st.eccentricity,
+        "attitude_deg": math.degrees(st.attitude_angle),
+        "min_film_um": st.min_film * 1e6,
+        "drag_torque_Nm": st.drag_torque,
+        "power_loss_W": st.power_loss,
+        "converged": True,
+    }
+
+
+def _failed(speed: float, load: float, message: str) -> dict[str, Any]:
+    return {
+        "speed_rpm": speed / RPM,
+        "load_N": load,
+        "converged": False,
+        "message": f"{message}; {_TRY}",
+    }
+
+
+def _static(
+    case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]
+) -> tuple[dict[str, Any], dict[float, Any]]:
+    from foilbearing.film import film_model
+    from foilbearing.io import save_figure
+    from foilbearing.plots.bearing import plot_against
+    from foilbearing.plots.static import plot_point
+    from foilbearing.static import solve_equilibrium
+
+    model = film_model(case)
+    points, found = [], {}
+    start = None
+    for w in plan.speeds:
+        try:
+            st = solve_equilibrium(case, speed=w, model=model, start=start)
+        except SolverError as exc:
+            points.append(_failed(w, case.operation.load, str(exc)))
+            continue
+        if not st.converged:
+            points.append(_failed(w, case.operation.load, st.message))
+            start = None
+            continue
+        start = (st.eps_x, st.eps_y, st.P)
+        found[w] = st
+        points.append(_readouts(st))
+    ok = sum(p["converged"] for p in points)
+    stage(f"  static: {ok}/{len(points)} speeds converged")
+    figures = [str(save_figure(plot_against(points, "speed_rpm"), out / "static_vs_speed.png"))]
+    for w in plan.map_speeds:
+        st = found.get(w) or solve_equilibrium(case, speed=w, model=model)
+        if st.converged:
+            name = f"film_map_{w / RPM:.0f}rpm.png"
+            figures.append(str(save_figure(plot_point(st), out / name)))
+    return {"points": points, "figures": figures}, found
+
+
+def _load_capacity(
+    case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]
+) -> dict[str, Any]:
+    from dataclasses import replace
+
+    from foilbearing.film import film_model
+    from foilbearing.io import save_figure
+    from foilbearing.plots.bearing import plot_against
+    from foilbearing.static import solve_equilibrium
+
+    w = case.operation.speed
+    model = film_model(case)
+    c = case.bearing.clearance
+    auto = not plan.loads
+    loads = list(plan.loads) or [case.operation.load * 2.0**k for k in range(-1, 12)]
+    points: list[dict[str, Any]] = []
+    note = "the plan's loads"
+    for load in loads:
+        at = replace(case, operation=replace(case.operation, load=load))
+        st: Any = None
+        try:
+            st = solve_equilibrium(at, speed=w, model=model)
+            message = st.message
+        except SolverError as exc:
+            message = str(exc)
+        if st is None or not st.converged:
+            points.append(_failed(w, load, message))
+            if auto:
+                note = f"stopped at {load:g} N: no equilibrium (the film closes)"
+                break
+            continue
+        points.append(_readouts(st))
+        if auto and st.min_film < CLOSED_FILM * c:
+            note = f"stopped at {load:g} N: minimum film below {CLOSED_FILM:g} C"
+            break
+    else:
+        if auto:
+            note = f"stopped after {len(loads)} doublings (the film did not close)"
+    carried = [p["load_N"] for p in points if p["converged"]]
+    stage(f"  load capacity at {w / RPM:.0f} rpm: up to {max(carried, default=0.0):g} N; {note}")
+    fig = save_figure(plot_against(points, "load_N"), out / "load_capacity.png")
+    return {
+        "speed_rpm": w / RPM,
+        "points": points,
+        "largest_load_carried_N": max(carried, default=None),
+        "note": note,
+        "figures": [str(fig)],
+    }
+
+
+def _coefficients(
+    plan: StudyPlan, found: dict[float, Any], out: Path, stage: Callable[[str], None]
+) -> dict[str, Any]:
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.io import save_figure
+    from foilbearing.plots.bearing import plot_synchronous
+    from foilbearing.plots.dynamics import plot_coefficients
+    from foilbearing.static import solve_equilibrium
+
+    rows = []
+    for w, st in found.items():
+        fc = force_coefficients(st, w)
+        rows.append(
+            {
+                "speed_rpm": w / RPM,
+                "K_N_per_m": np.asarray(fc.K[0]).tolist(),
+                "C_N_s_per_m": np.asarray(fc.C[0]).tolist(),
+            }
+        )
+    figures = [str(save_figure(plot_synchronous(rows), out / "coefficients_vs_speed.png"))]
+    per_frequency = []
+    for w in plan.frequency_speeds:
+        st = found.get(w)
+        if st is None:
+            case = next(iter(found.values())).case if found else None
+            if case is None:
+                continue
+            st = solve_equilibrium(case, speed=w)
+            if not st.converged:
+                continue
+        fc = force_coefficients(st, [r * w for r in FREQUENCY_RATIOS])
+        name = f"coefficients_{w / RPM:.0f}rpm.png"
+        figures.append(str(save_figure(plot_coefficients(fc), out / name)))
+        per_frequency.append({"speed_rpm": w / RPM} | fc.headline())
+    stage(f"  coefficients at {len(rows)} speeds, and against frequency at {len(per_frequency)}")
+    return {"synchronous": rows, "against_frequency": per_frequency, "figures": figures}
+
+
+def _stability(
+    case: Case, plan: StudyPlan, found: dict[float, Any], out: Path, stage: Callable[[str], None]
+) -> dict[str, Any]:
+    from foilbearing.io import save_figure
+    from foilbearing.plots.bearing import plot_log_decrement
+    from foilbearing.stability import onset_speed, whirl_mode
+
+    modes = []
+    for w, st in found.items():
+        try:
+            m = whirl_mode(st, case.rotor.mass)
+        except InputError as exc:
+            modes.append({"speed_rpm": w / RPM, "message": str(exc)})
+            continue
+        modes.append(
+            {
+                "speed_rpm": w / RPM,
+                "log_decrement": m.log_decrement,
+                "whirl_ratio": m.whirl_ratio,
+                "whirl_frequency_Hz": m.whirl_frequency / (2 * math.pi),
+            }
+        )
+    try:
+        onset = onset_speed(case, plan.onset_scan()).headline()
+    except (InputError, SolverError) as exc:
+        onset = {"onset_speed_rpm": None, "message": f"{exc}; {_TRY}"}
+    stage(f"  stability: {onset['message']}")
+    fig = save_figure(
+        plot_log_decrement(modes, onset.get("onset_speed_rpm")), out / "log_decrement.png"
+    )
+    return {"onset": onset, "modes": modes, "figures": [str(fig)]}
+
+
+def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]) -> dict[str, Any]:
+    from foilbearing.control import linear_ramp
+    from foilbearing.io import write_with
+    from foilbearing.orbit import simulate
+    from foilbearing.orbit_analysis import analyse_orbit, write_orbit_figures
+    from foilbearing.orbit_io import to_netcdf
+
+    lo, hi = plan.speeds[0], plan.speeds[-1]
+    profile = linear_ramp(lo, hi, plan.orbit_acceleration)
+    last = [0.0]
+
+    def progress(t: float, w: float) -> None:
+        if t - last[0] >= 2.0:
+            last[0] = t
+            stage(f"    orbit: t = {t:5.2f} s, {w / RPM:6.0f} rpm")
+
+    result = simulate(case, profile, None, progress=progress)
+    spec = {
+        "case": case.source,
+        "speed_ramp": f"{lo / RPM}rpm:{hi / RPM}rpm:{plan.orbit_acceleration}rad/s**2",
+        "speed": None,
+        "duration": None,
+        "voltage_ramp": None,
+        "controller": None,
+        "stop_time": None,
+        "steps_per_rev": result.settings.steps_per_rev,
+        "order": result.settings.order,
+        "sample_rate": f"{result.settings.sample_rate}Hz",
+        "subambient": None,
+    }
+    path = out / "orbit_speedup.nc"
+    write_with(path, lambda tmp: to_netcdf(result, spec, tmp))
+    analysis = analyse_orbit(result)
+    head = analysis.headline(result) | {"netcdf": str(path)}
+    figures = write_orbit_figures(result, analysis, out, "speedup")
+    stage(f"  orbit: {result.message} ({result.wall_time:.0f} s)")
+    return head | {"figures": [str(p) for p in figures]}
+
+
+def reference_rows(plan: StudyPlan, results: dict[str, Any]) -> list[dict[str, Any]]:
+    """The case's declared reference values beside ours, with how ours was read."""
+    onset = (results.get("bearing_stability") or {}).get("onset") or {}
+    orbit = results.get("bearing_orbit") or {}
+    unstable_at_once = "already" in str(onset.get("message", ""))
+    ours = {
+        "onset_speed": (None if unstable_at_once else onset.get("onset_speed_rpm"), onset),
+        "whirl_frequency": (onset.get("whirl_frequency_Hz"), onset),
+        "divergence_speed": (orbit.get("divergence_speed_rpm"), orbit),
+    }
+    rows = []
+    for key, value in plan.reference.items():
+        kind, what = REFERENCE_KEYS[key]
+        ref = value / RPM if kind == "speed" else value
+        mine, source = ours[key]
+        rows.append(
+            {
+                "quantity": f"{what} ({'rpm' if kind == 'speed' else 'Hz'})",
+                "reference": ref,
+                "ours": mine,
+                "deviation_percent": None if mine is None else 100.0 * (mine - ref) / ref,
+                "note": str(source.get("message", "not computed (orbit off?)")),
+            }
+        )
+    return rows
+
+
+def bearing_study(
+    case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None], *, orbits: bool = True
+) -> dict[str, Any]:
+    """Run the plan's stages on ``case`` (see the module docstring); returns their summaries."""
+    results: dict[str, Any] = {"plan": plan.describe()}
+    stage(f"static: {len(plan.speeds)} speeds at {case.operation.load:g} N, and film maps")
+    results["bearing_static"], found = _static(case, plan, out, stage)
+    stage(f"load capacity at {case.operation.speed / RPM:.0f} rpm")
+    results["load_capacity"] = _load_capacity(case, plan, out, stage)
+    if found:
+        stage("dynamic coefficients: synchronous against speed, and against frequency")
+        results["bearing_coefficients"] = _coefficients(plan, found, out, stage)
+        stage("linear stability: onset speed, log decrement against speed")
+        results["bearing_stability"] = _stability(case, plan, found, out, stage)
+    if orbits and plan.orbit:
+        stage(
+            f"orbit: speed-up {plan.speeds[0] / RPM:.0f}-{plan.speeds[-1] / RPM:.0f} rpm at "
+            f"{plan.orbit_acceleration:g} rad/s², imbalance {case.rotor.imbalance * 1e6:g} g·mm"
+        )
+        results["bearing_orbit"] = _orbit(case, plan, out, stage)
+    if plan.reference:
+        results["reference_comparison"] = {"rows": reference_rows(plan, results)}
+    return results

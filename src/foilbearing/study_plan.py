@@ -1,0 +1,220 @@
+"""The study's plan for any bearing: what to run, derived from the case and its ``[study]`` table.
+
+The paper's C-GFB has its own plan (the paper's speeds, voltages and protocol,
+:mod:`foilbearing.study`). Every other bearing (a passive gas foil bearing, a
+shimmed one, a rigid gas journal bearing) gets the plan below; a ``[study]``
+table in the case file sets any part of it (docs/case-format.md):
+
+=====================  =====================================================  =========================
+key                    meaning                                                default
+=====================  =====================================================  =========================
+``speed_range``        [START, STOP, STEP]: static, coefficients, stability    10 % of the case speed to
+                       map and the orbit's speed-up                           the case speed, 10 steps
+``loads``              loads of the load-capacity curve at the case speed     the case load doubled
+                                                                              until the film closes
+``frequency_speeds``   speeds of the coefficients against frequency           the case speed
+``map_speeds``         speeds of the film and pressure maps (case load)       the case speed
+``onset_top``          the onset scan goes on up to this speed                ``operation.max_speed``
+``orbit``              run the speed-up (true/false)                          true
+``orbit_acceleration`` its rate                                               500 rad/s² (the paper's)
+``[study.reference]``  measured values to compare with: ``onset_speed``,     none
+                       ``whirl_frequency``, ``divergence_speed``
+=====================  =====================================================  =========================
+
+Every check is made before any work and fails with one line naming the file
+and the field.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from foilbearing.case import RPM, Case, TableReader
+from foilbearing.errors import InputError
+
+__all__ = ["REFERENCE_KEYS", "StudyPlan", "check_load_is_carried", "study_plan"]
+
+#: Reference values a case may declare, with their kind of quantity and what they are
+#: compared with.
+REFERENCE_KEYS = {
+    "onset_speed": ("speed", "linear onset speed of instability"),
+    "whirl_frequency": ("frequency", "whirl frequency at the linear onset"),
+    "divergence_speed": ("speed", "divergence speed of the speed-up orbit"),
+}
+MAX_AUTO_LOADS = 12  # doublings of the automatic load-capacity curve
+
+
+@dataclass(frozen=True)
+class StudyPlan:
+    """What the study runs on one case; speeds rad/s, loads N, accelerations rad/s².
+
+    Attributes
+    ----------
+    kind
+        Bearing kind (:attr:`foilbearing.case.Case.kind`).
+    speeds
+        Speeds of the static sweep, the synchronous coefficients, the stability
+        map and the orbit's speed-up (from the first to the last).
+    onset_top
+        The onset scan continues above ``speeds`` up to this speed.
+    loads
+        Loads of the load-capacity curve at the case speed; empty: automatic
+        (the case load halved, then doubled until the film closes).
+    frequency_speeds, map_speeds
+        Speeds of the coefficients against frequency and of the film maps.
+    orbit, orbit_acceleration
+        Whether to run the speed-up, and its rate.
+    reference
+        Measured values to put beside ours, SI (rad/s, Hz), by key of
+        :data:`REFERENCE_KEYS`.
+    """
+
+    kind: str
+    speeds: tuple[float, ...]
+    onset_top: float
+    loads: tuple[float, ...]
+    frequency_speeds: tuple[float, ...]
+    map_speeds: tuple[float, ...]
+    orbit: bool
+    orbit_acceleration: float
+    reference: dict[str, float] = field(default_factory=dict)
+
+    def onset_scan(self) -> list[float]:
+        """The onset scan: the plan's speeds, continued at their step up to ``onset_top``."""
+        w = list(self.speeds)
+        step = w[1] - w[0] if len(w) > 1 else w[0]
+        while w[-1] + step <= self.onset_top * (1 + 1e-9):
+            w.append(w[-1] + step)
+        return w
+
+    def describe(self) -> dict[str, Any]:
+        """The plan with unit-named keys (report and JSON)."""
+        return {
+            "bearing_kind": self.kind,
+            "speeds_rpm": [w / RPM for w in self.speeds],
+            "onset_scan_top_rpm": self.onset_top / RPM,
+            "loads_N": list(self.loads) or "automatic: halved, then doubled until the film closes",
+            "frequency_speeds_rpm": [w / RPM for w in self.frequency_speeds],
+            "map_speeds_rpm": [w / RPM for w in self.map_speeds],
+            "orbit": self.orbit,
+            "orbit_acceleration_rad_per_s2": self.orbit_acceleration,
+            "reference": {
+                k: (v / RPM if REFERENCE_KEYS[k][0] == "speed" else v)
+                for k, v in self.reference.items()
+            },
+        }
+
+
+def _speeds(t: TableReader, key: str, default: list[float], top: float) -> tuple[float, ...]:
+    raw = t.raw(key, default=None)
+    if raw is None:
+        return tuple(default)
+    if not isinstance(raw, list) or not raw:
+        raise t.error(key, raw, "a non-empty list of speeds, e.g. ['50000 rpm']")
+    from foilbearing.units import parse_quantity
+
+    values = [
+        parse_quantity(v, "speed", field=f"{t.prefix}{key}[{i}]", source=t.source)
+        for i, v in enumerate(raw)
+    ]
+    for v in values:
+        if not 0.0 < v <= top * (1 + 1e-12):
+            raise t.error(
+                key, raw, f"speeds above 0 and up to operation.max_speed = {top / RPM:.0f} rpm"
+            )
+    return tuple(sorted(values))
+
+
+def study_plan(case: Case) -> StudyPlan:
+    """The plan of ``case`` (see the module docstring); checks the ``[study]`` table.
+
+    Raises
+    ------
+    InputError
+        An unknown key, a bad value, a speed beyond ``operation.max_speed``; one line.
+    """
+    from foilbearing.sweep_analyses import speed_scan
+    from foilbearing.units import parse_quantity
+
+    data = json.loads(case.study_table) if case.study_table else {}
+    t = TableReader(data, "study", case.source)
+    top = case.operation.max_speed
+    speed = case.operation.speed
+    raw = t.raw("speed_range", default=None)
+    if raw is None:
+        speeds = [speed * k / 10.0 for k in range(1, 11)]
+    else:
+        speeds = speed_scan(raw, "study.speed_range", case.source or "the case")
+        if speeds[-1] > top * (1 + 1e-12):
+            raise InputError(
+                f"study.speed_range = {raw!r}: goes beyond operation.max_speed = "
+                f"{top / RPM:.0f} rpm; lower STOP or raise max_speed",
+                source=case.source,
+            )
+    onset_top = t.positive("onset_top", "speed", default=top)
+    if onset_top > top * (1 + 1e-12):
+        raise t.error(
+            "onset_top", data["onset_top"], f"at most operation.max_speed = {top / RPM:.0f} rpm"
+        )
+    loads_raw = t.raw("loads", default=None)
+    loads: tuple[float, ...] = ()
+    if loads_raw is not None:
+        if not isinstance(loads_raw, list) or not loads_raw:
+            raise t.error("loads", loads_raw, "a non-empty list of loads, e.g. ['5 N', '10 N']")
+        loads = tuple(
+            sorted(
+                parse_quantity(v, "force", field=f"study.loads[{i}]", source=case.source)
+                for i, v in enumerate(loads_raw)
+            )
+        )
+        if loads[0] < 0.0:
+            raise t.error("loads", loads_raw, "loads >= 0 N")
+    frequency_speeds = _speeds(t, "frequency_speeds", [speed], top)
+    map_speeds = _speeds(t, "map_speeds", [speed], top)
+    orbit = t.raw("orbit", default=True)
+    if not isinstance(orbit, bool):
+        raise t.error("orbit", orbit, "true or false")
+    accel = t.positive("orbit_acceleration", "angular_acceleration", default=500.0)
+    reference: dict[str, float] = {}
+    if "reference" in data:
+        ref = t.table("reference")
+        for key, (kind, _) in REFERENCE_KEYS.items():
+            value = ref.positive(key, kind, default=None)
+            if value is not None:
+                reference[key] = float(value)
+        ref.done()
+    t.done()
+    return StudyPlan(
+        kind=case.kind,
+        speeds=tuple(speeds),
+        onset_top=float(onset_top),
+        loads=loads,
+        frequency_speeds=frequency_speeds,
+        map_speeds=map_speeds,
+        orbit=orbit,
+        orbit_acceleration=float(accel),
+        reference=reference,
+    )
+
+
+def check_load_is_carried(case: Case, plan: StudyPlan) -> None:
+    """A one-line error when the case load has no equilibrium at the plan's top speed.
+
+    A gas bearing carries more as it turns faster; if the top speed cannot carry the
+    load, no speed of the plan can, and the study would only collect failures.
+    """
+    from foilbearing.static import solve_equilibrium
+
+    top = plan.speeds[-1]
+    st = solve_equilibrium(case, speed=top)
+    if not st.converged:
+        raise InputError(
+            f"operation.load = {case.operation.load:g} N: no equilibrium even at the top speed "
+            f"{top / RPM:.0f} rpm ({st.message}); lower the load or raise the speeds",
+            source=case.source,
+        )
+    if math.isnan(st.min_film):
+        raise InputError("the equilibrium at the top speed has no film", source=case.source)
