@@ -66,6 +66,7 @@ def test_plan_defaults_and_the_study_table(write_case) -> None:
         ({"loads": ["-1 N"]}, "loads >= 0 N"),
         ({"reference": {"onset": "1 rpm"}}, r"unknown field 'onset' in \[study.reference\]"),
         ({"map_speeds": ["500000 rpm"]}, "up to operation.max_speed"),
+        ({"shim_scales": [1.0]}, r"nothing: this bearing has no \[shims\]"),
     ],
 )
 def test_bad_study_tables_are_one_line_errors(write_case, capsys, study, match) -> None:
@@ -149,3 +150,56 @@ def test_rigid_bearing_with_reference_values_and_its_orbit(
         assert onset["deviation_percent"] == pytest.approx(100 * (onset["ours"] / 30000 - 1))
     assert "divergence speed of the speed-up orbit" in rows
     assert '<section id="reference_comparison"' in (tmp_path / "report.html").read_text()
+
+
+@pytest.mark.slow
+def test_shimmed_bearing_onset_against_shim_thickness(write_case, tmp_path: Path, capsys) -> None:
+    """Shims of zero thickness are no shims: their onset is the passive bearing's, found
+    by another route (a case without [shims]). Thick shims preload the foil and delay
+    the onset (75 um: measured about 2.4 times later on the default grid)."""
+
+    def shimmed(d) -> None:
+        _passive(d)
+        d["shims"] = {"angles": ["60 deg", "180 deg", "300 deg"], "arc": "27.7 deg"}
+        d["shims"]["thickness"] = "50 um"
+        d["study"] = {"orbit": False, "speed_range": ["10000 rpm", "50000 rpm", "10000 rpm"]}
+
+    path = write_case("shimmed", n_theta=32, n_z=4, edit=shimmed)
+    assert main(["study", str(path), "--out", str(tmp_path), "--json"]) == 0
+    rows = {r["scale"]: r for r in json.loads(capsys.readouterr().out)["shim_stability"]["rows"]}
+    assert sorted(rows) == [0.0, 0.5, 1.0, 1.5]
+
+    def passive(d) -> None:
+        _passive(d)
+        d["study"] = {"orbit": False, "speed_range": ["10000 rpm", "50000 rpm", "10000 rpm"]}
+
+    bare = write_case("bare", n_theta=32, n_z=4, edit=passive)
+    assert main(["study", str(bare), "--out", str(tmp_path / "bare"), "--json"]) == 0
+    onset = json.loads(capsys.readouterr().out)["bearing_stability"]["onset"]
+    assert rows[0.0]["onset_speed_rpm"] == pytest.approx(onset["onset_speed_rpm"], rel=1e-9)
+    assert rows[1.5]["onset_speed_rpm"] > 1.5 * rows[0.0]["onset_speed_rpm"]
+
+
+@pytest.mark.slow
+def test_a_cgfb_other_than_the_papers_gets_its_own_plan(write_case, tmp_path: Path, capsys) -> None:
+    """A C-GFB case from another file runs the plan (onset against voltage, the schedule
+    over the plan's speeds) and shows no paper comparison and no identification from the
+    paper's synthetic data. The voltages' preload delays the onset (0 -> 150 V)."""
+
+    def edit(d) -> None:
+        d["study"] = {
+            "speed_range": ["30000 rpm", "60000 rpm", "10000 rpm"],
+            "voltages": ["0 V", "150 V"],
+            "orbit": False,
+        }
+
+    path = write_case("mine", n_theta=32, n_z=4, edit=edit)
+    assert main(["study", str(path), "--out", str(tmp_path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["plan"]["bearing_kind"] == "C-GFB" and out["plan"]["voltages_V"] == [0.0, 150.0]
+    assert "paper_comparison" not in out and "identification" not in out
+    rows = {r["voltage_V"]: r for r in out["voltage_stability"]["rows"]}
+    assert rows[150.0]["onset_speed_rpm"] > rows[0.0]["onset_speed_rpm"]
+    sched = out["schedule"]["schedule"]
+    assert sched["speeds_rpm"] == pytest.approx([30000, 40000, 50000, 60000])
+    assert len(sched["voltages_V"]) == 4 and (tmp_path / "schedule.png").exists()

@@ -33,6 +33,8 @@ STAGES: tuple[tuple[str, str], ...] = (
     ("load_capacity", "Load capacity"),
     ("bearing_coefficients", "Dynamic force coefficients"),
     ("bearing_stability", "Linear stability"),
+    ("shim_stability", "Linear stability against the shims' thickness"),
+    ("voltage_stability", "Linear stability against the actuators' voltage"),
     ("bearing_orbit", "Speed-up orbit"),
     ("identification", "Identification of the PZT stacks (Figs. 5-6)"),
     ("structure", "Foil structure and base preloads (Figs. 7-8)"),
@@ -601,6 +603,27 @@ def _bearing_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
     return note + _records([m for m in d.get("modes", []) if isinstance(m, dict)], cols)
 
 
+def _shim_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [
+        ("× case thickness", _key("scale"), "g"),
+        ("shim thickness (µm)", _key("thickness_um"), ".3g"),
+        ("onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whirl (Hz)", _key("whirl_frequency_Hz"), ".1f"),
+        ("how it was read", _key("message"), ""),
+    ]
+    return _records([r for r in d.get("rows", []) if isinstance(r, dict)], cols)
+
+
+def _voltage_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whirl (Hz)", _key("whirl_frequency_Hz"), ".1f"),
+        ("how it was read", _key("message"), ""),
+    ]
+    return _records([r for r in d.get("rows", []) if isinstance(r, dict)], cols)
+
+
 def _bearing_orbit(d: dict[str, Any], case: dict[str, Any]) -> str:
     rows = [
         ["sub-synchronous onset (krpm)", _f(_krpm("onset_speed_rpm")(d), ".1f")],
@@ -640,6 +663,8 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "bearing_coefficients": _bearing_coefficients,
     "bearing_stability": _bearing_stability,
     "bearing_orbit": _bearing_orbit,
+    "shim_stability": _shim_stability,
+    "voltage_stability": _voltage_stability,
     "reference_comparison": _reference,
 }
 

@@ -63,7 +63,8 @@ def run_study(
     from foilbearing.summary import case_summary, format_summary, structure_summary
 
     plan = study_plan(case)  # the [study] table is checked before any work
-    if case.actuators is None:
+    paper = case.actuators is not None and is_default_case_file(case.source)
+    if not paper:
         check_load_is_carried(case, plan)
     out.mkdir(parents=True, exist_ok=True)
     results: dict[str, Any] = {}
@@ -80,7 +81,7 @@ def run_study(
 
     no_load = REPO_EXAMPLES / "stack_no_load.csv"
     stiffness = REPO_EXAMPLES / "stack_stiffness.csv"
-    if case.actuators is not None and no_load.exists() and stiffness.exists():
+    if paper and case.actuators is not None and no_load.exists() and stiffness.exists():
         stage("identification of the PZT stacks from examples/data (synthetic measurements)")
         from foilbearing.identification import identify
 
@@ -95,13 +96,20 @@ def run_study(
         if case.actuators is not None
         else "structure: bump stiffness"
     )
-    results["structure"] = structure_summary(case, [0.0, 50.0, 100.0, 150.0])
+    results["structure"] = structure_summary(case, list(plan.voltages) or [0.0])
     results["structure"]["figures"] = [str(p) for p in write_structure_figures(case, out)]
 
-    if case.actuators is None:
+    if not paper:  # any other bearing: its own plan (foilbearing.study_plan)
         from foilbearing.study_bearing import bearing_study
 
         results |= bearing_study(case, plan, out, stage, orbits=orbits)
+        if schedule and case.actuators is not None:
+            from foilbearing.study_schedule import schedule_stage
+
+            stage("voltage schedule over the plan's speeds")
+            results["schedule"] = schedule_stage(
+                case, out, stage, verify=False, speeds=list(plan.speeds)
+            )
         return _finish(case, out, results, stage, progress)
 
     sweep = _static_stage(case, out, results, stage)

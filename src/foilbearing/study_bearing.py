@@ -13,7 +13,8 @@ figures into the output folder as it finishes:
    against excitation frequency at the plan's frequency speeds;
 4. **linear stability**: the onset speed and whirl frequency (scan continued up
    to ``onset_top``), and the log decrement of the least stable whirl mode at
-   every plan speed (the stability map of a bearing without voltages);
+   every plan speed (the stability map of a bearing without voltages); for a
+   shimmed bearing also the onset against the shims' thickness;
 5. **orbit**: a speed-up over the plan's speeds with the case's imbalance:
    waterfall, sub-synchronous amplitude, onset and divergence.
 
@@ -151,7 +152,7 @@ def _load_capacity(
 
 
 def _coefficients(
-    plan: StudyPlan, found: dict[float, Any], out: Path, stage: Callable[[str], None]
+    case: Case, plan: StudyPlan, found: dict[float, Any], out: Path, stage: Callable[[str], None]
 ) -> dict[str, Any]:
     from foilbearing.coefficients import force_coefficients
     from foilbearing.io import save_figure
@@ -172,14 +173,9 @@ def _coefficients(
     figures = [str(save_figure(plot_synchronous(rows), out / "coefficients_vs_speed.png"))]
     per_frequency = []
     for w in plan.frequency_speeds:
-        st = found.get(w)
-        if st is None:
-            case = next(iter(found.values())).case if found else None
-            if case is None:
-                continue
-            st = solve_equilibrium(case, speed=w)
-            if not st.converged:
-                continue
+        st = found.get(w) or solve_equilibrium(case, speed=w)
+        if not st.converged:
+            continue
         fc = force_coefficients(st, [r * w for r in FREQUENCY_RATIOS])
         name = f"coefficients_{w / RPM:.0f}rpm.png"
         figures.append(str(save_figure(plot_coefficients(fc), out / name)))
@@ -193,7 +189,7 @@ def _stability(
 ) -> dict[str, Any]:
     from foilbearing.io import save_figure
     from foilbearing.plots.bearing import plot_log_decrement
-    from foilbearing.stability import onset_speed, whirl_mode
+    from foilbearing.stability import whirl_mode
 
     modes = []
     for w, st in found.items():
@@ -210,15 +206,57 @@ def _stability(
                 "whirl_frequency_Hz": m.whirl_frequency / (2 * math.pi),
             }
         )
-    try:
-        onset = onset_speed(case, plan.onset_scan()).headline()
-    except (InputError, SolverError) as exc:
-        onset = {"onset_speed_rpm": None, "message": f"{exc}; {_TRY}"}
+    onset = _onset(case, plan)
     stage(f"  stability: {onset['message']}")
     fig = save_figure(
         plot_log_decrement(modes, onset.get("onset_speed_rpm")), out / "log_decrement.png"
     )
     return {"onset": onset, "modes": modes, "figures": [str(fig)]}
+
+
+def _onset(case: Case, plan: StudyPlan) -> dict[str, Any]:
+    from foilbearing.stability import onset_speed
+
+    try:
+        return onset_speed(case, plan.onset_scan()).headline()
+    except (InputError, SolverError) as exc:
+        return {"onset_speed_rpm": None, "message": f"{exc}; {_TRY}"}
+
+
+def _shims(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]) -> dict[str, Any]:
+    """Linear onset against the shims' thickness (the shimmed bearing's control knob)."""
+    from dataclasses import replace
+
+    from foilbearing.io import save_figure
+    from foilbearing.plots.bearing import plot_onsets
+
+    assert case.shims is not None
+    rows = []
+    for k in plan.shim_scales:
+        thick = tuple(k * t for t in case.shims.thicknesses)
+        head = _onset(replace(case, shims=replace(case.shims, thicknesses=thick)), plan)
+        rows.append(
+            {"scale": k, "x": max(thick) * 1e6, "thickness_um": [t * 1e6 for t in thick]} | head
+        )
+        stage(f"  shims x{k:g} ({max(thick) * 1e6:.0f} um): {head['message']}")
+    fig = save_figure(plot_onsets(rows, "shim thickness (µm)"), out / "onset_vs_shims.png")
+    return {"rows": rows, "figures": [str(fig)]}
+
+
+def _voltages(
+    case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]
+) -> dict[str, Any]:
+    """Linear onset against the actuators' voltage (all the same)."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots.bearing import plot_onsets
+
+    rows = []
+    for v in plan.voltages:
+        head = _onset(case.with_voltages(v), plan)
+        rows.append({"voltage_V": v, "x": v} | head)
+        stage(f"  {v:g} V: {head['message']}")
+    fig = save_figure(plot_onsets(rows, "actuator voltage (V)"), out / "onset_vs_voltage.png")
+    return {"rows": rows, "figures": [str(fig)]}
 
 
 def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]) -> dict[str, Any]:
@@ -298,9 +336,15 @@ def bearing_study(
     results["load_capacity"] = _load_capacity(case, plan, out, stage)
     if found:
         stage("dynamic coefficients: synchronous against speed, and against frequency")
-        results["bearing_coefficients"] = _coefficients(plan, found, out, stage)
+        results["bearing_coefficients"] = _coefficients(case, plan, found, out, stage)
         stage("linear stability: onset speed, log decrement against speed")
         results["bearing_stability"] = _stability(case, plan, found, out, stage)
+    if plan.shim_scales:
+        stage("linear stability against the shims' thickness")
+        results["shim_stability"] = _shims(case, plan, out, stage)
+    if plan.voltages:
+        stage("linear stability against the actuators' voltage")
+        results["voltage_stability"] = _voltages(case, plan, out, stage)
     if orbits and plan.orbit:
         stage(
             f"orbit: speed-up {plan.speeds[0] / RPM:.0f}-{plan.speeds[-1] / RPM:.0f} rpm at "

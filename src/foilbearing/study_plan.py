@@ -17,6 +17,10 @@ key                    meaning                                                de
 ``onset_top``          the onset scan goes on up to this speed                ``operation.max_speed``
 ``orbit``              run the speed-up (true/false)                          true
 ``orbit_acceleration`` its rate                                               500 rad/s² (the paper's)
+``shim_scales``        shimmed bearing: onset against the shims' thickness,   0, 0.5, 1, 1.5 (those
+                       as multiples of the case's                             below 0.9 C)
+``voltages``           C-GFB: onset against the actuators' voltage (all the   0, 1/3, 2/3 and 1 of
+                       same), and the voltage schedule over ``speed_range``   ``max_voltage``
 ``[study.reference]``  measured values to compare with: ``onset_speed``,     none
                        ``whirl_frequency``, ``divergence_speed``
 =====================  =====================================================  =========================
@@ -67,6 +71,12 @@ class StudyPlan:
         Speeds of the coefficients against frequency and of the film maps.
     orbit, orbit_acceleration
         Whether to run the speed-up, and its rate.
+    shim_scales
+        Shimmed bearing: multiples of the case's shim thicknesses for the onset
+        against thickness (empty for other bearings).
+    voltages
+        C-GFB: the voltages of the onset against voltage, V (empty for other
+        bearings).
     reference
         Measured values to put beside ours, SI (rad/s, Hz), by key of
         :data:`REFERENCE_KEYS`.
@@ -81,6 +91,8 @@ class StudyPlan:
     orbit: bool
     orbit_acceleration: float
     reference: dict[str, float] = field(default_factory=dict)
+    shim_scales: tuple[float, ...] = ()
+    voltages: tuple[float, ...] = ()
 
     def onset_scan(self) -> list[float]:
         """The onset scan: the plan's speeds, continued at their step up to ``onset_top``."""
@@ -101,6 +113,8 @@ class StudyPlan:
             "map_speeds_rpm": [w / RPM for w in self.map_speeds],
             "orbit": self.orbit,
             "orbit_acceleration_rad_per_s2": self.orbit_acceleration,
+            "shim_scales": list(self.shim_scales),
+            "voltages_V": list(self.voltages),
             "reference": {
                 k: (v / RPM if REFERENCE_KEYS[k][0] == "speed" else v)
                 for k, v in self.reference.items()
@@ -178,6 +192,56 @@ def study_plan(case: Case) -> StudyPlan:
     if not isinstance(orbit, bool):
         raise t.error("orbit", orbit, "true or false")
     accel = t.positive("orbit_acceleration", "angular_acceleration", default=500.0)
+    scales: tuple[float, ...] = ()
+    raw_scales = t.raw("shim_scales", default=None)
+    if case.shims is not None:
+        thickest = max(case.shims.thicknesses)
+        if raw_scales is None:
+            scales = tuple(
+                k for k in (0.0, 0.5, 1.0, 1.5) if k * thickest < 0.9 * case.bearing.clearance
+            )
+        else:
+            ok = (
+                isinstance(raw_scales, list)
+                and raw_scales
+                and all(
+                    isinstance(k, int | float) and not isinstance(k, bool) and k >= 0
+                    for k in raw_scales
+                )
+            )
+            if not ok or max(raw_scales) * thickest >= case.bearing.clearance:
+                raise t.error(
+                    "shim_scales",
+                    raw_scales,
+                    "a list of multiples >= 0 of the shims' thickness, each shim below the "
+                    f"clearance ({case.bearing.clearance * 1e6:g} um)",
+                )
+            scales = tuple(sorted(float(k) for k in raw_scales))
+    elif raw_scales is not None:
+        raise t.error("shim_scales", raw_scales, "nothing: this bearing has no [shims]")
+    voltages: tuple[float, ...] = ()
+    raw_volts = t.raw("voltages", default=None)
+    if case.actuators is not None:
+        top_v = case.actuators.max_voltage
+        if raw_volts is None:
+            voltages = tuple(top_v * k / 3.0 for k in range(4))
+        else:
+            if not isinstance(raw_volts, list) or not raw_volts:
+                raise t.error(
+                    "voltages", raw_volts, "a non-empty list of voltages, e.g. ['0 V', '150 V']"
+                )
+            voltages = tuple(
+                sorted(
+                    parse_quantity(v, "voltage", field=f"study.voltages[{i}]", source=case.source)
+                    for i, v in enumerate(raw_volts)
+                )
+            )
+            if voltages[0] < 0.0 or voltages[-1] > top_v:
+                raise t.error(
+                    "voltages", raw_volts, f"voltages from 0 to max_voltage = {top_v:g} V"
+                )
+    elif raw_volts is not None:
+        raise t.error("voltages", raw_volts, "nothing: this bearing has no [actuators]")
     reference: dict[str, float] = {}
     if "reference" in data:
         ref = t.table("reference")
@@ -197,6 +261,8 @@ def study_plan(case: Case) -> StudyPlan:
         orbit=orbit,
         orbit_acceleration=float(accel),
         reference=reference,
+        shim_scales=scales,
+        voltages=voltages,
     )
 
 

@@ -60,6 +60,7 @@ def schedule_stage(
     previous: dict[str, Any] | None = None,
     verify: bool = True,
     workers: int | None = None,
+    speeds: list[float] | None = None,
 ) -> dict[str, Any]:
     """Compute, write and (with ``verify``) run the schedule; returns its summary.
 
@@ -75,7 +76,8 @@ def schedule_stage(
     from foilbearing.study_orbits import run_one
 
     assert case.actuators is not None
-    speeds = [rpm * RPM for rpm in SCHEDULE_SPEEDS_RPM]
+    if speeds is None:
+        speeds = [rpm * RPM for rpm in SCHEDULE_SPEEDS_RPM]
     schedule = voltage_schedule(case, speeds, progress=lambda line: stage("  " + line.strip()))
     write_text(out / "schedule.toml", schedule_toml(schedule, case.title))
     angles = [math.degrees(a) for a in case.actuators.angles]

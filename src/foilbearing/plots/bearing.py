@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["plot_against", "plot_log_decrement", "plot_synchronous"]
+__all__ = ["plot_against", "plot_log_decrement", "plot_onsets", "plot_synchronous"]
 
 _PANELS = (
     ("eccentricity", "eccentricity ratio ε"),
@@ -73,5 +73,18 @@ def plot_log_decrement(modes: list[dict[str, Any]], onset_rpm: float | None) -> 
         ax.legend(fontsize=8)
     ax.set_xlabel("rotor speed (krpm)")
     ax.set_ylabel("log decrement (least stable whirl)")
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def plot_onsets(rows: list[dict[str, Any]], x_label: str) -> Figure:
+    """Linear onset speed (krpm) against each row's ``x`` (shim thickness or voltage)."""
+    fig = Figure(figsize=(6.0, 3.4), layout="constrained")
+    ax = fig.subplots()
+    pts = [(r["x"], r["onset_speed_rpm"] / 1e3) for r in rows if r.get("onset_speed_rpm")]
+    if pts:
+        ax.plot(*zip(*pts, strict=True), "o-")
+    ax.set_xlabel(x_label)
+    ax.set_ylabel("linear onset speed (krpm)")
     ax.grid(alpha=0.3)
     return fig
