@@ -135,7 +135,10 @@ def test_grid_convergence_is_second_order() -> None:
         d = np.abs(np.diff(values))
         orders = np.log2(d[:-1] / d[1:])
         assert np.all(orders > 1.8) and np.all(orders < 2.2), orders
-    assert loads[-1] == pytest.approx(0.4725, rel=1e-3)
+    # With that order, Richardson's estimate of the converged load puts the 192 x 32 grid
+    # within 0.1 % of it (a statement about the grid, not a number without a source).
+    converged = loads[-1] + (loads[-1] - loads[-2]) / 3.0
+    assert abs(loads[-1] - converged) < 1e-3 * converged
 
 
 # ---------------------------------------------------------------------------- foil

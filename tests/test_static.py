@@ -126,28 +126,37 @@ def test_stiff_foil_tends_to_rigid_bearing() -> None:
 
 
 def test_reported_preload_is_eq3b() -> None:
-    case = default_case().with_voltages(150.0)
-    res = solve_equilibrium(case, speed=90e3 * RPM)
-    model = film_model(case)
-    assert case.actuators is not None and model.actuator_stiffness is not None
+    """Eq. (3b): r_p = r_base − p_A/(k_p + 4 k_sp) where the film pushes the stinger, and
+    r_base where it does not. The stiffness is the paper's (k_p = 1.30e9 N/m³ identified,
+    k_sp = 3.95e6 N/m³ per spring, slip S1), not the model's; the base preload at 150 V is
+    the paper's 72.92 µm (to 0.05 %, its rounding and the identified D33). With the suction
+    retained and the journal at 0.6 C towards 30°, the 300° actuator faces a sub-ambient
+    film (p_A ≈ −8.9 kPa): its preload stays the base one."""
+    case = default_case().with_voltages(150.0).with_subambient("retained")
+    k_act = 1.30e9 + 4 * 3.95e6
+    assert case.actuators is not None
+    assert case.actuators.base_preloads() == pytest.approx([72.92e-6] * 3, rel=5e-4)
+    at = math.radians(30.0)
+    res = film_at_position(case, 0.6 * math.cos(at), 0.6 * math.sin(at), speed=30e3 * RPM)
+    p_a = res.actuator_pressure
+    assert p_a[0] > 0.0 and p_a[1] > 0.0 and p_a[2] < 0.0  # both branches run
     base = case.actuators.base_preloads()
-    expected = base - np.maximum(res.actuator_pressure, 0.0) / model.actuator_stiffness
-    np.testing.assert_allclose(res.preload, expected, rtol=1e-12)
-    # Where p_A <= 0 (the foil is not pulled) the preload is the base preload.
-    low = film_at_position(case, 0.0, 0.0, speed=3e3 * RPM)
-    for p_a, pre, b in zip(low.actuator_pressure, low.preload, base, strict=True):
-        if p_a <= 0.0:
-            assert pre == b
+    assert res.preload[2] == base[2]
+    for n in (0, 1):  # k_p is given to 3 figures: 0.2 % of the preload here
+        assert res.preload[n] == pytest.approx(base[n] - p_a[n] / k_act, rel=2e-3)
 
 
 def test_paper_preloads_at_150V_90krpm() -> None:
-    # Paper Fig. 11: 65.36 / 54.06 / 64.62 um at 60/180/300 deg. Tolerance 15 % (issue): our
-    # viscosity is assumed and the paper's grid and foil details are not given.
+    # Paper Fig. 11: 65.36 / 54.06 / 64.62 um at 60/180/300 deg. Under lift-off we find
+    # 66.06 / 54.92 / 65.22 um (+1.1 / +1.6 / +0.9 %): the tolerance is 3 %, which dropping
+    # the foil's or the actuator's compliance (-11.5 / -9.7 % at 180 deg) would break.
     res = solve_equilibrium(default_case().with_voltages(150.0), speed=90e3 * RPM)
-    np.testing.assert_allclose(res.preload * 1e6, [65.36, 54.06, 64.62], rtol=0.15)
-    # Abstract: reductions up to ~11 % at 60/300 deg, far more (26 %) at the loaded 180 deg.
+    np.testing.assert_allclose(res.preload * 1e6, [65.36, 54.06, 64.62], rtol=0.03)
+    # Abstract: reductions up to ~11 % at 60/300 deg, far more at the loaded 180 deg, where
+    # Fig. 11 reads 1 - 54.06/72.92 = 25.9 %; ours within 3 percentage points of it.
     reduction = 1.0 - res.preload / 72.92e-6
-    assert reduction[1] > reduction[0] and reduction[1] > reduction[2]
+    assert reduction[1] == pytest.approx(0.259, abs=0.03)
+    assert max(reduction[0], reduction[2]) < 0.12
 
 
 def test_fig9_peaks_at_actuators_grow_with_voltage_and_cgfb_below_shims(sweep) -> None:
@@ -180,12 +189,6 @@ def test_fig10_local_pressure_trends(sweep) -> None:
     for volt in (100.0, 150.0):
         sel = sweep.sel(voltage=volt, actuator=180.0).actuator_pressure
         assert np.all(sel.sel(bearing="C-GFB").values < sel.sel(bearing="shimmed").values)
-
-
-def test_fig11_preload_falls_under_pressure(sweep) -> None:
-    pre = sweep.sel(bearing="C-GFB", voltage=150.0).preload
-    assert np.all(pre.values < 72.95)  # never above the base preload
-    assert np.all(pre.sel(actuator=180.0).values < pre.sel(actuator=60.0).values)
 
 
 def test_fig12_eccentricity_trends(sweep) -> None:
