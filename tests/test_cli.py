@@ -58,3 +58,60 @@ def test_parse_list_units() -> None:
     )
     with pytest.raises(InputError, match="wrong dimension"):
         parse_list("10000 N", "speed", "--speed")
+
+
+def test_static_writes_a_film_that_carries_the_load_and_fails_with_exit_code_3(
+    write_case, tmp_path: Path, capsys
+) -> None:
+    """The NetCDF of `foilbearing static`, read back through its units attributes, holds a
+    pressure field whose integral is the load (8.8 N along X, a force balance computed
+    here, not by the code). A load the film cannot carry exits with 3 and says what to
+    try."""
+    import numpy as np
+    import xarray as xr
+
+    from foilbearing.units import ureg
+
+    nc = tmp_path / "static.nc"
+    assert (
+        main(["static", "--speed", "50000rpm", "--voltage", "150V", "--json", "--out", str(nc)])
+        == 0
+    )
+    head = json.loads(capsys.readouterr().out)
+    ds = xr.load_dataset(nc)
+    assert ds.attrs["eccentricity"] == head["eccentricity"] and head["converged"]
+
+    def si(name: str, unit: str) -> np.ndarray:
+        return np.asarray(
+            ureg.Quantity(ds[name].values, ds[name].attrs["units"]).to(unit).magnitude
+        )
+
+    gauge = si("pressure", "Pa") - 101325.0
+    theta, z = si("theta", "rad"), si("z", "m")
+    radius = 0.02
+    dz = 2 * z[0]  # cell-centred: the first centre is half a cell from the mid-plane
+    d_area = 2 * radius * (2 * np.pi / theta.size) * dz  # x 2: both halves of the bearing
+    fx = float((gauge * np.cos(theta)[:, None]).sum() * d_area)
+    fy = float((gauge * np.sin(theta)[:, None]).sum() * d_area)
+    assert abs(fx) == pytest.approx(8.8, rel=1e-6) and abs(fy) < 1e-6 * 8.8
+
+    def heavy(d) -> None:
+        del d["actuators"], d["foil"]
+        d["operation"]["load"] = "5000 N"
+
+    path = write_case("heavy", n_theta=32, n_z=4, edit=heavy)
+    assert main(["static", str(path), "--speed", "50000rpm", "--json"]) == 3
+    out = json.loads(capsys.readouterr().out)
+    assert not out["converged"] and "Try:" in out["message"]
+
+
+def test_identify_recovers_the_papers_coefficients_from_the_example_data(capsys) -> None:
+    """`foilbearing identify` on the shipped (synthetic) measurements returns the paper's
+    identified values (D33,1 = -0.0028 um/V², D33,2 = 0.9122 um/V, K_p = 0.46e6 N/m, so
+    k_p = 1.30e9 N/m³) within three of its own standard errors: the files carry noise."""
+    assert main(["identify", "--json"]) == 0
+    head = json.loads(capsys.readouterr().out)
+    for key, paper in (("d33_1_um_per_V2", -0.0028), ("d33_2_um_per_V", 0.9122)):
+        se = head[key.replace("_um", "_se_um")]
+        assert abs(head[key] - paper) < 3 * se, (key, head[key], se)
+    assert head["k_p_N_per_m3"] == pytest.approx(1.30e9, rel=0.01)

@@ -3,8 +3,13 @@
 from __future__ import annotations
 
 import json
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from foilbearing.cli import main
@@ -86,3 +91,59 @@ def test_orbit_bad_input_fails_before_work(extra, text, capsys) -> None:
     assert main(["orbit", *extra]) == 2
     err = capsys.readouterr().err
     assert text in err and "Traceback" not in err
+
+
+def _orbit_process(argv: list[str]) -> subprocess.Popen:
+    return subprocess.Popen(
+        [sys.executable, "-m", "foilbearing", "orbit", *argv],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
+def _wait_for_checkpoint(path: Path, proc: subprocess.Popen, timeout: float = 120.0) -> None:
+    start = time.monotonic()
+    while not (path.exists() and path.stat().st_size > 0):
+        assert proc.poll() is None, f"the run ended before its first checkpoint: {proc.stderr}"
+        assert time.monotonic() - start < timeout, "no checkpoint written"
+        time.sleep(0.05)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("how", ["Ctrl-C", "SIGKILL"])
+def test_a_stopped_process_resumes_to_the_uninterrupted_run(
+    write_case, tmp_path: Path, capsys, how: str
+) -> None:
+    """Stopped by Ctrl-C (the run saves what it did) or killed outright (the last
+    checkpoint, written atomically, survives), the run resumes from where it stopped, not
+    from t = 0, and ends where the uninterrupted run ends: e_X within 1e-3 C throughout."""
+    import xarray as xr
+
+    case = write_case(
+        "light", n_theta=32, n_z=4, edit=lambda d: d["rotor"].update(imbalance="1 g*mm")
+    )
+    run = ["--speed", "12000rpm", "--duration", "3s", "--json"]
+    whole = tmp_path / "whole.nc"
+    assert main(["orbit", str(case), *run, "--out", str(whole)]) == 0
+    steps_whole = json.loads(capsys.readouterr().out)["steps"]
+    part = tmp_path / "part.nc"
+    proc = _orbit_process([str(case), *run, "--out", str(part), "--checkpoint-every", "0.3s"])
+    _wait_for_checkpoint(part, proc)
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGINT if how == "Ctrl-C" else signal.SIGKILL)
+    out, err = proc.communicate(timeout=60)
+    if how == "Ctrl-C":
+        assert proc.returncode == 3, err[-2000:]
+        assert json.loads(out)["status"] == "interrupted"
+    else:
+        assert proc.returncode == -signal.SIGKILL
+    stopped_at = float(xr.load_dataset(part).time.values[-1])
+    assert 0.0 < stopped_at < 3.0
+    assert main(["orbit", "--resume", str(part), "--json"]) == 0
+    resumed = json.loads(capsys.readouterr().out)
+    assert resumed["status"] == "completed"
+    assert resumed["steps"] < steps_whole * (1.0 - 0.5 * stopped_at / 3.0)  # not from t = 0
+    a, b = xr.load_dataset(part), xr.load_dataset(whole)
+    assert a.time.size == b.time.size
+    assert float(np.abs(a.e_x - b.e_x).max()) < 1e-3 * 100.0  # um, C = 100 um

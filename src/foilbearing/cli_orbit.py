@@ -76,6 +76,12 @@ def register(sub: Any) -> None:
     p.add_argument("--sample-rate", default="10000Hz", help="output sampling rate (default 10 kHz)")
     add_subambient_arg(p)
     p.add_argument("--out", type=Path, help="write the time series (NetCDF); checkpoints too")
+    p.add_argument(
+        "--checkpoint-every",
+        default="30s",
+        metavar="TIME",
+        help="wall time between checkpoints written to --out (default 30s)",
+    )
     p.add_argument("--resume", type=Path, metavar="FILE.nc", help="continue a stopped run")
     p.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -241,6 +247,9 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         if out_path is not None:
             write_with(out_path, lambda tmp: to_netcdf(result, spec, tmp))
 
+    every = _q(args.checkpoint_every, "time", "--checkpoint-every")
+    if not every > 0.0:
+        raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
     result = simulate(
         case,
         profile,
@@ -250,6 +259,7 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         stop_time=stop,
         resume=resume,
         checkpoint=save if out_path is not None else None,
+        checkpoint_every=every,
     )
     save(result)
     analysis = analyse_orbit(result)

@@ -815,7 +815,15 @@ class _Samples:
         return fresh
 
     def arrays(self, n_act: int, profile: SpeedProfile) -> tuple[FloatArray, ...]:
-        """Samples (time, e_x, e_y, speed, phase, min_film, voltages, power_loss), SI."""
+        """Samples (time, e_x, e_y, speed, phase, min_film, voltages, power_loss), SI.
+
+        A run interrupted (Ctrl-C) inside :meth:`add` leaves the last step recorded in
+        some lists only: the step is dropped from all of them.
+        """
+        n = min(len(self.t), len(self.ex), len(self.ey), len(self.h_min), len(self.volts))
+        del self.t[n:], self.ex[n:], self.ey[n:], self.h_min[n:], self.volts[n:]
+        m = min(len(self.power_t), len(self.power))
+        del self.power_t[m:], self.power[m:]
         t = np.asarray(self.t, dtype=float)
         if t.size and t[-1] + 1e-12 >= self.start:
             count = math.floor((t[-1] + 1e-12 - self.start) / self.dt) + 1
