@@ -306,3 +306,71 @@ def test_power_loss_at_rest_is_the_static_power_loss() -> None:
     low = solve_equilibrium(case.with_voltages(0.0), speed=w).power_loss
     assert ramp.power_loss[0] == pytest.approx(low, rel=1e-3)
     assert ramp.power_loss[-1] == pytest.approx(high, rel=1e-3)
+
+
+def test_the_linear_onset_is_bracketed_by_free_whirl_orbits() -> None:
+    """The nonlinear orbit and the linear analysis share the film, the foil and its damping
+    law: 10 % below the linear onset (0 V, 32 x 4 grid: 45.5 krpm) a small free whirl
+    decays, 10 % above it grows (linear log decrements +0.019 and -0.104)."""
+    from foilbearing.orbit import _run, _Samples, _State
+    from foilbearing.stability import onset_speed
+
+    case = coarse(0.0, imbalance=0.0)
+    onset = onset_speed(case, [rpm * RPM for rpm in range(20_000, 100_001, 5_000)]).onset_speed
+    assert onset is not None
+    growth = {}
+    for factor in (0.9, 1.1):
+        sim = OrbitSimulation(case, constant_speed(factor * onset, 0.4))
+        y0 = sim.initial_state()
+        y0[sim.system.n + sim.system.nt] += 0.002  # e_X kicked by 0.2 um
+        res = _run(sim, _State(0.0, y0), _Samples(1e-4), False, None, None, 30.0)
+        assert res.status == "completed", res.message
+        x = res.e_x - res.e_x[res.time > 0.3].mean()
+        early = np.abs(x[(res.time > 0.1) & (res.time < 0.2)]).max()
+        late = np.abs(x[res.time > 0.3]).max()
+        growth[factor] = late / early
+    assert growth[0.9] < 1.0 < 1.5 < growth[1.1], growth
+
+
+def test_the_bump_damping_law_is_the_same_in_the_orbit_and_the_linear_analysis() -> None:
+    """The bump is a spring k_b with a damper γ k_b/ω (MODEL.md section 3): under a
+    harmonic gauge pressure at ν its deflection follows with the transfer function
+    G = 1/(1 + iγν/ω), so the loss per cycle over 2π times the peak strain energy is
+    γν/ω. Driving the orbit's bump equation (its right-hand side, integrated by
+    solve_ivp) and reading the linear analysis' dynamic compliance must both give G."""
+    from scipy.integrate import solve_ivp
+
+    from foilbearing.coefficients import dynamic_compliance
+
+    case = replace(default_case(), actuators=None, grid=Grid(n_theta=32, n_z=4))
+    assert case.foil is not None
+    gamma, omega, nu = case.foil.loss_factor, 30e3 * RPM, 2 * math.pi * 120.0
+    closed = 1.0 / (1.0 + 1j * gamma * nu / omega)
+    sim = OrbitSimulation(case, constant_speed(omega, 1.0))
+    sys_ = sim.system
+    assert sys_.dynamic_bump
+    n, nt = sys_.n, sys_.nt
+    y = sim.initial_state()
+    inputs = sim.inputs(0.0, sim.volts(0.0))
+    q0 = 0.05  # mean gauge pressure / p_a, engaged everywhere
+
+    def f(t: float, u: np.ndarray) -> np.ndarray:
+        y[:n] = 1.0 + q0 * (1.0 + 0.5 * np.sin(nu * t))
+        y[n : n + nt] = u
+        return sys_.rhs(y, inputs)[n : n + nt]
+
+    period = 2 * math.pi / nu  # the bump's own time constant γ/ω = 32 us: 2 periods settle it
+    t = np.linspace(2 * period, 4 * period, 801)
+    sol = solve_ivp(f, (0.0, t[-1]), np.zeros(nt), t_eval=t, rtol=1e-10, atol=1e-14)
+    basis = np.column_stack([np.ones_like(t), np.sin(nu * t), np.cos(nu * t)])
+    coef, *_ = np.linalg.lstsq(basis, sol.y[0], rcond=None)
+    scale = 0.5 * q0 * sys_.c_bump[0]
+    orbit = complex(coef[1], coef[2]) / scale
+    assert orbit == pytest.approx(closed, rel=1e-6)
+    static = solve_equilibrium(case, speed=omega)
+    c = dynamic_compliance(static, nu)
+    k_b = case.foil.bump_stiffness
+    linear = c[np.abs(c) > 0][0] * case.bearing.clearance * k_b / case.gas.ambient_pressure
+    assert linear == pytest.approx(closed, rel=1e-12)
+    # the loss per cycle: the phase lag of the deflection behind the pressure
+    assert -np.angle(orbit) == pytest.approx(math.atan(gamma * nu / omega), rel=1e-5)
