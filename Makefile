@@ -6,7 +6,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 ROSS_VENV := .venv-ross
 
-.PHONY: run test test-ross lint bench clean
+.PHONY: run test test-ross lint bench mutation clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -34,5 +34,12 @@ lint: $(STAMP)
 bench: $(STAMP)
 	for f in benchmarks/bench_*.py; do $(BIN)/python $$f || exit 1; done
 
+# Mutation testing of the physics in Python, on demand (minutes; not part of CI).
+mutation: $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[dev,mutation]'
+	$(BIN)/mutmut run --max-children 2
+	$(BIN)/mutmut export-cicd-stats
+	$(BIN)/python scripts/mutation_report.py
+
 clean:
-	rm -rf $(VENV) $(ROSS_VENV) out .pytest_cache .mypy_cache
+	rm -rf $(VENV) $(ROSS_VENV) out mutants .pytest_cache .mypy_cache

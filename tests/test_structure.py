@@ -168,3 +168,44 @@ def test_default_case_structure() -> None:
     shim = case.shimmed()
     assert shim.shims is not None and shim.actuators is None
     np.testing.assert_allclose(shim.shims.thicknesses, case.actuators.base_preloads())
+
+
+def test_irregular_unsorted_and_wrapped_actuator_placement() -> None:
+    """Actuators at 250° + 360°, 200° and 100°: irregular, in the reverse of their order
+    around the bearing, one given beyond 2π. Against the closed forms written here: the
+    sectors' half-widths are half the gaps to the neighbours (100-200-250: gaps 100°, 50°,
+    210°); each preload lobe is a raised cosine with its own half-width on each side; the
+    stiff arcs of k(θ) sit at the actuators, not at their mirror images; the sharp step
+    takes the mean value on an edge; the default smoothness is the paper's α = 50."""
+    from foilbearing.structure.preload import sector_half_widths
+
+    angles = np.radians([610.0, 200.0, 100.0])
+    left, right = sector_half_widths(angles)
+    np.testing.assert_allclose(np.degrees(left), [25.0, 50.0, 105.0], atol=1e-9)
+    np.testing.assert_allclose(np.degrees(right), [105.0, 25.0, 50.0], atol=1e-9)
+
+    def lobe(d_deg: float, half_deg: float) -> float:
+        return 0.5 * (math.cos(math.pi * d_deg / half_deg) + 1.0)
+
+    theta = np.radians([300.0, 230.0, 170.0, 130.0, 40.0])
+    expected = [
+        lobe(50.0, 105.0),  # 250° + 50°: right of 250° (towards 100°)
+        lobe(20.0, 25.0),  # 250° − 20°: left of 250° (towards 200°)
+        lobe(30.0, 50.0),  # 200° − 30°: left of 200° (towards 100°)
+        lobe(30.0, 50.0),  # 100° + 30°: right of 100° (towards 200°)
+        lobe(60.0, 105.0),  # 100° − 60°: left of 100° (towards 250°)
+    ]
+    np.testing.assert_allclose(preload_shape(theta, angles, 1.0), expected, atol=1e-12)
+
+    k_b, k_assy = 8.69e9, 1.14e9
+    at = stiffness_function(angles, k_b, k_assy, angles, ARC, smoothness=2000.0)
+    mirror = stiffness_function(-angles[1], k_b, k_assy, angles, ARC, smoothness=2000.0)
+    np.testing.assert_allclose(at, k_assy, rtol=1.5e-2)
+    assert mirror > 0.99 * k_b  # 160°, the mirror of 200°, is 60° from any actuator
+    edge = stiffness_function([0.5], k_b, k_assy, [0.0], 1.0, smoothness=None)
+    assert edge[0] == pytest.approx(0.5 * (k_b + k_assy), rel=1e-12)
+    theta_all = np.linspace(0.0, 2 * np.pi, 721)
+    np.testing.assert_array_equal(
+        stiffness_function(theta_all, k_b, k_assy, angles, ARC),
+        stiffness_function(theta_all, k_b, k_assy, angles, ARC, smoothness=50.0),
+    )
