@@ -94,11 +94,15 @@ def test_orbit_bad_input_fails_before_work(extra, text, capsys) -> None:
 
 
 def _orbit_process(argv: list[str]) -> subprocess.Popen:
+    """``foilbearing orbit`` in a child process that Ctrl-C reaches: a child started from
+    a background job inherits SIGINT ignored, and Python then never raises
+    KeyboardInterrupt, so the default disposition is restored before it starts."""
     return subprocess.Popen(
         [sys.executable, "-m", "foilbearing", "orbit", *argv],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
 
 

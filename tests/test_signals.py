@@ -18,6 +18,7 @@ import pytest
 
 from foilbearing.errors import InputError
 from foilbearing.signals import (
+    SubsyncResult,
     divergence_speed,
     onset,
     subsynchronous_amplitude,
@@ -237,3 +238,87 @@ def test_order_tracking_reads_a_half_frequency_component_not_a_whirl_at_another_
     assert hi == pytest.approx((1500 + 500 * 2.0) * 30 / np.pi, rel=0.02)
     assert peak == pytest.approx(3e-6, rel=0.05)
     assert order_interval(speed, amp, 1e-3) is None
+
+
+def _windows(amp_um: list[float], freq_hz: list[float] | None = None) -> SubsyncResult:
+    """Window amplitudes as `subsynchronous_amplitude` would give them: 0.25 s windows,
+    the speed rising 1000 rpm per second."""
+    t = 0.25 * np.arange(len(amp_um))
+    freq = np.full(t.size, np.nan) if freq_hz is None else np.asarray(freq_hz, float)
+    a = np.asarray(amp_um, float) * 1e-6
+    return SubsyncResult(t, 1000.0 * t, a, freq, np.zeros_like(t), 0.25)
+
+
+def test_onset_hysteresis_sustain_and_interpolation_on_known_windows() -> None:
+    """The onset rule on window amplitudes chosen by hand (threshold 1 µm, release 0.5):
+    "on" above the threshold, held between 0.5 and 1 µm, "off" below 0.5 µm; an interval
+    counts when it lasts at least the sustain time (0.5 s here: exactly two windows);
+    the onset is the linear crossing of the threshold between window centres."""
+    nan = math.nan
+    sub = _windows(
+        [0.2, 0.6, 1.2, 0.5, 1.1, 0.4, 0.3, 1.5, 1.5, 1.5, 0.2],
+        [nan, nan, 50.0, 52.0, 54.0, 100.0, nan, 60.0, 61.0, 62.0, nan],
+    )
+    sub.amplitude[3] = 0.5 * 1e-6  # exactly the release level, as the code forms it
+    res = onset(sub, threshold=1e-6, sustain_s=0.5, release=0.5)
+    # windows 2-4 (held through 0.5 µm) and 7-9; each exactly 0.5 s long
+    assert res.intervals == [(500.0, 1000.0, 52.0), (1750.0, 2250.0, 61.0)]
+    t_on = 0.25 + (1.0 - 0.6) / (1.2 - 0.6) * 0.25
+    assert res.onset_time_s == pytest.approx(t_on, rel=1e-12)
+    assert res.onset_speed_rpm == pytest.approx(1000.0 * t_on, rel=1e-12)
+    assert res.whirl_frequency_hz == 52.0 and res.threshold == 1e-6
+    # a window held before any crossing is "off"; the onset interpolates into it
+    held = onset(_windows([0.6, 1.5, 1.5, 1.5, 0.2]), threshold=1e-6, sustain_s=0.5)
+    assert held.intervals[0][:2] == (250.0, 750.0)
+    assert held.onset_time_s == pytest.approx(0.25 * (1.0 - 0.6) / (1.5 - 0.6), rel=1e-12)
+    assert held.whirl_frequency_hz is None  # no peak found in the interval's windows
+    # a short burst before: the crossing is read from the window just before the interval
+    after = onset(_windows([1.2, 0.3, 1.1, 1.5, 1.5, 0.2]), threshold=1e-6, sustain_s=0.5)
+    assert after.onset_time_s == pytest.approx(0.25 + 0.7 / 0.8 * 0.25, rel=1e-12)
+    # motion from the first window: the onset is that window, nothing to interpolate from
+    first = onset(_windows([1.5, 1.5, 1.5, 0.2, 0.1]), threshold=1e-6, sustain_s=0.5)
+    assert first.onset_time_s == 0.0 and first.intervals[0][:2] == (0.0, 500.0)
+    # exactly at the threshold is not above it; a short burst does not count
+    level = _windows([0.2, 1.0, 1.0, 1.0, 0.2])
+    level.amplitude[1:4] = 1e-6  # exactly the threshold
+    at = onset(level, threshold=1e-6, sustain_s=0.5)
+    assert at.onset_speed_rpm is None and at.intervals == [] and at.threshold == 1e-6
+    short = onset(_windows([0.2, 1.5, 1.5, 0.2]), threshold=1e-6, sustain_s=0.5)
+    assert short.onset_speed_rpm is None
+
+
+def test_onset_rejects_bad_levels_in_one_line() -> None:
+    sub = _windows([0.2, 1.5, 1.5, 1.5, 0.2])
+    assert onset(sub, threshold=1e-6, release=1.0).onset_speed_rpm is not None
+    for kwargs in (
+        {"threshold": 0.0},
+        {"threshold": 1e-6, "release": 0.0},
+        {"threshold": 1e-6, "release": 1.5},
+    ):
+        with pytest.raises(InputError, match=r"need threshold > 0 and 0 < release ≤ 1"):
+            onset(sub, **kwargs)
+    for clearance in (None, 0.0):
+        with pytest.raises(InputError, match="needs a positive clearance"):
+            onset(sub, fraction=0.01, clearance=clearance)
+    assert onset(sub, fraction=0.01, clearance=1e-4).threshold == pytest.approx(1e-6)
+
+
+def test_subsync_reads_a_sinusoid_between_bins_and_only_inside_the_band() -> None:
+    """At a constant 500 Hz (30 krpm), with defaults: a 5 µm sinusoid at 97.3 or 118.9 Hz
+    (between the 4 Hz bins) reads 5 µm (Parseval, to 0.1 %) at its own frequency (the
+    parabolic interpolation of the log power, measured within 0.001 Hz; asserted to
+    0.01 Hz, a four-hundredth of a bin); at 0.88X (inside the 0.9X band) it reads 5 µm, at
+    0.95X it is left out (under 0.05 µm)."""
+    t = np.arange(round(2.0 * FS)) / FS
+    w = 2 * np.pi * 500.0
+    speed, phase = np.full(t.size, w), w * t
+    inner = slice(3, -3)  # away from the record's ends
+    for f in (97.3, 118.9, 440.0):
+        x = 20e-6 * np.cos(phase + 0.4) + 5e-6 * np.cos(2 * np.pi * f * t)
+        sub = subsynchronous_amplitude(t, x, speed, phase)
+        assert sub.times[0] == pytest.approx(0.125, abs=1e-9)  # the first window's centre
+        np.testing.assert_allclose(sub.speeds_rpm, 30000.0, rtol=1e-12)
+        assert np.abs(sub.frequency_hz[inner] - f).max() < 0.01
+        np.testing.assert_allclose(sub.amplitude[inner], 5e-6, rtol=1e-3)
+    x = 20e-6 * np.cos(phase + 0.4) + 5e-6 * np.cos(2 * np.pi * 475.0 * t)
+    assert subsynchronous_amplitude(t, x, speed, phase).amplitude[inner].max() < 0.05e-6
