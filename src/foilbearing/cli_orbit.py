@@ -200,7 +200,7 @@ def _controller_args(text: str) -> dict[str, float]:
     kinds = {
         "threshold": ("length", "threshold"),
         "target": ("voltage", "target"),
-        "slew": ("slew", "slew_rate"),
+        "slew": ("slew_rate", "slew_rate"),
         "window": ("time", "window"),
         "period": ("time", "period"),
         "initial": ("voltage", "initial"),
@@ -213,17 +213,7 @@ def _controller_args(text: str) -> dict[str, float]:
                 f"--controller {item!r}: expected KEY=VALUE with KEY one of " + ", ".join(kinds)
             )
         kind, name = kinds[key]
-        if kind == "slew":
-            from foilbearing.units import ureg
-
-            try:
-                out[name] = float(ureg.Quantity(value).to("V/s").magnitude)
-            except Exception:
-                raise InputError(
-                    f"--controller slew={value!r}: expected a rate like 1000V/s"
-                ) from None
-        else:
-            out[name] = _q(value, kind, f"--controller {key}")
+        out[name] = _q(value, kind, f"--controller {key}")
     return out
 
 

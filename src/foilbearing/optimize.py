@@ -124,7 +124,7 @@ def _finite(x: float) -> float | None:
     return x if math.isfinite(x) else None
 
 
-class BudgetSpent(Exception):
+class _BudgetSpent(Exception):
     """Raised inside the local search when the evaluation budget is used up."""
 
 
@@ -155,7 +155,7 @@ class EvaluationCache:
         v = self.key(x)
         if v not in self.points:
             if len(self.points) >= self.max_evaluations:
-                raise BudgetSpent
+                raise _BudgetSpent
             value, merit = self.evaluate(v)
             self.points[v] = (value, merit if math.isfinite(merit) else FAILED_MERIT)
             if self.progress is not None:
@@ -191,7 +191,7 @@ def local_search(
             options = {"xtol": xatol / max(float(np.max(hi - lo)), 1.0), "ftol": 1e-6}
         res = minimize(cache.merit, x0, method=method, bounds=bounds, options=options)
         return bool(res.success), f"{method}: {res.message}"
-    except BudgetSpent:
+    except _BudgetSpent:
         return False, (
             f"stopped at the budget of {cache.max_evaluations} evaluations before the "
             f"{method} tolerances were met: raise max_evaluations to go on"

@@ -75,7 +75,9 @@ def mean_power_loss(result: OrbitResult, until_rpm: float | None = None) -> floa
         keep &= result.speed * 30 / math.pi <= until_rpm
     if keep.sum() < 2:
         return None
-    return float(np.trapezoid(p[keep], result.time[keep]) / np.ptp(result.time[keep]))
+    from scipy.integrate import trapezoid  # numpy >= 1.26 (the floor) has no np.trapezoid
+
+    return float(trapezoid(p[keep], result.time[keep]) / np.ptp(result.time[keep]))
 
 
 def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) -> OrbitAnalysis:

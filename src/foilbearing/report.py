@@ -603,25 +603,19 @@ def _bearing_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
     return note + _records([m for m in d.get("modes", []) if isinstance(m, dict)], cols)
 
 
-def _shim_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
-    cols: list[Column] = [
-        ("× case thickness", _key("scale"), "g"),
-        ("shim thickness (µm)", _key("thickness_um"), ".3g"),
-        ("onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
-        ("whirl (Hz)", _key("whirl_frequency_Hz"), ".1f"),
-        ("how it was read", _key("message"), ""),
-    ]
-    return _records([r for r in d.get("rows", []) if isinstance(r, dict)], cols)
+def _onsets_against(*lead: tuple[str, str, str]) -> Callable[[dict[str, Any], dict[str, Any]], str]:
+    """A table of linear onsets against a knob: ``lead`` columns (header, key, format) first."""
 
+    def render(d: dict[str, Any], case: dict[str, Any]) -> str:
+        cols: list[Column] = [(h, _key(k), f) for h, k, f in lead]
+        cols += [
+            ("onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+            ("whirl (Hz)", _key("whirl_frequency_Hz"), ".1f"),
+            ("how it was read", _key("message"), ""),
+        ]
+        return _records([r for r in d.get("rows", []) if isinstance(r, dict)], cols)
 
-def _voltage_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
-    cols: list[Column] = [
-        ("voltage (V)", _key("voltage_V"), "g"),
-        ("onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
-        ("whirl (Hz)", _key("whirl_frequency_Hz"), ".1f"),
-        ("how it was read", _key("message"), ""),
-    ]
-    return _records([r for r in d.get("rows", []) if isinstance(r, dict)], cols)
+    return render
 
 
 def _bearing_orbit(d: dict[str, Any], case: dict[str, Any]) -> str:
@@ -663,8 +657,10 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "bearing_coefficients": _bearing_coefficients,
     "bearing_stability": _bearing_stability,
     "bearing_orbit": _bearing_orbit,
-    "shim_stability": _shim_stability,
-    "voltage_stability": _voltage_stability,
+    "shim_stability": _onsets_against(
+        ("× case thickness", "scale", "g"), ("shim thickness (µm)", "thickness_um", ".3g")
+    ),
+    "voltage_stability": _onsets_against(("voltage (V)", "voltage_V", "g")),
     "reference_comparison": _reference,
 }
 

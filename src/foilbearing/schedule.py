@@ -170,8 +170,6 @@ class SpeedSchedule:
         At the scheduled voltages, per speed: W, -, rad/s, m (None: not computed).
     power_loss_reference
         Power loss at a constant :data:`REFERENCE_VOLTAGE` on every actuator, W.
-    meets_margin
-        Per speed: whether the scheduled voltages meet the margin.
     midpoint_log_decrement
         δ halfway between consecutive grid speeds at the interpolated voltages
         (n_speeds − 1; NaN where no equilibrium was found).
@@ -194,11 +192,17 @@ class SpeedSchedule:
     whirl_frequency: FloatArray | None = None
     min_film: FloatArray | None = None
     power_loss_reference: FloatArray | None = None
-    meets_margin: NDArray[np.bool_] | None = None
     midpoint_log_decrement: FloatArray | None = None
     limit_speed: float | None = None
     evaluations: int = 0
     source: str | None = None
+
+    @property
+    def meets_margin(self) -> NDArray[np.bool_] | None:
+        """Per speed: whether the scheduled voltages meet the margin (None: not known)."""
+        if self.margin is None or self.log_decrement is None:
+            return None
+        return np.asarray(self.log_decrement >= self.margin - 1e-12)
 
     @property
     def n_actuators(self) -> int:
@@ -384,7 +388,8 @@ def voltage_schedule(
             return point.power_loss, _MISSED + 10.0 * (margin - point.log_decrement)
 
         cache = EvaluationCache(evaluate, lo, hi, max_evaluations, None, str)
-        starts = ([previous] if previous is not None else []) + equal + [ref_key] + extra
+        # the equal voltages include ref_key, so the constant-voltage reference is evaluated
+        starts = ([previous] if previous is not None else []) + equal + extra
         local_search(cache, starts, "Nelder-Mead", xatol=0.5, fatol=1e-3)
         total += len(cache.points)
         if not found:
@@ -441,7 +446,6 @@ def voltage_schedule(
         whirl_frequency=np.array([p.whirl_frequency for p in chosen]),
         min_film=np.array([p.min_film for p in chosen]),
         power_loss_reference=np.array(reference),
-        meets_margin=dec >= margin - 1e-12,
         midpoint_log_decrement=mid_dec,
         limit_speed=_limit_speed(both_w, both_dec),
         evaluations=total,

@@ -156,7 +156,6 @@ def parse_schedule(data: dict[str, Any], case: Case, source: str) -> SpeedSchedu
         power_loss=None if np.all(np.isnan(loss)) else np.array(loss),
         log_decrement=None if np.all(np.isnan(dec_a)) else dec_a,
         min_film=None if np.all(np.isnan(film)) else np.array(film),
-        meets_margin=None if margin is None or np.all(np.isnan(dec_a)) else dec_a >= margin,
         limit_speed=limit,
         source=source,
     )

@@ -99,7 +99,8 @@ def run_study(
     results["structure"] = structure_summary(case, list(plan.voltages) or [0.0])
     results["structure"]["figures"] = [str(p) for p in write_structure_figures(case, out)]
 
-    if not paper:  # any other bearing: its own plan (foilbearing.study_plan)
+    if not paper:  # any other case: its own plan (foilbearing.study_plan); the paper's
+        # numbers, its synthetic stack data and the uncertainty file fit its bearing only
         from foilbearing.study_bearing import bearing_study
 
         results |= bearing_study(case, plan, out, stage, orbits=orbits)
@@ -115,11 +116,11 @@ def run_study(
     sweep = _static_stage(case, out, results, stage)
     onsets = _stability_stage(case, out, results, stage)
 
-    if uncertainty != "none" and is_default_case_file(case.source):
+    if uncertainty != "none":
         results["uncertainty"] = _uncertainty_stage(out, UNCERTAINTY_SAMPLES[uncertainty], stage)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
-    orbit_runs: dict[str, Any] = {}  # OrbitResult by label, for the schedule's comparison
+    orbit_runs: dict[str, Any] = {}  # the runs by label, for the schedule's comparison
     if orbits:
         from foilbearing.study_orbits import paper_orbit_runs
 
@@ -137,8 +138,7 @@ def run_study(
         results["schedule"] = schedule_stage(case, out, stage, previous=orbit_runs, verify=orbits)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
-    if is_default_case_file(case.source):  # the paper's numbers fit the paper's bearing only
-        _paper_comparison(case, out, results, sweep, onsets, progress)
+    _paper_comparison(case, out, results, sweep, onsets, progress)
     return _finish(case, out, results, stage, progress)
 
 

@@ -193,7 +193,8 @@ def paper_orbit_runs(
 ) -> dict[str, Any]:
     """Run the speed-ups (see the module docstring), write their figures and Fig. 15.
 
-    ``results``, if given, receives each run's ``OrbitResult`` by its label.
+    ``results``, if given, receives each run by its label, as :func:`run_one` returns it
+    (``"result"``, ``"analysis"``, ``"headline"``).
     """
     from foilbearing.io import save_figure
     from foilbearing.orbit_analysis import write_orbit_figures
@@ -245,7 +246,7 @@ def paper_orbit_runs(
             finish(fut.result())
     order = list(dict.fromkeys([zero.label, *done, *(r.label for r in runs)]))
     if results is not None:
-        results.update({k: run["result"] for k, run in done.items()})
+        results.update(done)
     figures = []
     for series in dict.fromkeys(done[k]["headline"]["series"] for k in order):
         keys = [

@@ -32,7 +32,6 @@ and the field.
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -122,24 +121,32 @@ class StudyPlan:
         }
 
 
-def _speeds(t: TableReader, key: str, default: list[float], top: float) -> tuple[float, ...]:
-    raw = t.raw(key, default=None)
-    if raw is None:
-        return tuple(default)
-    if not isinstance(raw, list) or not raw:
-        raise t.error(key, raw, "a non-empty list of speeds, e.g. ['50000 rpm']")
+def _values(t: TableReader, key: str, kind: str, example: str) -> tuple[float, ...] | None:
+    """List field ``key`` of ``[study]`` as sorted SI values, or None when absent."""
     from foilbearing.units import parse_quantity
 
-    values = [
-        parse_quantity(v, "speed", field=f"{t.prefix}{key}[{i}]", source=t.source)
-        for i, v in enumerate(raw)
-    ]
-    for v in values:
-        if not 0.0 < v <= top * (1 + 1e-12):
-            raise t.error(
-                key, raw, f"speeds above 0 and up to operation.max_speed = {top / RPM:.0f} rpm"
-            )
-    return tuple(sorted(values))
+    raw = t.raw(key, default=None)
+    if raw is None:
+        return None
+    if not isinstance(raw, list) or not raw:
+        raise t.error(key, raw, f"a non-empty list, e.g. {example}")
+    return tuple(
+        sorted(
+            parse_quantity(v, kind, field=f"{t.prefix}{key}[{i}]", source=t.source)
+            for i, v in enumerate(raw)
+        )
+    )
+
+
+def _speeds(t: TableReader, key: str, default: float, top: float) -> tuple[float, ...]:
+    values = _values(t, key, "speed", "['50000 rpm']")
+    if values is None:
+        return (default,)
+    if not (0.0 < values[0] and values[-1] <= top * (1 + 1e-12)):
+        raise t.error(
+            key, t.data[key], f"speeds above 0 and up to operation.max_speed = {top / RPM:.0f} rpm"
+        )
+    return values
 
 
 def study_plan(case: Case) -> StudyPlan:
@@ -151,7 +158,6 @@ def study_plan(case: Case) -> StudyPlan:
         An unknown key, a bad value, a speed beyond ``operation.max_speed``; one line.
     """
     from foilbearing.sweep_analyses import speed_scan
-    from foilbearing.units import parse_quantity
 
     data = json.loads(case.study_table) if case.study_table else {}
     t = TableReader(data, "study", case.source)
@@ -159,7 +165,7 @@ def study_plan(case: Case) -> StudyPlan:
     speed = case.operation.speed
     raw = t.raw("speed_range", default=None)
     if raw is None:
-        speeds = [speed * k / 10.0 for k in range(1, 11)]
+        speeds = [speed * (k / 10.0) for k in range(1, 11)]  # the last is the case speed
     else:
         speeds = speed_scan(raw, "study.speed_range", case.source or "the case")
         if speeds[-1] > top * (1 + 1e-12):
@@ -173,21 +179,11 @@ def study_plan(case: Case) -> StudyPlan:
         raise t.error(
             "onset_top", data["onset_top"], f"at most operation.max_speed = {top / RPM:.0f} rpm"
         )
-    loads_raw = t.raw("loads", default=None)
-    loads: tuple[float, ...] = ()
-    if loads_raw is not None:
-        if not isinstance(loads_raw, list) or not loads_raw:
-            raise t.error("loads", loads_raw, "a non-empty list of loads, e.g. ['5 N', '10 N']")
-        loads = tuple(
-            sorted(
-                parse_quantity(v, "force", field=f"study.loads[{i}]", source=case.source)
-                for i, v in enumerate(loads_raw)
-            )
-        )
-        if loads[0] < 0.0:
-            raise t.error("loads", loads_raw, "loads >= 0 N")
-    frequency_speeds = _speeds(t, "frequency_speeds", [speed], top)
-    map_speeds = _speeds(t, "map_speeds", [speed], top)
+    loads = _values(t, "loads", "force", "['5 N', '10 N']") or ()
+    if loads and loads[0] < 0.0:
+        raise t.error("loads", data["loads"], "loads >= 0 N")
+    frequency_speeds = _speeds(t, "frequency_speeds", speed, top)
+    map_speeds = _speeds(t, "map_speeds", speed, top)
     orbit = t.raw("orbit", default=True)
     if not isinstance(orbit, bool):
         raise t.error("orbit", orbit, "true or false")
@@ -219,29 +215,17 @@ def study_plan(case: Case) -> StudyPlan:
             scales = tuple(sorted(float(k) for k in raw_scales))
     elif raw_scales is not None:
         raise t.error("shim_scales", raw_scales, "nothing: this bearing has no [shims]")
+    given = _values(t, "voltages", "voltage", "['0 V', '150 V']")
     voltages: tuple[float, ...] = ()
-    raw_volts = t.raw("voltages", default=None)
     if case.actuators is not None:
         top_v = case.actuators.max_voltage
-        if raw_volts is None:
-            voltages = tuple(top_v * k / 3.0 for k in range(4))
-        else:
-            if not isinstance(raw_volts, list) or not raw_volts:
-                raise t.error(
-                    "voltages", raw_volts, "a non-empty list of voltages, e.g. ['0 V', '150 V']"
-                )
-            voltages = tuple(
-                sorted(
-                    parse_quantity(v, "voltage", field=f"study.voltages[{i}]", source=case.source)
-                    for i, v in enumerate(raw_volts)
-                )
+        voltages = given or tuple(top_v * k / 3.0 for k in range(4))
+        if voltages[0] < 0.0 or voltages[-1] > top_v:
+            raise t.error(
+                "voltages", data["voltages"], f"voltages from 0 to max_voltage = {top_v:g} V"
             )
-            if voltages[0] < 0.0 or voltages[-1] > top_v:
-                raise t.error(
-                    "voltages", raw_volts, f"voltages from 0 to max_voltage = {top_v:g} V"
-                )
-    elif raw_volts is not None:
-        raise t.error("voltages", raw_volts, "nothing: this bearing has no [actuators]")
+    elif given is not None:
+        raise t.error("voltages", data["voltages"], "nothing: this bearing has no [actuators]")
     reference: dict[str, float] = {}
     if "reference" in data:
         ref = t.table("reference")
@@ -282,5 +266,3 @@ def check_load_is_carried(case: Case, plan: StudyPlan) -> None:
             f"{top / RPM:.0f} rpm ({st.message}); lower the load or raise the speeds",
             source=case.source,
         )
-    if math.isnan(st.min_film):
-        raise InputError("the equilibrium at the top speed has no film", source=case.source)

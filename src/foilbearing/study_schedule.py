@@ -29,11 +29,9 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from foilbearing.case import RPM, Case
 
-__all__ = ["SCHEDULE_SPEEDS_RPM", "power_saving_percent", "schedule_stage"]
+__all__ = ["SCHEDULE_SPEEDS_RPM", "schedule_stage"]
 
 #: The study's schedule grid, rpm: 10 to 90 krpm in 5 krpm steps (17 speeds).
 SCHEDULE_SPEEDS_RPM = tuple(range(10_000, 90_001, 5_000))
@@ -64,11 +62,12 @@ def schedule_stage(
 ) -> dict[str, Any]:
     """Compute, write and (with ``verify``) run the schedule; returns its summary.
 
-    ``previous`` holds the orbit stage's runs (``OrbitResult`` by label): those
-    with the same program and imbalance are reused.
+    ``previous`` holds the orbit stage's runs by label, as
+    :func:`foilbearing.study_orbits.run_one` returns them: those with the same
+    program and imbalance are reused, results and analyses alike.
     """
     from foilbearing.io import save_figure, write_text
-    from foilbearing.orbit_analysis import analyse_orbit, mean_power_loss
+    from foilbearing.orbit_analysis import mean_power_loss
     from foilbearing.plots.orbit import plot_subsync
     from foilbearing.plots.schedule import plot_run_power, plot_schedule
     from foilbearing.schedule import voltage_schedule
@@ -90,23 +89,21 @@ def schedule_stage(
     if not verify:
         return summary
     plan = _runs(schedule)
-    results: dict[str, Any] = {r.label: (previous or {}).get(r.label) for r in plan}
-    todo = [r for r in plan if results[r.label] is None]
+    runs: dict[str, Any] = {r.label: (previous or {}).get(r.label) for r in plan}
+    todo = [r for r in plan if runs[r.label] is None]
     for r in plan:
-        if results[r.label] is not None:
-            stage(f"  {r.describe()}: read back from the orbit stage")
+        if runs[r.label] is not None:
+            stage(f"  {r.describe()}: taken from the orbit stage")
     with ProcessPoolExecutor(max_workers=workers or (os.cpu_count() or 1)) as pool:
         futures = {pool.submit(run_one, case, r, out): r for r in todo}
         for fut, r in futures.items():
-            done = fut.result()
-            results[r.label] = done["result"]
-            head = done["headline"]
+            runs[r.label] = fut.result()
+            head = runs[r.label]["headline"]
             stage(f"  {r.describe()}: {head['message']} ({head['wall_time_s']:.0f} s)")
-    common = min(float(results[r.label].speed[-1]) for r in plan) / RPM
+    common = min(float(runs[r.label]["result"].speed[-1]) for r in plan) / RPM
     rows, subs, onsets, power = [], {}, {}, {}
     for r in plan:
-        res = results[r.label]
-        analysis = analyse_orbit(res)
+        res, analysis = runs[r.label]["result"], runs[r.label]["analysis"]
         head = analysis.headline(res)
         if analysis.subsync is not None:
             subs[r.describe()] = analysis.subsync
@@ -138,16 +135,3 @@ def schedule_stage(
         "runs": rows,
     }
     return summary
-
-
-def power_saving_percent(summary: dict[str, Any]) -> float | None:
-    """Mean power loss of the schedule against constant 150 V over the common speeds, %."""
-    rows = {r["label"]: r for r in summary.get("verification", {}).get("runs", [])}
-    sched = next((r for k, r in rows.items() if k.startswith("schedule")), None)
-    ref = next((r for k, r in rows.items() if "V_constant" in k), None)
-    if not sched or not ref:
-        return None
-    a, b = sched.get("mean_power_loss_common_W"), ref.get("mean_power_loss_common_W")
-    if a is None or b is None or not np.isfinite(b) or b == 0:
-        return None
-    return float(100.0 * (b - a) / b)
