@@ -374,3 +374,54 @@ def test_the_bump_damping_law_is_the_same_in_the_orbit_and_the_linear_analysis()
     assert linear == pytest.approx(closed, rel=1e-12)
     # the loss per cycle: the phase lag of the deflection behind the pressure
     assert -np.angle(orbit) == pytest.approx(math.atan(gamma * nu / omega), rel=1e-5)
+
+
+def test_ctrl_c_at_any_line_of_a_step_resumes_to_the_uninterrupted_run() -> None:
+    # Ctrl-C reaches Python between two bytecodes, so anywhere in a step: between the
+    # shift of the BDF history and the update of the current time, a checkpoint once
+    # held a state, time and history that disagreed (the resumed run divided by a zero
+    # step, or departed by 0.75 um from the uninterrupted one). SIGINT is raised at each
+    # line the stepper runs in one step in turn; each stopped run must resume to the
+    # uninterrupted one within the Newton tolerance (measured 8e-7 C).
+    import signal
+    import sys
+
+    from foilbearing.orbit import _run
+
+    case = coarse(100.0, imbalance=1e-6)
+    prof = constant_speed(20e3 * RPM, 0.004)
+    whole = simulate(case, prof)
+    clearance = case.bearing.clearance
+
+    def run(stop_line: int | None, step: int = 10) -> tuple[int, object]:
+        seen = {"steps": 0, "lines": 0}
+
+        def progress(t: float, w: float) -> None:
+            seen["steps"] += 1
+
+        def in_run(frame, event, arg):
+            if event == "line" and seen["steps"] == step:
+                seen["lines"] += 1
+                if seen["lines"] == stop_line:
+                    signal.raise_signal(signal.SIGINT)
+            return in_run
+
+        sys.settrace(lambda frame, event, arg: in_run if frame.f_code is _run.__code__ else None)
+        try:
+            res = simulate(case, prof, progress=progress)
+        finally:
+            sys.settrace(None)
+        return seen["lines"], res
+
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal
+    try:
+        lines_per_step, _ = run(None)
+        assert lines_per_step > 20
+        for line in range(1, lines_per_step + 1):
+            _, part = run(line)
+            assert part.status == "interrupted", (line, part.message)
+            rest = simulate(case, prof, resume=part)
+            assert rest.status == "completed" and rest.time.size == whole.time.size
+            assert np.max(np.abs(rest.e_x - whole.e_x)) < 1e-5 * clearance, line
+    finally:
+        signal.signal(signal.SIGINT, before)

@@ -17,8 +17,11 @@ the speed profile, and keeps every sample computed until then.
 from __future__ import annotations
 
 import math
+import signal
+import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -451,7 +454,40 @@ def simulate(
     else:
         state = _State(0.0, sim.initial_state())
         samples = _Samples(1.0 / sim.settings.sample_rate)
-    return _run(sim, state, samples, progress, stop_time, checkpoint, checkpoint_every)
+    with _interrupt_at_step_boundary() as interrupted:
+        return _run(
+            sim, state, samples, progress, stop_time, checkpoint, checkpoint_every, interrupted
+        )
+
+
+@contextmanager
+def _interrupt_at_step_boundary() -> Iterator[Callable[[], bool]]:
+    """Hold Ctrl-C until the step under way is committed; yields ``interrupted()``.
+
+    A KeyboardInterrupt raised at an arbitrary line of a step (between the shift of
+    the BDF history and the update of the current time, say) leaves a checkpoint
+    whose state, time and history disagree, and the resumed run then departs from
+    the uninterrupted one. In the main thread with Python's default handler, SIGINT
+    only sets a flag that the stepper reads before each step; elsewhere (a worker
+    thread, which never receives SIGINT, or a program with its own handler)
+    nothing changes.
+    """
+    requested = [False]
+    if (
+        threading.current_thread() is not threading.main_thread()
+        or signal.getsignal(signal.SIGINT) is not signal.default_int_handler
+    ):
+        yield lambda: requested[0]
+        return
+
+    def hold(signum: int, frame: object) -> None:
+        requested[0] = True
+
+    signal.signal(signal.SIGINT, hold)
+    try:
+        yield lambda: requested[0]
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def _run(
@@ -462,6 +498,7 @@ def _run(
     stop_time: float | None,
     checkpoint: Callable[[OrbitResult], None] | None,
     checkpoint_every: float,
+    interrupted: Callable[[], bool] = lambda: False,
 ) -> OrbitResult:
     s, sys_ = sim.settings, sim.system
     t_end = sim.profile.duration if stop_time is None else min(stop_time, sim.profile.duration)
@@ -519,6 +556,8 @@ def _run(
 
     try:
         while st.t < t_end - 1e-12:
+            if interrupted():
+                raise KeyboardInterrupt  # held by _interrupt_at_step_boundary
             t = st.t
             omega = sim.profile.state(t)[0]
             h = h_nominal = min(s.max_step, 2 * math.pi / (omega * s.steps_per_rev))
@@ -565,7 +604,7 @@ def _run(
             times[1:], ys[1:], qs[1:] = times[:-1], ys[:-1], qs[:-1]
             times[0], ys[0], qs[0] = t_new, y_new, q_new
             count = min(count + 1, depth)
-            st.t, st.y = t_new, ys[0]
+            st.t, st.y = t_new, ys[0].copy()
             out.add(t_new, y_new, sim, volts, inp, min_film=h_min)
             if isinstance(sim.voltage, SubsyncController):
                 for t_s, ex in out.new_samples():
