@@ -152,6 +152,31 @@ def test_rigid_bearing_with_reference_values_and_its_orbit(
     assert '<section id="reference_comparison"' in (tmp_path / "report.html").read_text()
 
 
+def test_a_speed_up_that_cannot_start_is_recorded_not_fatal(
+    write_case, tmp_path: Path, capsys
+) -> None:
+    # A rigid bearing cannot carry 20 N at 3 krpm (its film would close) but can at
+    # 12 krpm: the static points at 3 krpm fail, and so does the orbit's start; both
+    # are recorded with what to try, and the study goes on to its report.
+    def edit(d) -> None:
+        _rigid(d)
+        d["operation"]["load"] = "20 N"
+        d["study"] = {
+            "speed_range": ["3000 rpm", "12000 rpm", "9000 rpm"],
+            "onset_top": "12000 rpm",
+        }
+
+    path = write_case("rigid_low", n_theta=32, n_z=4, edit=edit)
+    assert main(["study", str(path), "--out", str(tmp_path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    first, last = out["bearing_static"]["points"]
+    assert not first["converged"] and "try" in first["message"] and last["converged"]
+    orbit = out["bearing_orbit"]
+    assert orbit["status"] == "failed" and "could not start at 3000 rpm" in orbit["message"]
+    assert "speed_range" in orbit["message"]
+    assert '<section id="bearing_orbit"' in (tmp_path / "report.html").read_text()
+
+
 @pytest.mark.slow
 def test_shimmed_bearing_onset_against_shim_thickness(write_case, tmp_path: Path, capsys) -> None:
     """Shims of zero thickness are no shims: their onset is the passive bearing's, found
@@ -182,24 +207,114 @@ def test_shimmed_bearing_onset_against_shim_thickness(write_case, tmp_path: Path
 
 @pytest.mark.slow
 def test_a_cgfb_other_than_the_papers_gets_its_own_plan(write_case, tmp_path: Path, capsys) -> None:
-    """A C-GFB case from another file runs the plan (onset against voltage, the schedule
-    over the plan's speeds) and shows no paper comparison and no identification from the
-    paper's synthetic data. The voltages' preload delays the onset (0 -> 150 V)."""
+    """A C-GFB case from another file runs the plan: onset and static readouts against
+    voltage, the schedule over the plan's speeds, the identification from its own stack
+    files, reference values at the case speed, and a speed-up with a voltage ramp. It
+    shows no paper comparison. Facts checked: the voltages' preload delays the onset
+    (0 -> 150 V) and raises every actuator's preload; an equilibrium continued from the
+    last voltage is the one found from the centre; the synchronous coefficients beside
+    the reference are those of a separate linearisation at the case speed; the orbit
+    applies the ramp (case's 0 V before it, 150 V after)."""
+    import shutil
+
+    import xarray as xr
+
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.static import solve_equilibrium
 
     def edit(d) -> None:
+        d["operation"]["speed"] = "40000 rpm"
+        d["rotor"]["imbalance"] = "1 g*mm"
         d["study"] = {
-            "speed_range": ["30000 rpm", "60000 rpm", "10000 rpm"],
-            "voltages": ["0 V", "150 V"],
-            "orbit": False,
+            "speed_range": ["30000 rpm", "40000 rpm", "10000 rpm"],
+            "voltages": ["0 V", "75 V", "150 V"],
+            "orbit_acceleration": "4000 rad/s**2",
+            "orbit_voltage_ramp": {"start": "0.05 s", "end": "0.1 s", "voltage": "150 V"},
+            "identification": {"no_load": "data/no_load.csv", "stiffness": "data/k.csv"},
+            "reference": {"K_xx": "2e6 N/m", "C_yx": "-50 N*s/m", "eccentricity": 0.5},
         }
 
     path = write_case("mine", n_theta=32, n_z=4, edit=edit)
+    (path.parent / "data").mkdir()
+    examples = Path(__file__).resolve().parents[1] / "examples" / "data"
+    shutil.copy(examples / "stack_no_load.csv", path.parent / "data" / "no_load.csv")
+    shutil.copy(examples / "stack_stiffness.csv", path.parent / "data" / "k.csv")
     assert main(["study", str(path), "--out", str(tmp_path), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["plan"]["bearing_kind"] == "C-GFB" and out["plan"]["voltages_V"] == [0.0, 150.0]
-    assert "paper_comparison" not in out and "identification" not in out
+    assert out["plan"]["bearing_kind"] == "C-GFB" and out["plan"]["voltages_V"] == [0, 75, 150]
+    assert "paper_comparison" not in out
     rows = {r["voltage_V"]: r for r in out["voltage_stability"]["rows"]}
     assert rows[150.0]["onset_speed_rpm"] > rows[0.0]["onset_speed_rpm"]
     sched = out["schedule"]["schedule"]
-    assert sched["speeds_rpm"] == pytest.approx([30000, 40000, 50000, 60000])
-    assert len(sched["voltages_V"]) == 4 and (tmp_path / "schedule.png").exists()
+    assert sched["speeds_rpm"] == pytest.approx([30000, 40000])
+    assert (tmp_path / "schedule.png").exists()
+
+    case = load_case(path)
+    points = out["actuator_static"]["points"]
+    assert [p["voltage_V"] for p in points] == [0, 75, 150] and all(p["converged"] for p in points)
+    assert np.all(np.diff([p["preload_um"] for p in points], axis=0) > 0)
+    fresh = solve_equilibrium(case.with_voltages(150.0), speed=case.operation.speed)
+    assert points[-1]["eccentricity"] == pytest.approx(fresh.eccentricity, rel=1e-5)
+    assert (tmp_path / "preloads_vs_voltage.png").stat().st_size > 10_000
+
+    data = path.parent / "data"
+    assert main(["identify", str(data / "no_load.csv"), str(data / "k.csv"), "--json"]) == 0
+    alone = json.loads(capsys.readouterr().out)
+    ident = out["identification"]
+    assert ident["k_p_N_per_m3"] == pytest.approx(alone["k_p_N_per_m3"], rel=1e-12)
+    assert set(ident["for_the_case_file"]) == {"d33_quadratic", "d33_linear", "stack_stiffness"}
+    assert (tmp_path / "stack_stiffness.png").exists()
+
+    st = solve_equilibrium(case, speed=case.operation.speed)
+    fc = force_coefficients(st, case.operation.speed)
+    ref = {r["quantity"].split(" (")[0]: r for r in out["reference_comparison"]["rows"]}
+    kxx = ref["synchronous stiffness KXX at the case speed"]
+    assert kxx["ours"] == pytest.approx(float(fc.K[0][0, 0]), rel=1e-6) and kxx["ours"] > 0
+    assert kxx["deviation_percent"] == pytest.approx(100 * (kxx["ours"] / 2e6 - 1))
+    assert ref["synchronous damping CYX at the case speed"]["reference"] == -50.0
+    assert ref["eccentricity ratio at the case speed and load"]["ours"] == pytest.approx(
+        st.eccentricity, rel=1e-6
+    )
+
+    orbit = xr.load_dataset(out["bearing_orbit"]["netcdf"])
+    t, volts = orbit.time.values, orbit.voltage.values
+    assert np.all(volts[t < 0.05] == 0.0) and np.allclose(volts[t > 0.1], 150.0)
+    assert json.loads(orbit.attrs["run_spec"])["voltage_ramp"] == "0.05s:0.1s:150.0V"
+    html = (tmp_path / "report.html").read_text()
+    assert '<section id="actuator_static"' in html and '<section id="identification"' in html
+
+
+@pytest.mark.parametrize(
+    ("study", "match"),
+    [
+        ({"orbit_voltage_ramp": {"start": "1 s", "end": "0.5 s", "voltage": "150 V"}},
+         "study.orbit_voltage_ramp.end = '0.5 s': expected a time at or after start"),
+        ({"orbit_voltage_ramp": {"start": "1 s", "end": "2 s", "voltage": "200 V"}},
+         "max_voltage = 150 V"),
+        ({"orbit_voltage_ramp": {"start": "1 s", "end": "2 s"}},
+         "study.orbit_voltage_ramp.voltage is missing"),
+        ({"identification": {"no_load": "nowhere.csv", "stiffness": "k.csv"}},
+         "study.identification.no_load = 'nowhere.csv': expected an existing file"),
+        ({"identification": {"stiffness": "k.csv"}}, "study.identification.no_load missing"),
+        ({"reference": {"K_xx": "2e6 N"}}, "study.reference.K_xx"),
+    ],
+)  # fmt: skip
+def test_bad_cgfb_study_tables_are_one_line_errors(write_case, study, match) -> None:
+    def edit(d) -> None:
+        d["study"] = study
+
+    path = write_case("bad_cgfb", edit=edit)
+    (path.parent / "k.csv").write_text("stack,voltage_V,load_N,displacement_um\n1,0,0,0\n")
+    with pytest.raises(InputError, match=match) as err:
+        study_plan(load_case(path))
+    assert "\n" not in str(err.value) and "bad_cgfb.toml" in str(err.value)
+
+
+@pytest.mark.parametrize("key", ["orbit_voltage_ramp", "identification"])
+def test_actuator_study_keys_on_a_passive_bearing_are_errors(write_case, key) -> None:
+    def edit(d) -> None:
+        _passive(d)
+        d["study"] = {key: {"start": "1 s"}}
+
+    with pytest.raises(InputError, match=rf"study.{key} .*nothing: this bearing has no"):
+        study_plan(load_case(write_case("passive_keys", edit=edit)))

@@ -29,20 +29,19 @@ def write_structure_figures(case: Case, folder: Path) -> list[Path]:
     return paths
 
 
-def write_identification_figures(result: Any, folder: Path) -> list[Path]:
-    """Figs. 5b and 6b-c as PNG files in ``folder``."""
+def write_identification_figures(
+    result: Any,
+    folder: Path,
+    names: tuple[str, str] = ("fig05b_stack_displacement.png", "fig06_stack_stiffness.png"),
+) -> list[Path]:
+    """Figs. 5b and 6b-c as PNG files in ``folder`` (``names``: the no-load figure's and
+    the stiffness figure's file names)."""
     from foilbearing.io import save_figure
     from foilbearing.plots.identification import plot_no_load, plot_stiffness
 
     return [
-        save_figure(
-            plot_no_load(result.no_load_data, result.no_load),
-            folder / "fig05b_stack_displacement.png",
-        ),
-        save_figure(
-            plot_stiffness(result.stiffness_data, result.stiffness),
-            folder / "fig06_stack_stiffness.png",
-        ),
+        save_figure(plot_no_load(result.no_load_data, result.no_load), folder / names[0]),
+        save_figure(plot_stiffness(result.stiffness_data, result.stiffness), folder / names[1]),
     ]
 
 

@@ -35,6 +35,7 @@ STAGES: tuple[tuple[str, str], ...] = (
     ("bearing_stability", "Linear stability"),
     ("shim_stability", "Linear stability against the shims' thickness"),
     ("voltage_stability", "Linear stability against the actuators' voltage"),
+    ("actuator_static", "Static performance against the actuators' voltage"),
     ("bearing_orbit", "Speed-up orbit"),
     ("identification", "Identification of the PZT stacks (Figs. 5-6)"),
     ("structure", "Foil structure and base preloads (Figs. 7-8)"),
@@ -52,6 +53,14 @@ _CAPTIONS = {
     "(synthetic measurements from examples/data) with the fitted curves.",
     "fig06_stack_stiffness.png": "Fig. 6(b, c): stack displacement versus static load and the "
     "identified stack stiffness of stacks #1-#3.",
+    "stack_displacement.png": "PZT stack displacement versus driving voltage from the "
+    "case's no-load test file, with the fitted curves (as the paper's Fig. 5b).",
+    "stack_stiffness.png": "PZT stack displacement versus static load from the case's "
+    "stiffness test file, and the identified stack stiffness (as the paper's Fig. 6b-c).",
+    "static_vs_voltage.png": "Eccentricity, attitude angle, minimum film and power loss "
+    "against the actuators' voltage (all the same) at the case speed and load.",
+    "preloads_vs_voltage.png": "Piezoelectric preload and actuator pressure of each "
+    "actuator against the voltage at the case speed and load.",
     "fig07_stiffness_function.png": "Fig. 7: structural stiffness function k(θ) for several "
     "smoothness constants α.",
     "fig08_preloads.png": "Fig. 8: base preloads r_p(θ) of the C-GFB at 0/50/100/150 V and the "
@@ -169,7 +178,8 @@ def render_report(summary: dict[str, Any], out_dir: Path) -> str:
     if summary.get("paper_comparison"):
         body = _comparison(summary["paper_comparison"])
         sections.append(("comparison", "Our numbers beside the paper's", body))
-    known = {key for key, _ in STAGES} | {"case", "paper_comparison"}
+    # case_point: the readouts at the case speed that the reference table shows
+    known = {key for key, _ in STAGES} | {"case", "paper_comparison", "case_point"}
     extra = [(k, k.replace("_", " ").capitalize()) for k in summary if k not in known]
     for key, heading in [*STAGES, *extra]:
         data = summary.get(key)
@@ -603,6 +613,20 @@ def _bearing_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
     return note + _records([m for m in d.get("modes", []) if isinstance(m, dict)], cols)
 
 
+def _actuator_static(d: dict[str, Any], case: dict[str, Any]) -> str:
+    def listed(key: str) -> Callable[[dict[str, Any]], Any]:
+        return lambda r: ", ".join(f"{x:.3g}" for x in r.get(key) or []) or None
+
+    note = f'<p class="note">At {_f(d.get("speed_rpm"), ".6g")} rpm and the case load.</p>'
+    cols: list[Column] = [
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("preloads (µm)", listed("preload_um"), ""),
+        ("actuator pressures (kPa)", listed("actuator_pressure_kPa"), ""),
+        *_point_columns(),
+    ]
+    return note + _records([p for p in d.get("points", []) if isinstance(p, dict)], cols)
+
+
 def _onsets_against(*lead: tuple[str, str, str]) -> Callable[[dict[str, Any], dict[str, Any]], str]:
     """A table of linear onsets against a knob: ``lead`` columns (header, key, format) first."""
 
@@ -661,6 +685,7 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
         ("× case thickness", "scale", "g"), ("shim thickness (µm)", "thickness_um", ".3g")
     ),
     "voltage_stability": _onsets_against(("voltage (V)", "voltage_V", "g")),
+    "actuator_static": _actuator_static,
     "reference_comparison": _reference,
 }
 

@@ -103,6 +103,18 @@ def run_study(
         # numbers, its synthetic stack data and the uncertainty file fit its bearing only
         from foilbearing.study_bearing import bearing_study
 
+        if plan.identification is not None and case.actuators is not None:
+            stage("identification of the PZT stacks from the case's test files")
+            from foilbearing.identification import case_values, identify
+
+            ident = identify(*plan.identification, case.actuators.contact_area)
+            names = ("stack_displacement.png", "stack_stiffness.png")
+            results["identification"] = ident.headline() | {
+                "files": list(plan.identification),
+                "for_the_case_file": case_values(ident),
+                "figures": [str(p) for p in write_identification_figures(ident, out, names)],
+            }
+
         results |= bearing_study(case, plan, out, stage, orbits=orbits)
         if schedule and case.actuators is not None:
             from foilbearing.study_schedule import schedule_stage

@@ -15,8 +15,15 @@ figures into the output folder as it finishes:
    to ``onset_top``), and the log decrement of the least stable whirl mode at
    every plan speed (the stability map of a bearing without voltages); for a
    shimmed bearing also the onset against the shims' thickness;
-5. **orbit**: a speed-up over the plan's speeds with the case's imbalance:
-   waterfall, sub-synchronous amplitude, onset and divergence.
+5. **actuators** (C-GFB): the static readouts, the preloads and the actuator
+   pressures against the actuators' voltage at the case speed and load;
+6. **orbit**: a speed-up over the plan's speeds with the case's imbalance
+   (and, for a C-GFB, the plan's voltage ramp): waterfall, sub-synchronous
+   amplitude, onset and divergence.
+
+The case's declared reference values are set beside the readouts they name;
+those at the case speed and load (static readouts, synchronous coefficients)
+come from one equilibrium there.
 
 A point that does not converge is recorded with its message and what to try;
 it does not stop the study.
@@ -33,7 +40,7 @@ import numpy as np
 
 from foilbearing.case import RPM, Case
 from foilbearing.errors import InputError, SolverError
-from foilbearing.study_plan import REFERENCE_KEYS, StudyPlan
+from foilbearing.study_plan import CASE_POINT_KEYS, REFERENCE_KEYS, StudyPlan, shown_reference
 
 __all__ = ["bearing_study", "reference_rows"]
 
@@ -259,8 +266,74 @@ def _voltages(
     return {"rows": rows, "figures": [str(fig)]}
 
 
+def _actuators(
+    case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]
+) -> dict[str, Any]:
+    """Static readouts, preloads and actuator pressures against voltage (all actuators the
+    same) at the case speed and load, continued from one voltage to the next."""
+    from foilbearing.io import save_figure
+    from foilbearing.plots.bearing import plot_against, plot_preloads
+    from foilbearing.static import solve_equilibrium
+
+    w = case.operation.speed
+    points: list[dict[str, Any]] = []
+    start = None
+    for v in plan.voltages:
+        at = case.with_voltages(v)
+        try:
+            st = solve_equilibrium(at, speed=w, start=start)
+        except SolverError as exc:
+            points.append(_failed(w, case.operation.load, str(exc)) | {"voltage_V": v})
+            continue
+        if not st.converged:
+            points.append(_failed(w, case.operation.load, st.message) | {"voltage_V": v})
+            start = None
+            continue
+        start = (st.eps_x, st.eps_y, st.P)
+        points.append(
+            _readouts(st)
+            | {
+                "voltage_V": v,
+                "preload_um": [x * 1e6 for x in st.preload],
+                "actuator_pressure_kPa": [x / 1e3 for x in st.actuator_pressure],
+            }
+        )
+    ok = sum(p["converged"] for p in points)
+    stage(f"  actuators: {ok}/{len(points)} voltages converged at {w / RPM:.0f} rpm")
+    figures = [
+        str(save_figure(plot_against(points, "voltage_V"), out / "static_vs_voltage.png")),
+        str(save_figure(plot_preloads(points, case), out / "preloads_vs_voltage.png")),
+    ]
+    return {"speed_rpm": w / RPM, "points": points, "figures": figures}
+
+
+def _case_point(case: Case, found: dict[float, Any]) -> dict[str, Any]:
+    """Static readouts and synchronous K, C at the case speed and load (reference values)."""
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.static import solve_equilibrium
+
+    w = case.operation.speed
+    st = next((s for speed, s in found.items() if math.isclose(speed, w, rel_tol=1e-9)), None)
+    st = st or solve_equilibrium(case, speed=w)
+    if not st.converged:
+        return {"message": f"no equilibrium at the case speed: {st.message}; {_TRY}"}
+    fc = force_coefficients(st, w)
+    K, C = np.asarray(fc.K[0]), np.asarray(fc.C[0])
+    point = {
+        "eccentricity": st.eccentricity,
+        "attitude_angle": st.attitude_angle,
+        "min_film": st.min_film,
+        "power_loss": st.power_loss,
+        "message": f"equilibrium at {w / RPM:.0f} rpm and {case.operation.load:g} N",
+    }
+    for i, a in enumerate("xy"):
+        for j, b in enumerate("xy"):
+            point[f"K_{a}{b}"], point[f"C_{a}{b}"] = float(K[i, j]), float(C[i, j])
+    return point
+
+
 def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]) -> dict[str, Any]:
-    from foilbearing.control import linear_ramp
+    from foilbearing.control import linear_ramp, voltage_ramp
     from foilbearing.io import write_with
     from foilbearing.orbit import simulate
     from foilbearing.orbit_analysis import analyse_orbit, write_orbit_figures
@@ -275,13 +348,26 @@ def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None])
             last[0] = t
             stage(f"    orbit: t = {t:5.2f} s, {w / RPM:6.0f} rpm")
 
-    result = simulate(case, profile, None, progress=progress)
+    program, ramp = None, None
+    if plan.orbit_voltage_ramp is not None and case.actuators is not None:
+        t0, t1, volts = plan.orbit_voltage_ramp
+        program = voltage_ramp(t0, t1, volts, initial=np.asarray(case.actuators.voltages))
+        ramp = f"{t0}s:{t1}s:{volts}V"
+    try:
+        result = simulate(case, profile, program, progress=progress)
+    except (InputError, SolverError) as exc:  # no equilibrium to start from at the first speed
+        message = (
+            f"the speed-up could not start at {lo / RPM:.0f} rpm: {exc}; try a higher first "
+            "speed in [study] speed_range, or a lower load"
+        )
+        stage(f"  orbit: {message}")
+        return {"status": "failed", "message": message}
     spec = {
         "case": case.source,
         "speed_ramp": f"{lo / RPM}rpm:{hi / RPM}rpm:{plan.orbit_acceleration}rad/s**2",
         "speed": None,
         "duration": None,
-        "voltage_ramp": None,
+        "voltage_ramp": ramp,
         "controller": None,
         "stop_time": None,
         "steps_per_rev": result.settings.steps_per_rev,
@@ -302,23 +388,29 @@ def reference_rows(plan: StudyPlan, results: dict[str, Any]) -> list[dict[str, A
     """The case's declared reference values beside ours, with how ours was read."""
     onset = (results.get("bearing_stability") or {}).get("onset") or {}
     orbit = results.get("bearing_orbit") or {}
+    point = results.get("case_point") or {}
     unstable_at_once = "already" in str(onset.get("message", ""))
-    ours = {
+    ours: dict[str, tuple[Any, dict[str, Any]]] = {
         "onset_speed": (None if unstable_at_once else onset.get("onset_speed_rpm"), onset),
         "whirl_frequency": (onset.get("whirl_frequency_Hz"), onset),
         "divergence_speed": (orbit.get("divergence_speed_rpm"), orbit),
     }
+    for key in CASE_POINT_KEYS:
+        value = point.get(key)
+        ours[key] = (None if value is None else shown_reference(key, value)[0], point)
     rows = []
     for key, value in plan.reference.items():
-        kind, what = REFERENCE_KEYS[key]
-        ref = value / RPM if kind == "speed" else value
+        what = REFERENCE_KEYS[key][1]
+        ref, unit = shown_reference(key, value)
         mine, source = ours[key]
         rows.append(
             {
-                "quantity": f"{what} ({'rpm' if kind == 'speed' else 'Hz'})",
+                "quantity": f"{what} ({unit})",
                 "reference": ref,
                 "ours": mine,
-                "deviation_percent": None if mine is None else 100.0 * (mine - ref) / ref,
+                "deviation_percent": (
+                    None if mine is None or ref == 0.0 else 100.0 * (mine - ref) / abs(ref)
+                ),
                 "note": str(source.get("message", "not computed (orbit off?)")),
             }
         )
@@ -345,12 +437,19 @@ def bearing_study(
     if plan.voltages:
         stage("linear stability against the actuators' voltage")
         results["voltage_stability"] = _voltages(case, plan, out, stage)
+    if plan.voltages:
+        stage(f"actuators: static readouts against voltage at {case.operation.speed / RPM:.0f} rpm")
+        results["actuator_static"] = _actuators(case, plan, out, stage)
     if orbits and plan.orbit:
+        ramp = plan.orbit_voltage_ramp
         stage(
             f"orbit: speed-up {plan.speeds[0] / RPM:.0f}-{plan.speeds[-1] / RPM:.0f} rpm at "
             f"{plan.orbit_acceleration:g} rad/s², imbalance {case.rotor.imbalance * 1e6:g} g·mm"
+            + ("" if ramp is None else f", voltages to {ramp[2]:g} V at {ramp[0]:g}-{ramp[1]:g} s")
         )
         results["bearing_orbit"] = _orbit(case, plan, out, stage)
+    if any(k in CASE_POINT_KEYS for k in plan.reference):
+        results["case_point"] = _case_point(case, found)
     if plan.reference:
         results["reference_comparison"] = {"rows": reference_rows(plan, results)}
     return results

@@ -21,8 +21,14 @@ key                    meaning                                                de
                        as multiples of the case's                             below 0.9 C)
 ``voltages``           C-GFB: onset against the actuators' voltage (all the   0, 1/3, 2/3 and 1 of
                        same), and the voltage schedule over ``speed_range``   ``max_voltage``
-``[study.reference]``  measured values to compare with: ``onset_speed``,     none
-                       ``whirl_frequency``, ``divergence_speed``
+``orbit_voltage_ramp`` C-GFB: the speed-up's voltages go from the case's to    the case's voltages
+                       ``voltage`` between ``start`` and ``end`` (a table)    held
+``[study.identification]`` C-GFB: ``no_load`` and ``stiffness`` stack test    none
+                       files (CSV, relative to the case file) to identify
+                       D33,1, D33,2 and K_p from
+``[study.reference]``  measured values to compare with (:data:`REFERENCE_KEYS`: none
+                       onset, whirl, divergence; static readouts and the
+                       synchronous coefficients at the case speed)
 =====================  =====================================================  =========================
 
 Every check is made before any work and fails with one line naming the file
@@ -32,13 +38,22 @@ and the field.
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
 from foilbearing.case import RPM, Case, TableReader
 from foilbearing.errors import InputError
 
-__all__ = ["REFERENCE_KEYS", "StudyPlan", "check_load_is_carried", "study_plan"]
+__all__ = [
+    "CASE_POINT_KEYS",
+    "REFERENCE_KEYS",
+    "StudyPlan",
+    "check_load_is_carried",
+    "study_plan",
+]
+
+_STAGE_KEYS = ("onset_speed", "whirl_frequency", "divergence_speed")
 
 #: Reference values a case may declare, with their kind of quantity and what they are
 #: compared with.
@@ -46,7 +61,23 @@ REFERENCE_KEYS = {
     "onset_speed": ("speed", "linear onset speed of instability"),
     "whirl_frequency": ("frequency", "whirl frequency at the linear onset"),
     "divergence_speed": ("speed", "divergence speed of the speed-up orbit"),
+    "eccentricity": ("dimensionless", "eccentricity ratio at the case speed and load"),
+    "attitude_angle": ("angle", "attitude angle at the case speed and load"),
+    "min_film": ("length", "minimum film at the case speed and load"),
+    "power_loss": ("power", "film power loss at the case speed and load"),
+    **{
+        f"{kind}_{a}{b}": (
+            "stiffness" if kind == "K" else "damping",
+            f"synchronous {'stiffness' if kind == 'K' else 'damping'} {kind}{a.upper()}"
+            f"{b.upper()} at the case speed",
+        )
+        for kind in "KC"
+        for a in "xy"
+        for b in "xy"
+    },
 }
+#: Reference values read at the case speed and load (the rest come from the stages).
+CASE_POINT_KEYS = tuple(k for k in REFERENCE_KEYS if k not in _STAGE_KEYS)
 MAX_AUTO_LOADS = 12  # doublings of the automatic load-capacity curve
 
 
@@ -74,11 +105,17 @@ class StudyPlan:
         Shimmed bearing: multiples of the case's shim thicknesses for the onset
         against thickness (empty for other bearings).
     voltages
-        C-GFB: the voltages of the onset against voltage, V (empty for other
-        bearings).
+        C-GFB: the voltages of the onset and of the static readouts against
+        voltage, V (empty for other bearings).
+    orbit_voltage_ramp
+        C-GFB: (start s, end s, voltage V) of the speed-up's voltage ramp from
+        the case's voltages; None holds the case's voltages.
+    identification
+        C-GFB: the no-load and stiffness test files (absolute paths) to identify
+        the stacks from; None: no identification.
     reference
-        Measured values to put beside ours, SI (rad/s, Hz), by key of
-        :data:`REFERENCE_KEYS`.
+        Measured values to put beside ours, SI (rad/s, Hz, rad, m, W, N/m,
+        N·s/m), by key of :data:`REFERENCE_KEYS`.
     """
 
     kind: str
@@ -92,6 +129,8 @@ class StudyPlan:
     reference: dict[str, float] = field(default_factory=dict)
     shim_scales: tuple[float, ...] = ()
     voltages: tuple[float, ...] = ()
+    orbit_voltage_ramp: tuple[float, float, float] | None = None
+    identification: tuple[str, str] | None = None
 
     def onset_scan(self) -> list[float]:
         """The onset scan: the plan's speeds, continued at their step up to ``onset_top``."""
@@ -114,11 +153,39 @@ class StudyPlan:
             "orbit_acceleration_rad_per_s2": self.orbit_acceleration,
             "shim_scales": list(self.shim_scales),
             "voltages_V": list(self.voltages),
-            "reference": {
-                k: (v / RPM if REFERENCE_KEYS[k][0] == "speed" else v)
-                for k, v in self.reference.items()
-            },
+            "orbit_voltage_ramp": (
+                None
+                if self.orbit_voltage_ramp is None
+                else dict(
+                    zip(("start_s", "end_s", "voltage_V"), self.orbit_voltage_ramp, strict=True)
+                )
+            ),
+            "identification": (
+                None
+                if self.identification is None
+                else dict(zip(("no_load", "stiffness"), self.identification, strict=True))
+            ),
+            "reference": {key: shown_reference(key, v)[0] for key, v in self.reference.items()},
         }
+
+
+def shown_reference(key: str, value: float) -> tuple[float, str]:
+    """A reference value (SI) in the unit the report shows it in, and that unit."""
+    kind = REFERENCE_KEYS[key][0]
+    scale, unit = _SHOWN[kind]
+    return value * scale, unit
+
+
+_SHOWN = {
+    "speed": (1.0 / RPM, "rpm"),
+    "frequency": (1.0, "Hz"),
+    "dimensionless": (1.0, "-"),
+    "angle": (180.0 / math.pi, "deg"),
+    "length": (1e6, "um"),
+    "power": (1.0, "W"),
+    "stiffness": (1.0, "N/m"),
+    "damping": (1.0, "N*s/m"),
+}
 
 
 def _values(t: TableReader, key: str, kind: str, example: str) -> tuple[float, ...] | None:
@@ -230,10 +297,13 @@ def study_plan(case: Case) -> StudyPlan:
     if "reference" in data:
         ref = t.table("reference")
         for key, (kind, _) in REFERENCE_KEYS.items():
-            value = ref.positive(key, kind, default=None)
+            signed = kind in ("stiffness", "damping", "angle")  # cross terms, attitude
+            value = (ref.quantity if signed else ref.positive)(key, kind, default=None)
             if value is not None:
                 reference[key] = float(value)
         ref.done()
+    ramp = _orbit_voltage_ramp(t, case)
+    identification = _identification_files(t, case)
     t.done()
     return StudyPlan(
         kind=case.kind,
@@ -247,7 +317,61 @@ def study_plan(case: Case) -> StudyPlan:
         reference=reference,
         shim_scales=scales,
         voltages=voltages,
+        orbit_voltage_ramp=ramp,
+        identification=identification,
     )
+
+
+def _orbit_voltage_ramp(t: TableReader, case: Case) -> tuple[float, float, float] | None:
+    """``orbit_voltage_ramp = {start, end, voltage}``: checked against the stack's limits."""
+    if t.raw("orbit_voltage_ramp", default=None) is None:
+        return None
+    if case.actuators is None:
+        raise t.error(
+            "orbit_voltage_ramp", t.data["orbit_voltage_ramp"], "nothing: this bearing has no "
+            "[actuators]"
+        )  # fmt: skip
+    r = t.table("orbit_voltage_ramp")
+    start = r.nonnegative("start", "time")
+    end = r.nonnegative("end", "time")
+    volts = r.nonnegative("voltage", "voltage")
+    r.done()
+    if end < start:
+        raise r.error("end", r.data["end"], f"a time at or after start = {r.data['start']!r}")
+    if volts > case.actuators.max_voltage:
+        raise r.error(
+            "voltage", r.data["voltage"], f"0 to max_voltage = {case.actuators.max_voltage:g} V"
+        )
+    return float(start), float(end), float(volts)
+
+
+def _identification_files(t: TableReader, case: Case) -> tuple[str, str] | None:
+    """``[study.identification]``: both stack test files, read now so a bad one fails
+    before any work (paths relative to the case file)."""
+    from pathlib import Path
+
+    from foilbearing.identification import read_no_load, read_stiffness
+
+    if t.raw("identification", default=None) is None:
+        return None
+    if case.actuators is None:
+        raise t.error(
+            "identification", t.data["identification"], "nothing: this bearing has no [actuators]"
+        )
+    r = t.table("identification")
+    base = Path(case.source).parent if case.source else Path.cwd()
+    paths = []
+    for key, read in (("no_load", read_no_load), ("stiffness", read_stiffness)):
+        name = r.string(key, "")
+        if not name:
+            raise r.error(key, None, "the path of a CSV file (relative to the case file)")
+        path = (base / name).resolve()
+        if not path.is_file():
+            raise r.error(key, name, f"an existing file (looked for {path})")
+        read(path)
+        paths.append(str(path))
+    r.done()
+    return paths[0], paths[1]
 
 
 def check_load_is_carried(case: Case, plan: StudyPlan) -> None:

@@ -39,6 +39,7 @@ SI_UNITS: dict[str, str] = {
     "power": "W",
     "time": "s",
     "stiffness": "N/m",
+    "damping": "N*s/m",
     "stiffness_per_area": "N/m**3",
     "length_per_voltage": "m/V",
     "length_per_voltage2": "m/V**2",

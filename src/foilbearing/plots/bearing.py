@@ -1,5 +1,6 @@
-"""Figures of the study of any bearing: readouts against speed or load, synchronous
-coefficients against speed, and the log decrement against speed."""
+"""Figures of the study of any bearing: readouts against speed, load or voltage, the
+preloads against voltage, synchronous coefficients against speed, and the log decrement
+against speed."""
 
 from __future__ import annotations
 
@@ -8,8 +9,20 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["plot_against", "plot_log_decrement", "plot_onsets", "plot_synchronous"]
+__all__ = [
+    "plot_against",
+    "plot_log_decrement",
+    "plot_onsets",
+    "plot_preloads",
+    "plot_synchronous",
+]
 
+#: x keys of :func:`plot_against`: scale to the shown unit, axis label.
+_X_AXES = {
+    "speed_rpm": (1e-3, "rotor speed (krpm)"),
+    "load_N": (1.0, "load (N)"),
+    "voltage_V": (1.0, "actuator voltage, all actuators (V)"),
+}
 _PANELS = (
     ("eccentricity", "eccentricity ratio ε"),
     ("attitude_deg", "attitude angle (°)"),
@@ -19,9 +32,9 @@ _PANELS = (
 
 
 def plot_against(points: list[dict[str, Any]], x_key: str) -> Figure:
-    """Four readouts against ``x_key`` (``speed_rpm``, shown in krpm, or ``load_N``);
-    points without equilibrium are marked on the axis."""
-    scale, label = (1e-3, "rotor speed (krpm)") if x_key == "speed_rpm" else (1.0, "load (N)")
+    """Four readouts against ``x_key`` (``speed_rpm``, shown in krpm, ``load_N`` or
+    ``voltage_V``); points without equilibrium are marked on the axis."""
+    scale, label = _X_AXES[x_key]
     ok = [p for p in points if p.get("converged")]
     bad = [p[x_key] * scale for p in points if not p.get("converged")]
     fig = Figure(figsize=(8.0, 5.6), layout="constrained")
@@ -87,4 +100,26 @@ def plot_onsets(rows: list[dict[str, Any]], x_label: str) -> Figure:
     ax.set_xlabel(x_label)
     ax.set_ylabel("linear onset speed (krpm)")
     ax.grid(alpha=0.3)
+    return fig
+
+
+def plot_preloads(points: list[dict[str, Any]], case: Any) -> Figure:
+    """Piezoelectric preload (µm) and actuator pressure (kPa) of each actuator against the
+    voltage (all the same), at one speed and load."""
+    import math
+
+    fig = Figure(figsize=(8.0, 3.4), layout="constrained")
+    ax_r, ax_p = fig.subplots(1, 2, sharex=True)
+    ok = [p for p in points if p.get("converged")]
+    volts = [p["voltage_V"] for p in ok]
+    for n, angle in enumerate(case.actuators.angles):
+        label = f"{math.degrees(angle):.0f}°"
+        ax_r.plot(volts, [p["preload_um"][n] for p in ok], "o-", ms=3, label=label)
+        ax_p.plot(volts, [p["actuator_pressure_kPa"][n] for p in ok], "o-", ms=3, label=label)
+    ax_r.set_ylabel("piezoelectric preload r_p (µm)")
+    ax_p.set_ylabel("actuator pressure p_A (kPa)")
+    for ax in (ax_r, ax_p):
+        ax.set_xlabel("actuator voltage (V)")
+        ax.legend(fontsize=8, title="actuator at", title_fontsize=8)
+        ax.grid(alpha=0.3)
     return fig
