@@ -37,6 +37,7 @@ bench: $(STAMP)
 # Mutation testing of the physics in Python, on demand (minutes; not part of CI).
 mutation: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[dev,mutation]'
+	rm -rf mutants  # mutmut caches which tests reach which function: start afresh
 	$(BIN)/mutmut run --max-children 2
 	$(BIN)/mutmut export-cicd-stats
 	$(BIN)/python scripts/mutation_report.py

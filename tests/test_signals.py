@@ -322,3 +322,187 @@ def test_subsync_reads_a_sinusoid_between_bins_and_only_inside_the_band() -> Non
         np.testing.assert_allclose(sub.amplitude[inner], 5e-6, rtol=1e-3)
     x = 20e-6 * np.cos(phase + 0.4) + 5e-6 * np.cos(2 * np.pi * 475.0 * t)
     assert subsynchronous_amplitude(t, x, speed, phase).amplitude[inner].max() < 0.05e-6
+
+
+# --- Mutation testing (issue 18): the rules the readouts rest on, pinned one by one ---
+
+
+def _steady(duration: float = 1.0, fs: float = 10_000.0, run_hz: float = 100.0, t0: float = 0.0):
+    t = t0 + np.arange(round(duration * fs)) / fs
+    w = 2 * np.pi * run_hz
+    return t, np.full(t.size, w), w * (t - t0)
+
+
+def test_moving_mean_is_the_centred_mean_of_the_samples_present() -> None:
+    """Against a direct loop: n samples centred (half = n // 2 each side), fewer at the
+    ends; over one sample it is the signal itself (the tracking filters' limit)."""
+    from foilbearing.signals import _moving_mean
+
+    x = np.random.default_rng(1).standard_normal(23) + 1j * np.arange(23)
+    for n in (1, 2, 5, 8, 40):
+        half = n // 2
+        direct = [x[max(0, i - half) : i + half + 1].mean() for i in range(x.size)]
+        np.testing.assert_allclose(_moving_mean(x, n), direct, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(_moving_mean(x.real, 1), x.real, rtol=1e-12, atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("call", "text"),
+    [
+        (lambda t, s, p, x: waterfall(t[:-1], x, s), "does not match t"),
+        (lambda t, s, p, x: waterfall(t, x[:-1], s), "does not match t"),
+        (lambda t, s, p, x: waterfall(t, x, s[:-1]), "does not match t"),
+        (lambda t, s, p, x: subsynchronous_amplitude(t, x[:-1], s, p), "does not match t"),
+        (lambda t, s, p, x: subsynchronous_amplitude(t, x, s[:-1], p), "does not match t"),
+        (lambda t, s, p, x: subsynchronous_amplitude(t, x, s, p[:-1]), "does not match t"),
+        (lambda t, s, p, x: _order(t, x[:-1], p, 0.5), "does not match t"),
+        (lambda t, s, p, x: _order(t, x, p[:-1], 0.5), "does not match t"),
+        (lambda t, s, p, x: _order(t, x, p, 0.0), "expected a multiple of the speed > 0"),
+        (lambda t, s, p, x: _diverge(t, x[:-1], x, s), "does not match t"),
+        (lambda t, s, p, x: _diverge(t, x, x[:-1], s), "does not match t"),
+        (lambda t, s, p, x: _diverge(t, x, x, s[:-1]), "does not match t"),
+        (lambda t, s, p, x: waterfall(t[:1], x[:1], s[:1]), "at least 2 samples"),
+        (lambda t, s, p, x: waterfall(np.vstack([t, t]), x, s), "1-D with at least 2"),
+        (lambda t, s, p, x: waterfall(0.0 * t, x, s),
+         r"^t must be uniformly sampled and increasing \(resample the orbit first\)$"),
+        (lambda t, s, p, x: waterfall(t, x, s, overlap=1.0), r"overlap must be in \[0, 1\)"),
+        (lambda t, s, p, x: waterfall(t, x, s, window_s=4e-4), "gives 4 samples; need 8"),
+        (lambda t, s, p, x: waterfall(t, x, s, window_s=2.0), "need 8 … 10000"),
+        (lambda t, s, p, x: waterfall(t[:30], x[:30], s[:30], window_s=3e-3),
+         "record of 0.003 s is too short for 0.003 s windows"),
+    ],
+)  # fmt: skip
+def test_bad_signals_are_one_line_errors_naming_what_is_wrong(call, text) -> None:
+    t, speed, phase = _steady()
+    x = 1e-6 * np.cos(phase)
+    with pytest.raises(InputError, match=text) as err:
+        call(t, speed, phase, x)
+    assert "\n" not in str(err.value)
+
+
+def _order(t, x, phase, order):
+    from foilbearing.signals import order_amplitude
+
+    return order_amplitude(t, x, phase, order)
+
+
+def _diverge(t, e_x, e_y, speed, **kw):
+    return divergence_speed(t, e_x, e_y, speed, 100e-6, stopped_by_contact=False, **kw)
+
+
+def test_time_base_tolerance_and_the_limits_of_the_windows() -> None:
+    """Steps uniform to 1e-6 of the step are accepted (rounding), 2e-6 is not; a record
+    of two samples has a rate; overlap 0 is allowed; a window of exactly 8 samples, or
+    exactly the record, is allowed and the record's one window is centred on it. Window
+    times are centres, on multiples of the hop from t0 (3 s here), and only windows
+    wholly inside the record are kept."""
+    from foilbearing.signals import _sampling
+
+    t = np.arange(100) * 1e-4
+    assert _sampling(t[:2]) == pytest.approx(1e4)
+    jitter = t.copy()
+    jitter[50] += 1e-6 * 1e-4  # one step 1e-6 longer and the next 1e-6 shorter
+    assert _sampling(jitter) == pytest.approx(1e4, rel=1e-5)
+    jitter[50] += 1e-6 * 1e-4
+    with pytest.raises(InputError, match="uniformly"):
+        _sampling(jitter)
+    t, speed, _phase = _steady(duration=0.5, t0=3.0)
+    x = 1e-6 * np.cos(2 * np.pi * 40.0 * (t - 3.0))
+    none = waterfall(t, x, speed, window_s=0.1, overlap=0.0)
+    np.testing.assert_allclose(np.diff(none.times), 0.1, rtol=1e-9)  # no overlap
+    assert none.times[0] == pytest.approx(3.1, abs=1e-12)  # [3.05, 3.15): the first inside
+    short = waterfall(t, x, speed, window_s=8e-4)
+    assert short.times[0] == pytest.approx(3.0004, abs=1e-12)
+    one = waterfall(t[:320], x[:320], speed[:320], window_s=0.032)
+    assert one.times.tolist() == pytest.approx([3.016], abs=1e-12)
+    # hop of one sample at overlap 1 − 1/8 of an 8-sample window
+    dense = waterfall(t, x, speed, window_s=8e-4, overlap=0.95)
+    np.testing.assert_allclose(np.diff(dense.times), 1e-4, rtol=1e-6)
+
+
+def test_waterfall_honours_window_and_fmax() -> None:
+    """A 0.5 s window gives bins 1/(4 × 0.5) = 0.5 Hz apart; fmax keeps every bin up to
+    and including it (1024 Hz sampling: the bins are exact binary fractions)."""
+    t, speed, _phase = _steady(duration=2.0, fs=1024.0)
+    x = 1e-6 * np.cos(2 * np.pi * 40.0 * t)
+    wf = waterfall(t, x, speed, window_s=0.5, fmax_hz=100.0)
+    assert np.diff(wf.frequencies_hz) == pytest.approx(0.5) and wf.window_s == 0.5
+    assert wf.frequencies_hz[-1] == 100.0
+    k = int(np.argmax(wf.amplitude[0]))
+    assert wf.frequencies_hz[k] == 40.0 and wf.amplitude[0, k] == pytest.approx(1e-6, rel=1e-3)
+
+
+def test_subsync_frequency_interpolates_in_hertz_and_the_peak_is_per_window() -> None:
+    """With 0.5 s windows (0.5 Hz bins) a tone between bins reads its frequency (the
+    interpolation is in bins, scaled by their width); a silent journal reads no
+    frequency; a tone buried in broadband noise in its own window reads none, though it
+    would stand 20 times above the median of the whole record's quiet windows; an
+    explicit noise floor above the amplitude hides the frequency."""
+    t, speed, phase = _steady(duration=4.0, run_hz=500.0)
+    x = 5e-6 * np.cos(2 * np.pi * 97.3 * t)
+    sub = subsynchronous_amplitude(t, x, speed, phase, window_s=0.5)
+    assert np.abs(sub.frequency_hz[3:-3] - 97.3).max() < 0.01
+    quiet = subsynchronous_amplitude(t, np.zeros(t.size), speed, phase)
+    assert np.all(np.isnan(quiet.frequency_hz)) and np.all(quiet.amplitude == 0.0)
+    loud = np.where(t > 3.0, 20e-6, 0.0) * np.random.default_rng(2).standard_normal(t.size)
+    mixed = subsynchronous_amplitude(t, 1e-6 * np.cos(2 * np.pi * 97.3 * t) + loud, speed, phase)
+    early, late = mixed.times < 2.8, mixed.times > 3.2
+    assert np.all(np.isfinite(mixed.frequency_hz[early]))
+    assert np.all(np.isnan(mixed.frequency_hz[late]))
+    hidden = subsynchronous_amplitude(t, x, speed, phase, noise_floor=1e-5)
+    assert np.all(np.isnan(hidden.frequency_hz))
+
+
+def test_order_tracking_limits_and_a_large_static_offset() -> None:
+    """At 30 Hz running speed the 0.5X component (15 Hz) of 1 µm, beside a static
+    eccentricity 50 times larger (removed, not doubled, before demodulation), reads what
+    the slow-part removal leaves of it: 1 − H(15 Hz), H the response of the two passes
+    of the 0.1 s boxcar (N = 1001 samples), |sin(πfN/fs) / (N sin(πf/fs))|² = 0.045.
+    With a tracking filter under one sample the slow part removed is the signal:
+    nothing is left to track."""
+    from foilbearing.signals import order_amplitude
+
+    fs, n_box = 10_000.0, 1001
+    t, _speed, phase = _steady(duration=2.0, fs=fs, run_hz=30.0)
+    x = 50e-6 + 1e-6 * np.cos(0.5 * phase + 0.2)
+    amp = order_amplitude(t, x, phase, 0.5)
+    mid = (t > 0.4) & (t < 1.6)
+    h = (math.sin(math.pi * 15.0 * n_box / fs) / (n_box * math.sin(math.pi * 15.0 / fs))) ** 2
+    np.testing.assert_allclose(amp[mid], 1e-6 * (1.0 - h), rtol=1e-3)
+    assert order_amplitude(t, x, phase, 0.5, track_s=0.5 / fs).max() < 1e-15  # rounding
+
+
+def test_order_interval_reads_its_first_last_and_peak_samples() -> None:
+    """On a hand-made amplitude profile: the first and last samples above the threshold,
+    the peak and the speed at the peak (rpm), each exactly."""
+    from foilbearing.signals import order_interval
+
+    speed = np.array([100.0, 200.0, 300.0, 400.0, 500.0, 600.0, 700.0])  # rad/s
+    amp = np.array([0.0, 2.0, 3.0, 5.0, 4.0, 2.0, 0.5]) * 1e-6
+    lo, hi, peak, at = order_interval(speed, amp, 1.5e-6)
+    assert (lo, hi, peak, at) == pytest.approx((200 * RPM, 600 * RPM, 5e-6, 400 * RPM), rel=1e-12)
+
+
+def test_divergence_reads_the_first_sample_beyond_and_the_last_at_contact() -> None:
+    """A whirl turning a quarter turn a sample, its radius growing by 1 µm a sample: the
+    speed at the first sample whose distance from the orbit's centre (the mean over the
+    three-sample window) exceeds 0.9 C is read exactly. A contact stop without a time is
+    read at the last sample. A one-sample window makes the orbit's centre the journal
+    itself: no orbit."""
+    t = np.arange(200) * 1e-4
+    speed = 1000.0 + 10.0 * np.arange(200)
+    radius = 1e-6 * np.arange(200)
+    angle = 0.5 * np.pi * np.arange(200)
+    e_x, e_y = radius * np.cos(angle), radius * np.sin(angle)
+    rpm = _diverge(t, e_x, e_y, speed, window_s=2e-4)
+    k = int(np.flatnonzero(np.abs((e_x + 1j * e_y) - _centre(e_x + 1j * e_y, 2)) > 90e-6)[0])
+    assert rpm == pytest.approx(speed[k] * RPM, rel=1e-12) and k > 80
+    stop = divergence_speed(t, e_x, e_y, speed, 100e-6, stopped_by_contact=True)
+    assert stop == pytest.approx(speed[-1] * RPM, rel=1e-12)
+    assert _diverge(t, e_x, e_y, speed, window_s=0.5e-4) is None
+
+
+def _centre(z: np.ndarray, n: int) -> np.ndarray:
+    """Centred mean over n samples (fewer at the ends), written out."""
+    half = n // 2
+    return np.array([z[max(0, i - half) : i + half + 1].mean() for i in range(z.size)])
