@@ -63,6 +63,20 @@ def _readouts(st: Any) -> dict[str, Any]:
     }
 
 
+def _equilibrium(
+    case: Case, speed: float, *, model: Any = None, start: Any = None
+) -> tuple[Any, str]:
+    """The converged equilibrium and its message, or None and why not: a failed solve is
+    recorded by the stage, never raised through the study."""
+    from foilbearing.static import solve_equilibrium
+
+    try:
+        st = solve_equilibrium(case, speed=speed, model=model, start=start)
+    except SolverError as exc:
+        return None, str(exc)
+    return (st if st.converged else None), st.message
+
+
 def _failed(speed: float, load: float, message: str) -> dict[str, Any]:
     return {
         "speed_rpm": speed / RPM,
@@ -79,19 +93,14 @@ def _static(
     from foilbearing.io import save_figure
     from foilbearing.plots.bearing import plot_against
     from foilbearing.plots.static import plot_point
-    from foilbearing.static import solve_equilibrium
 
     model = film_model(case)
     points, found = [], {}
     start = None
     for w in plan.speeds:
-        try:
-            st = solve_equilibrium(case, speed=w, model=model, start=start)
-        except SolverError as exc:
-            points.append(_failed(w, case.operation.load, str(exc)))
-            continue
-        if not st.converged:
-            points.append(_failed(w, case.operation.load, st.message))
+        st, message = _equilibrium(case, w, model=model, start=start)
+        if st is None:
+            points.append(_failed(w, case.operation.load, message))
             start = None
             continue
         start = (st.eps_x, st.eps_y, st.P)
@@ -101,8 +110,8 @@ def _static(
     stage(f"  static: {ok}/{len(points)} speeds converged")
     figures = [str(save_figure(plot_against(points, "speed_rpm"), out / "static_vs_speed.png"))]
     for w in plan.map_speeds:
-        st = found.get(w) or solve_equilibrium(case, speed=w, model=model)
-        if st.converged:
+        st = found.get(w) or _equilibrium(case, w, model=model)[0]
+        if st is not None:
             name = f"film_map_{w / RPM:.0f}rpm.png"
             figures.append(str(save_figure(plot_point(st), out / name)))
     return {"points": points, "figures": figures}, found
@@ -116,7 +125,6 @@ def _load_capacity(
     from foilbearing.film import film_model
     from foilbearing.io import save_figure
     from foilbearing.plots.bearing import plot_against
-    from foilbearing.static import solve_equilibrium
 
     w = case.operation.speed
     model = film_model(case)
@@ -127,13 +135,8 @@ def _load_capacity(
     note = "the plan's loads"
     for load in loads:
         at = replace(case, operation=replace(case.operation, load=load))
-        st: Any = None
-        try:
-            st = solve_equilibrium(at, speed=w, model=model)
-            message = st.message
-        except SolverError as exc:
-            message = str(exc)
-        if st is None or not st.converged:
+        st, message = _equilibrium(at, w, model=model)
+        if st is None:
             points.append(_failed(w, load, message))
             if auto:
                 note = f"stopped at {load:g} N: no equilibrium (the film closes)"
@@ -165,7 +168,6 @@ def _coefficients(
     from foilbearing.io import save_figure
     from foilbearing.plots.bearing import plot_synchronous
     from foilbearing.plots.dynamics import plot_coefficients
-    from foilbearing.static import solve_equilibrium
 
     rows = []
     for w, st in found.items():
@@ -180,8 +182,8 @@ def _coefficients(
     figures = [str(save_figure(plot_synchronous(rows), out / "coefficients_vs_speed.png"))]
     per_frequency = []
     for w in plan.frequency_speeds:
-        st = found.get(w) or solve_equilibrium(case, speed=w)
-        if not st.converged:
+        st = found.get(w) or _equilibrium(case, w)[0]
+        if st is None:
             continue
         fc = force_coefficients(st, [r * w for r in FREQUENCY_RATIOS])
         name = f"coefficients_{w / RPM:.0f}rpm.png"
@@ -273,20 +275,14 @@ def _actuators(
     same) at the case speed and load, continued from one voltage to the next."""
     from foilbearing.io import save_figure
     from foilbearing.plots.bearing import plot_against, plot_preloads
-    from foilbearing.static import solve_equilibrium
 
     w = case.operation.speed
     points: list[dict[str, Any]] = []
     start = None
     for v in plan.voltages:
-        at = case.with_voltages(v)
-        try:
-            st = solve_equilibrium(at, speed=w, start=start)
-        except SolverError as exc:
-            points.append(_failed(w, case.operation.load, str(exc)) | {"voltage_V": v})
-            continue
-        if not st.converged:
-            points.append(_failed(w, case.operation.load, st.message) | {"voltage_V": v})
+        st, message = _equilibrium(case.with_voltages(v), w, start=start)
+        if st is None:
+            points.append(_failed(w, case.operation.load, message) | {"voltage_V": v})
             start = None
             continue
         start = (st.eps_x, st.eps_y, st.P)
@@ -310,13 +306,14 @@ def _actuators(
 def _case_point(case: Case, found: dict[float, Any]) -> dict[str, Any]:
     """Static readouts and synchronous K, C at the case speed and load (reference values)."""
     from foilbearing.coefficients import force_coefficients
-    from foilbearing.static import solve_equilibrium
 
     w = case.operation.speed
     st = next((s for speed, s in found.items() if math.isclose(speed, w, rel_tol=1e-9)), None)
-    st = st or solve_equilibrium(case, speed=w)
-    if not st.converged:
-        return {"message": f"no equilibrium at the case speed: {st.message}; {_TRY}"}
+    message = ""
+    if st is None:
+        st, message = _equilibrium(case, w)
+    if st is None:
+        return {"message": f"no equilibrium at the case speed: {message}; {_TRY}"}
     fc = force_coefficients(st, w)
     K, C = np.asarray(fc.K[0]), np.asarray(fc.C[0])
     point = {
