@@ -6,7 +6,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 ROSS_VENV := .venv-ross
 
-.PHONY: run test test-ross lint bench mutation clean
+.PHONY: run test test-ross lint api bench mutation clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -27,9 +27,17 @@ test-ross:
 	$(ROSS_VENV)/bin/python -m pytest -q tests/test_ross.py
 
 lint: $(STAMP)
-	$(BIN)/ruff check src tests benchmarks scripts
-	$(BIN)/ruff format --check src tests benchmarks scripts
+	$(BIN)/ruff check src tests benchmarks scripts examples
+	$(BIN)/ruff format --check src tests benchmarks scripts examples
 	$(BIN)/mypy
+
+# The HTML API reference, generated from the docstrings (numpydoc) by pdoc, into build/api.
+api: $(STAMP)
+	rm -rf build/api
+	$(BIN)/pdoc -d numpy --no-show-source -o build/api foilbearing \
+		$$(cd src && ls -d foilbearing/*/ foilbearing/*.py | grep -v '__\|cases\|data' \
+		| sed 's#/$$##; s#\.py$$##; s#/#.#g')
+	@echo "API reference: build/api/index.html"
 
 bench: $(STAMP)
 	for f in benchmarks/bench_*.py; do $(BIN)/python $$f || exit 1; done
@@ -43,4 +51,4 @@ mutation: $(STAMP)
 	$(BIN)/python scripts/mutation_report.py
 
 clean:
-	rm -rf $(VENV) $(ROSS_VENV) out mutants .pytest_cache .mypy_cache
+	rm -rf $(VENV) $(ROSS_VENV) out build mutants .pytest_cache .mypy_cache

@@ -1,7 +1,7 @@
 """Benchmark of the orbit simulation: accuracy at the default settings, and speed. Prints its
 figures.
 
-Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full]
+Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -12,6 +12,9 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full]
   onset, whip frequency and divergence speed (about 10 minutes).
 - ``--full [--repeats N]``: the paper's full 18.2 s speed-up end to end, on the shimmed GFB at
   150 V, the default case's bearing that reaches 90 krpm (about 6-15 min a run).
+- ``--grid``: the grid the orbit needs: cost per step of the full speed-up's orbit (shimmed GFB,
+  150 V, 8.5 g·mm, 0.1 s at 50 krpm) and the linear onset at 0 and 150 V, against the axial
+  cell count n_z at n_theta = 96, and against n_theta at n_z = 12 (about 1 minute).
 
 The cost model behind these figures and every route tried towards the 60 s target:
 docs/orbit-performance.md.
@@ -194,7 +197,47 @@ def full_run(repeats: int = 1) -> None:
     arithmetic_limit(res, walls[0] / res.steps)
 
 
+def grid_study() -> None:
+    """Cost per orbit step and linear onsets against the grid (route 2 of issue 13)."""
+    from foilbearing.case import Grid
+    from foilbearing.stability import onset_speed
+
+    scan = [rpm * RPM for rpm in range(20_000, 100_001, 10_000)]
+    runner = default_case().with_voltages(150.0).shimmed()
+    print(
+        "grid: orbit cost (shimmed GFB, 150 V, 8.5 g·mm, 0.1 s at 50 krpm, default settings) "
+        "and linear onsets of the default case (20-100 krpm scan, Brent)"
+    )
+    onsets: dict[tuple[int, int], tuple[float, float]] = {}
+    for grid in ((96, 4), (96, 6), (96, 8), (96, 12), (96, 24), (48, 12), (192, 12), (192, 24)):
+        g = Grid(*grid)
+        case = replace(runner, grid=g)
+        simulate(case, constant_speed(50e3 * RPM, 5e-4), progress=False)  # compile, warm up
+        res = simulate(case, constant_speed(50e3 * RPM, 0.1), progress=False)
+        onset = tuple(
+            onset_speed(replace(default_case().with_voltages(v), grid=g), scan).onset_speed / RPM
+            for v in (0.0, 150.0)
+        )
+        onsets[grid] = onset  # type: ignore[assignment]
+        print(
+            f"  {grid[0]:3d} x {grid[1]:2d}: {1e3 * res.wall_time / res.steps:.3f} ms per step "
+            f"({res.newton_iterations / res.steps:.2f} iterations, "
+            f"{res.factorizations / res.steps:.3f} factorisations); onset 0 V "
+            f"{onset[0] / 1e3:.2f} krpm, 150 V {onset[1] / 1e3:.2f} krpm",
+            flush=True,
+        )
+    fine = onsets[(192, 24)]
+    for grid, (a, b) in onsets.items():
+        print(
+            f"  {grid[0]:3d} x {grid[1]:2d}: onset from 192 x 24: 0 V "
+            f"{100 * (a - fine[0]) / fine[0]:+.2f} %, 150 V {100 * (b - fine[1]) / fine[1]:+.2f} %"
+        )
+
+
 if __name__ == "__main__":
+    if "--grid" in sys.argv:
+        grid_study()
+        sys.exit(0)
     segment_accuracy()
     if "--readouts" in sys.argv:
         readouts()

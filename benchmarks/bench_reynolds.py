@@ -3,11 +3,11 @@
 Run: ``python benchmarks/bench_reynolds.py`` (prints its figures; not a test).
 
 Case: 96×12 half-bearing grid, L/(2R) = 0.875, Λ = 0.23 (about 50 krpm),
-three sinusoidal preload lobes of 0.6 C at 60/180/300° (MODEL.md §3, r_p),
+three sinusoidal preload lobes of 0.6 C at 60/180/300° (docs/model.md §3, r_p),
 bump compliance c = p_a/(C k_b) = 101325/(100e-6 · 8.69e9). The journal sits
 at ε_X = 0.15: with ε_X = 0.5 the 0.6 C lobe at 180° would close the film
 (h_rigid = 1 − 0.5 − 0.6 < 0), so ε_X is chosen to give H_min = 0.25 C, the
-"quarter of C" of MODEL.md §4.
+"quarter of C" of docs/model.md §4.
 """
 
 from __future__ import annotations
@@ -19,11 +19,11 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from foilbearing.reynolds import Grid, Workspace, film_force, solve_steady
+from foilbearing.reynolds import FilmGrid, Workspace, film_force, solve_steady
 from foilbearing.reynolds.steady import _assemble
 
 
-def default_like_film(grid: Grid, eps_x: float = 0.15, preload: float = 0.6) -> np.ndarray:
+def default_like_film(grid: FilmGrid, eps_x: float = 0.15, preload: float = 0.6) -> np.ndarray:
     th = grid.theta
     h = 1.0 + eps_x * np.cos(th)
     for centre in np.radians([60.0, 180.0, 300.0]):
@@ -45,7 +45,7 @@ def best_ms(fn: Callable[[], object], repeat: int = 7, number: int = 20) -> floa
 
 
 def main() -> None:
-    grid = Grid(96, 12, 0.875)
+    grid = FilmGrid(96, 12, 0.875)
     h_rigid = default_like_film(grid)
     compliance = np.full(grid.n_theta, 101325.0 / (100e-6 * 8.69e9))
     lam = 0.23

@@ -1,4 +1,4 @@
-"""Write the SYNTHETIC PZT-stack measurement files shipped in ``examples/data/``.
+"""Write the SYNTHETIC PZT-stack measurement files shipped in ``src/foilbearing/data/``.
 
 The files stand in for the measurements of section 4 of the paper (Figs. 5b
 and 6b-c), which are not published as data. They are generated from the
@@ -6,7 +6,7 @@ paper's fitted values with a fixed seed and stated Gaussian noise, so that the
 identification (``foilbearing.identification``) can be checked against known
 generating parameters. Regenerate with::
 
-    python scripts/make_measurements.py [--out-dir examples/data]
+    python scripts/make_measurements.py [--out-dir src/foilbearing/data]
 
 Generating model (units of the files: V, N, um):
 
@@ -112,9 +112,9 @@ def make(out_dir: Path) -> tuple[Path, Path]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Command-line entry: write both files (default: ``examples/data`` of this repository)."""
+    """Command-line entry: write both files (default: ``src/foilbearing/data`` of this repository)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    default = Path(__file__).resolve().parent.parent / "examples" / "data"
+    default = Path(__file__).resolve().parent.parent / "src" / "foilbearing" / "data"
     parser.add_argument("--out-dir", type=Path, default=default)
     args = parser.parse_args(argv)
     for path in make(args.out_dir):

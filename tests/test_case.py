@@ -46,7 +46,7 @@ def test_default_case_is_si_inside() -> None:
     assert case.actuators is not None
     assert case.actuators.angles == pytest.approx(tuple(math.radians(a) for a in (60, 180, 300)))
     assert case.actuators.d33_quadratic == pytest.approx(-0.0028e-6)
-    # MODEL.md section 4: Λ = 0.046 at 10 krpm and 0.41 at 90 krpm.
+    # docs/model.md §4: Λ = 0.046 at 10 krpm and 0.41 at 90 krpm.
     assert case.bearing_number(10000 * math.pi / 30) == pytest.approx(0.046, abs=5e-4)
     assert case.bearing_number(90000 * math.pi / 30) == pytest.approx(0.41, abs=5e-3)
 

@@ -29,6 +29,7 @@ from foilbearing.identification import (
     NoLoadData,
     StiffnessData,
     case_values,
+    example_measurements,
     fit_no_load,
     fit_stiffness,
     identify,
@@ -39,8 +40,8 @@ from foilbearing.identification import (
 from foilbearing.units import parse_quantity
 
 ROOT = Path(__file__).resolve().parents[1]
-DATA = ROOT / "examples" / "data"
-NO_LOAD, STIFFNESS = DATA / "stack_no_load.csv", DATA / "stack_stiffness.csv"
+NO_LOAD, STIFFNESS = example_measurements()
+DATA = NO_LOAD.parent
 AREA = 3.54e-4  # m², stinger-foil contact area (paper section 4)
 UM = 1e-6
 

@@ -1,4 +1,4 @@
-"""Top-foil lift-off: the film under a foil holds no sub-ambient pressure (MODEL.md section 3).
+"""Top-foil lift-off: the film under a foil holds no sub-ambient pressure (docs/model.md §3).
 
 The complementarity P ≥ 1, −R ≥ 0, (P − 1) R = 0 in the static solution, the
 suction-retained model kept exactly as it was, the linearisation of the same
@@ -70,7 +70,7 @@ def test_retained_model_is_the_suction_model_unchanged() -> None:
 def test_paper_fig11_preloads_within_two_percent() -> None:
     # Paper Fig. 11 (150 V, 90 krpm): 65.36 / 54.06 / 64.62 µm. Under lift-off our model
     # gives them within 2 % (1.1 / 1.6 / 0.9 % measured); the suction-retained model is
-    # 6.2 / 4.6 / 2.0 % off. 2.5 %: the viscosity is our assumption (MODEL.md section 1).
+    # 6.2 / 4.6 / 2.0 % off. 2.5 %: the viscosity is our assumption (docs/model.md §1).
     paper = np.array([65.36, 54.06, 64.62])
     lift = solve_equilibrium(_case(150.0), speed=90e3 * RPM).preload * 1e6
     kept = solve_equilibrium(_case(150.0, "retained"), speed=90e3 * RPM).preload * 1e6

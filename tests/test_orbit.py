@@ -333,7 +333,7 @@ def test_the_linear_onset_is_bracketed_by_free_whirl_orbits() -> None:
 
 
 def test_the_bump_damping_law_is_the_same_in_the_orbit_and_the_linear_analysis() -> None:
-    """The bump is a spring k_b with a damper γ k_b/ω (MODEL.md section 3): under a
+    """The bump is a spring k_b with a damper γ k_b/ω (docs/model.md §3): under a
     harmonic gauge pressure at ν its deflection follows with the transfer function
     G = 1/(1 + iγν/ω), so the loss per cycle over 2π times the peak strain energy is
     γν/ω. Driving the orbit's bump equation (its right-hand side, integrated by

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from foilbearing.reynolds import (
-    Grid,
+    FilmGrid,
     NewtonOptions,
     Workspace,
     coupled_system,
@@ -14,12 +14,12 @@ from foilbearing.reynolds import (
     solve_steady,
 )
 
-# Default-like compliance c = p_a/(C k_b), MODEL.md §1 (C = 100 µm, k_b = 8.69e9 N/m³).
+# Default-like compliance c = p_a/(C k_b), docs/model.md §1 (C = 100 µm, k_b = 8.69e9 N/m³).
 C_BUMP = 101325.0 / (100e-6 * 8.69e9)
 
 
-def journal_film(grid: Grid, eps_x: float, eps_y: float = 0.0, preload: float = 0.0):
-    """h_rigid = 1 + ε_X cos θ + ε_Y sin θ − r_p/C, three sinusoidal lobes (MODEL.md §3)."""
+def journal_film(grid: FilmGrid, eps_x: float, eps_y: float = 0.0, preload: float = 0.0):
+    """h_rigid = 1 + ε_X cos θ + ε_Y sin θ − r_p/C, three sinusoidal lobes (docs/model.md §3)."""
     th = grid.theta
     h = 1.0 + eps_x * np.cos(th) + eps_y * np.sin(th)
     for centre in np.radians([60.0, 180.0, 300.0]):
@@ -40,15 +40,15 @@ def local_extrema(p: np.ndarray) -> int:
 
 def test_grid_validation_names_field_and_range() -> None:
     with pytest.raises(ValueError, match=r"n_theta.*>= 8"):
-        Grid(6, 4, 0.5)
+        FilmGrid(6, 4, 0.5)
     with pytest.raises(ValueError, match=r"n_z.*>= 2"):
-        Grid(16, 1, 0.5)
+        FilmGrid(16, 1, 0.5)
     with pytest.raises(ValueError, match=r"half_length.*> 0"):
-        Grid(16, 4, 0.0)
+        FilmGrid(16, 4, 0.0)
 
 
 def test_grid_quadratures() -> None:
-    g = Grid(32, 5, 0.875)
+    g = FilmGrid(32, 5, 0.875)
     assert g.theta[0] == pytest.approx(0.5 * g.d_theta)
     assert g.z[-1] == pytest.approx(g.half_length - 0.5 * g.d_z)
     w_x, w_y = g.force_weights()
@@ -65,7 +65,7 @@ def test_grid_quadratures() -> None:
 
 
 def test_concentric_rigid_journal_has_ambient_pressure_and_no_force() -> None:
-    g = Grid(24, 4, 0.875)
+    g = FilmGrid(24, 4, 0.875)
     sol = solve_steady(g, np.ones(g.shape), 0.0, 0.5)
     assert sol.converged
     np.testing.assert_allclose(sol.P, 1.0, rtol=0, atol=1e-12)
@@ -85,7 +85,7 @@ def test_small_lambda_long_bearing_tends_to_sommerfeld(eps: float) -> None:
     Tolerance: the scheme is second order, 4e-4 relative at 96 cells (measured);
     the O(Λ) compressibility correction is ~1e-4; end effects decay like e^{−Z}.
     """
-    g = Grid(96, 16, 20.0)
+    g = FilmGrid(96, 16, 20.0)
     th = g.theta
     sol = solve_steady(g, journal_film(g, eps), 0.0, 1e-4)
     assert sol.converged, sol.message
@@ -104,7 +104,7 @@ def test_small_lambda_short_bearing_tends_to_ocvirk(eps: float) -> None:
     neglected circumferential term is O(Z_end²) relative (measured 0.2–0.5%
     on fine grids), the grid error at 48×8 is ~0.3%.
     """
-    g = Grid(48, 8, 0.05)
+    g = FilmGrid(48, 8, 0.05)
     th = g.theta
     sol = solve_steady(g, journal_film(g, eps), 0.0, 1e-4)
     assert sol.converged, sol.message
@@ -125,7 +125,7 @@ def test_grid_convergence_is_second_order() -> None:
     """
     loads, angles = [], []
     for k in range(4):
-        g = Grid(24 * 2**k, 4 * 2**k, 0.875)
+        g = FilmGrid(24 * 2**k, 4 * 2**k, 0.875)
         sol = solve_steady(g, journal_film(g, 0.6), 0.0, 0.5)
         assert sol.converged, sol.message
         fx, fy = film_force(g, sol.P)
@@ -146,7 +146,7 @@ def test_grid_convergence_is_second_order() -> None:
 
 @pytest.fixture(scope="module")
 def rigid_case():
-    g = Grid(48, 8, 0.875)
+    g = FilmGrid(48, 8, 0.875)
     h = journal_film(g, 0.6)
     sol = solve_steady(g, h, 0.0, 0.5)
     assert sol.converged
@@ -177,7 +177,7 @@ def test_compliant_foil_opens_the_film_and_lowers_the_peak(rigid_case) -> None:
 
 def test_mirror_symmetry_under_reflection_and_reversed_rotation() -> None:
     """h(θ) = h(−θ) and Λ → −Λ: P(θ) → P(−θ), F_Y → −F_Y, F_X unchanged."""
-    g = Grid(48, 6, 0.875)
+    g = FilmGrid(48, 6, 0.875)
     h = journal_film(g, 0.3, preload=0.4)
     comp = np.full(g.n_theta, C_BUMP)
     mirror = g.mirror_index()
@@ -207,13 +207,13 @@ def test_thin_film_converges_without_oscillation(lam, eps, n_theta, n_z) -> None
     local extrema (the peak in the converging wedge and the trough past it)
     and stays inside the range of a fine-grid reference, within 1%.
     """
-    g = Grid(n_theta, n_z, 0.875)
+    g = FilmGrid(n_theta, n_z, 0.875)
     sol = solve_steady(g, journal_film(g, eps), 0.0, lam)
     assert sol.converged, sol.message
     assert np.all(np.isfinite(sol.P)) and sol.P.min() > 0
     for j in range(n_z):
         assert local_extrema(sol.P[:, j]) == 2
-    ref_grid = Grid(192, 24, 0.875)
+    ref_grid = FilmGrid(192, 24, 0.875)
     ref = solve_steady(ref_grid, journal_film(ref_grid, eps), 0.0, lam)
     assert sol.P.max() <= 1.01 * ref.P.max()
     assert sol.P.min() >= 0.99 * ref.P.min()
@@ -221,7 +221,7 @@ def test_thin_film_converges_without_oscillation(lam, eps, n_theta, n_z) -> None
 
 def test_preloaded_foil_bearing_converges() -> None:
     """Default-like film: three 0.6 C lobes, H_min = 0.25, Λ = 0.4, bump compliance."""
-    g = Grid(96, 12, 0.875)
+    g = FilmGrid(96, 12, 0.875)
     h = journal_film(g, 0.15, preload=0.6)
     assert h.min() == pytest.approx(0.25, abs=0.01)
     sol = solve_steady(g, h, np.full(g.n_theta, C_BUMP), 0.4)
@@ -232,7 +232,7 @@ def test_preloaded_foil_bearing_converges() -> None:
 
 
 def test_continuation_fallback_is_used_and_reported() -> None:
-    g = Grid(24, 4, 0.875)
+    g = FilmGrid(24, 4, 0.875)
     opts = NewtonOptions(max_iter=3)
     sol = solve_steady(g, journal_film(g, 0.95), 0.0, 5.0, options=opts)
     assert sol.converged, sol.message
@@ -241,7 +241,7 @@ def test_continuation_fallback_is_used_and_reported() -> None:
 
 
 def test_failure_is_reported_not_silent() -> None:
-    g = Grid(24, 4, 0.875)
+    g = FilmGrid(24, 4, 0.875)
     opts = NewtonOptions(max_iter=1, continuation=False)
     sol = solve_steady(g, journal_film(g, 0.9), 0.0, 5.0, options=opts)
     assert not sol.converged
@@ -256,7 +256,7 @@ def test_failure_is_reported_not_silent() -> None:
 
 def test_coupled_system_jacobians_match_finite_differences() -> None:
     """J_PP (foil included) against FD in P; J_PH @ cos θ against FD in ε_X."""
-    g = Grid(12, 3, 0.875)
+    g = FilmGrid(12, 3, 0.875)
     comp = np.full(g.n_theta, 0.3)
     lam, eps = 0.8, 0.5
     sol = solve_steady(g, journal_film(g, eps), comp, lam)

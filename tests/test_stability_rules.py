@@ -35,7 +35,7 @@ def test_onset_scan_bracket_and_brent_on_a_coarse_grid() -> None:
     equilibria solved from the centre; the onset lies in the bracket and its log decrement
     is zero to Brent's tolerance; the whirl ratio and frequency are the onset's; one
     progress line per speed scanned; the messages say what was found."""
-    from foilbearing.errors import InputError
+    from foilbearing.errors import InputError, SolverError
     from foilbearing.stability import OnsetResult
 
     case = _coarse()
@@ -104,7 +104,7 @@ def test_onset_scan_bracket_and_brent_on_a_coarse_grid() -> None:
         r"^no static equilibrium at 1000 rpm \(.*\); the linear stability analysis needs "
         r"one: narrow the speed range$"
     )
-    with pytest.raises(InputError, match=needs):
+    with pytest.raises(SolverError, match=needs):
         onset_speed(case.with_voltages(150.0), [1000 * RPM, 20e3 * RPM])
     for bad in ([20e3 * RPM], [0.0, 20e3 * RPM]):
         with pytest.raises(InputError, match=r"^the onset search needs at least two speeds > 0$"):
@@ -185,9 +185,9 @@ class _Coefficients:
 def _point(speed: float):
     from types import SimpleNamespace
 
-    from foilbearing.reynolds import Grid
+    from foilbearing.reynolds import FilmGrid
 
-    return SimpleNamespace(speed=speed, model=SimpleNamespace(grid=Grid(8, 2, 0.875)))
+    return SimpleNamespace(speed=speed, model=SimpleNamespace(grid=FilmGrid(8, 2, 0.875)))
 
 
 def test_whirl_mode_with_constant_cross_coupled_coefficients(monkeypatch) -> None:

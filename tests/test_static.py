@@ -1,6 +1,6 @@
 """Static analysis: equilibrium, limits, and the paper's static results (Figs. 9-12).
 
-Paper numbers and trends are from MODEL.md section 6. The viscosity (1.85e-5 Pa s) is our
+Paper numbers and trends are from docs/model.md §6. The viscosity (1.85e-5 Pa s) is our
 choice (the paper does not give it) and the grid is the default 96 x 12, so published values
 are checked with stated tolerances rather than digits.
 """

@@ -19,6 +19,7 @@ import pytest
 from foilbearing.case import load_case
 from foilbearing.cli import main
 from foilbearing.errors import InputError
+from foilbearing.identification import example_measurements
 from foilbearing.study_plan import study_plan
 
 RPM = math.pi / 30.0
@@ -236,9 +237,9 @@ def test_a_cgfb_other_than_the_papers_gets_its_own_plan(write_case, tmp_path: Pa
 
     path = write_case("mine", n_theta=32, n_z=4, edit=edit)
     (path.parent / "data").mkdir()
-    examples = Path(__file__).resolve().parents[1] / "examples" / "data"
-    shutil.copy(examples / "stack_no_load.csv", path.parent / "data" / "no_load.csv")
-    shutil.copy(examples / "stack_stiffness.csv", path.parent / "data" / "k.csv")
+    no_load, stiffness = example_measurements()
+    shutil.copy(no_load, path.parent / "data" / "no_load.csv")
+    shutil.copy(stiffness, path.parent / "data" / "k.csv")
     assert main(["study", str(path), "--out", str(tmp_path), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["plan"]["bearing_kind"] == "C-GFB" and out["plan"]["voltages_V"] == [0, 75, 150]

@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.structure import (
     actuator_stiffness,
@@ -52,8 +53,6 @@ __all__ = [
     "per_item_quantities",
 ]
 
-GRAVITY = 9.80665  # m/s², standard gravity
-RPM = math.pi / 30.0  # rad/s per rpm
 #: Default top of the speeds an analysis may be asked for, rad/s (150 000 rpm, the top
 #: of the default onset scan); a case sets its own with ``[operation] max_speed``.
 MAX_SPEED_DEFAULT = 150_000 * RPM
@@ -111,7 +110,7 @@ class BumpGeometry:
         )
 
 
-#: How a foil bearing treats sub-ambient film pressure (MODEL.md section 3).
+#: How a foil bearing treats sub-ambient film pressure (docs/model.md §3).
 SUBAMBIENT_MODELS = ("lift-off", "retained")
 
 
@@ -120,7 +119,7 @@ class Foil:
     """Compliant foil: an elastic foundation of stiffness k_b per unit area with loss factor γ.
 
     ``subambient`` says what the film does where its pressure falls below
-    ambient (MODEL.md section 3): ``"lift-off"`` (default) — the top foil,
+    ambient (docs/model.md §3): ``"lift-off"`` (default) — the top foil,
     which only rests on the bumps, is pulled off them towards the journal
     until the suction is relieved, so the film holds no sub-ambient pressure
     (``P ≥ 1`` as a complementarity condition); ``"retained"`` — the foil
@@ -313,7 +312,7 @@ class Case:
 
 
 def default_case_path() -> Path:
-    """Path of the built-in default case: the paper's C-GFB (MODEL.md section 1)."""
+    """Path of the built-in default case: the paper's C-GFB (docs/model.md §1)."""
     return Path(str(resources.files("foilbearing") / "cases" / "cgfb.toml"))
 
 

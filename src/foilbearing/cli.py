@@ -13,22 +13,15 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from foilbearing.case import Case, load_case
 from foilbearing.cli_common import add_case_arg, add_subambient_arg, apply_subambient
 from foilbearing.errors import InputError, SolverError
-from foilbearing.figures import (
-    write_identification_figures,
-    write_static_figures,
-    write_structure_figures,
-)
-from foilbearing.summary import structure_summary, sweep_points
-from foilbearing.units import parse_quantity, parse_speed_range
+
+if TYPE_CHECKING:
+    from foilbearing.case import Case
 
 __all__ = ["main"]
-
-REPO_EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "data"
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -205,6 +198,8 @@ def parse_list(text: str, kind: str, field: str) -> list[float]:
 
     A unit written on the last item applies to bare numbers before it.
     """
+    from foilbearing.units import parse_quantity
+
     items = [s.strip() for s in text.split(",") if s.strip()]
     if not items:
         raise InputError(f"{field} = {text!r}: expected one or more values")
@@ -233,6 +228,7 @@ def _json_default(x: Any) -> Any:
 
 
 def _cmd_case_show(args: argparse.Namespace) -> int:
+    from foilbearing.case import load_case
     from foilbearing.summary import case_summary, format_summary
 
     case = load_case(args.case)
@@ -246,6 +242,10 @@ def _cmd_case_show(args: argparse.Namespace) -> int:
 
 
 def _cmd_structure(args: argparse.Namespace) -> int:
+    from foilbearing.case import load_case
+    from foilbearing.figures import write_structure_figures
+    from foilbearing.summary import structure_summary
+
     case = load_case(args.case)
     voltages = parse_list(args.voltage, "voltage", "--voltage")
     if case.actuators is not None:
@@ -267,9 +267,12 @@ def _cmd_structure(args: argparse.Namespace) -> int:
 
 def _cmd_identify(args: argparse.Namespace) -> int:
     from foilbearing import identification as ident
+    from foilbearing.figures import write_identification_figures
+    from foilbearing.units import parse_quantity
 
-    no_load = args.no_load or REPO_EXAMPLES / "stack_no_load.csv"
-    stiffness = args.stiffness or REPO_EXAMPLES / "stack_stiffness.csv"
+    example_no_load, example_stiffness = ident.example_measurements()
+    no_load = args.no_load or example_no_load
+    stiffness = args.stiffness or example_stiffness
     area = parse_quantity(args.contact_area, "area", field="--contact-area")
     if area <= 0.0:
         raise InputError(f"--contact-area {args.contact_area!r}: must be > 0")
@@ -289,6 +292,7 @@ def _cmd_identify(args: argparse.Namespace) -> int:
 
 
 def _cmd_static(args: argparse.Namespace) -> int:
+    from foilbearing.case import load_case
     from foilbearing.io import write_with
 
     case = apply_subambient(load_case(args.case), args.subambient)
@@ -369,8 +373,10 @@ def _print_static(out: dict[str, Any]) -> None:
 def _static_sweep_cli(
     case: Case, speeds: list[float], volts: list[float | None], args: argparse.Namespace
 ) -> int:
+    from foilbearing.figures import write_static_figures
     from foilbearing.io import write_with
     from foilbearing.study_static import static_sweep
+    from foilbearing.summary import sweep_points
 
     if case.actuators is None:
         raise InputError("a static sweep over voltages needs a case with [actuators]")
@@ -402,6 +408,7 @@ def _static_sweep_cli(
 def _cmd_coefficients(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from foilbearing.case import load_case
     from foilbearing.coefficients import force_coefficients
     from foilbearing.io import save_figure, write_with
     from foilbearing.static import solve_equilibrium
@@ -446,8 +453,10 @@ def _cmd_coefficients(args: argparse.Namespace) -> int:
 
 
 def _cmd_stability(args: argparse.Namespace) -> int:
+    from foilbearing.case import load_case
     from foilbearing.io import save_figure
     from foilbearing.stability import onset_speed, stability_map
+    from foilbearing.units import parse_speed_range
 
     case = apply_subambient(load_case(args.case), args.subambient)
     speeds = parse_speed_range(args.speed_range, field="--speed-range")
@@ -492,6 +501,7 @@ def _cmd_stability(args: argparse.Namespace) -> int:
 
 
 def _cmd_study(args: argparse.Namespace) -> int:
+    from foilbearing.case import load_case
     from foilbearing.study import run_study
 
     case = load_case(args.case)

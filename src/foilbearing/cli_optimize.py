@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from typing import Any
 
@@ -20,7 +19,6 @@ from foilbearing.errors import InputError
 
 __all__ = ["cmd_optimize", "register"]
 
-RPM = math.pi / 30.0
 OBJECTIVES = ("onset", "drag")
 
 

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from pathlib import Path
 from typing import Any
@@ -20,8 +19,6 @@ from foilbearing.cli_common import add_case_arg, add_subambient_arg, apply_subam
 from foilbearing.errors import InputError
 
 __all__ = ["register", "run_spec_from_args"]
-
-RPM = math.pi / 30.0
 
 
 def register(sub: Any) -> None:

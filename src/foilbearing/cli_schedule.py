@@ -22,7 +22,6 @@ from foilbearing.errors import InputError
 
 __all__ = ["cmd_schedule", "register", "schedule_speeds"]
 
-RPM = math.pi / 30.0
 DEFAULT_POINTS = 17  # speeds of a START:STOP range without a step
 
 

@@ -1,12 +1,12 @@
 """Dynamic force coefficients: stiffness and damping against excitation frequency.
 
-Perturbation of the static solution (MODEL.md section 4): a small harmonic
+Perturbation of the static solution (docs/model.md §4): a small harmonic
 journal motion at ω_e = ν ω gives ``K_ij + j ω_e C_ij = −∂F_i/∂e_j``, from the
 complex pressure response of :mod:`foilbearing.reynolds.perturbed`. The foil
 enters as a complex stiffness per unit area: the bump, a spring k_b in
 parallel with the viscous damper ``c_b = γ k_b/ω`` (the loss factor's
 equivalent at the running speed ω; the orbit integrates the same Kelvin-Voigt
-bump, so linear and nonlinear analyses share one foil damping law, MODEL.md
+bump, so linear and nonlinear analyses share one foil damping law, docs/model.md
 section 3), ``k_b (1 + jγ ω_e/ω)``, in series with the purely elastic actuator
 under each stinger,
 
@@ -32,7 +32,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from foilbearing.errors import InputError
+from foilbearing.constants import RPM
+from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel
 from foilbearing.reynolds import Workspace
 from foilbearing.reynolds.perturbed import pressure_response
@@ -41,7 +42,6 @@ from foilbearing.static import StaticResult
 __all__ = ["ForceCoefficients", "dynamic_compliance", "force_coefficients"]
 
 FloatArray = NDArray[np.float64]
-RPM = math.pi / 30.0
 
 
 @dataclass(frozen=True)
@@ -64,11 +64,6 @@ class ForceCoefficients:
     frequencies: FloatArray
     K: FloatArray
     C: FloatArray
-
-    @property
-    def impedance(self) -> NDArray[np.complex128]:
-        """K + jω_e C, N/m, shape (n_f, 2, 2)."""
-        return self.K + 1j * self.frequencies[:, None, None] * self.C
 
     def headline(self) -> dict[str, Any]:
         """Unit-named keys for ``--json``; one entry per frequency."""
@@ -167,7 +162,10 @@ def force_coefficients(
             f"excitation frequency {omega_e.tolist()!r} rad/s: every frequency must be > 0"
         )
     if not static.converged:
-        raise InputError(f"the static point did not converge ({static.message})")
+        raise SolverError(
+            f"the static point did not converge ({static.message}): the coefficients "
+            "need a converged equilibrium"
+        )
     case, model = static.case, static.model
     dh = _journal_columns(model)
     w_x, w_y = (w.ravel() for w in model.grid.force_weights())

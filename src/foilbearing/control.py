@@ -99,10 +99,6 @@ class SpeedProfile:
         """ω(t), rad/s."""
         return self.state(t)[0]
 
-    def omega_dot(self, t: float) -> float:
-        """dω/dt, rad/s² (the slope of the segment containing t)."""
-        return self.state(t)[1]
-
     def phase(self, t: float) -> float:
         """φ(t) = ∫₀ᵗ ω dt, rad."""
         return self.state(t)[2]

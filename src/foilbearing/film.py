@@ -1,14 +1,14 @@
 """Film thickness of a case: journal position, preload shape and foil compliance on the grid.
 
-MODEL.md section 2-3: ``h(θ) = C + e_X cos θ + e_Y sin θ − r_p(θ) + w(θ)`` with
+docs/model.md §2-3: ``h(θ) = C + e_X cos θ + e_Y sin θ − r_p(θ) + w(θ)`` with
 the foil deflection ``w = max(p_A, 0)/k(θ)``. Here the parts that do not
 depend on the pressure are put on the Reynolds grid; the Reynolds solvers add
 ``w`` through the compliance ``c(θ) = p_a/(C k(θ))``. A foil bearing's film
 holds no sub-ambient pressure by default (top-foil lift-off: ``lift_off``,
-MODEL.md section 3); a rigid bearing, or a case with ``[foil] subambient =
+docs/model.md §3); a rigid bearing, or a case with ``[foil] subambient =
 "retained"``, keeps it.
 
-The reading of the paper used throughout (MODEL.md section 3): the film uses
+The reading of the paper used throughout (docs/model.md §3): the film uses
 r_p(θ) from the *base* preload, and the foil deflects by ``p_A/k(θ)`` with
 ``k = k_assy`` under the stingers, so the actuator's compliance is counted
 exactly once; the reported piezoelectric preload is
@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
-from foilbearing.reynolds import Grid
+from foilbearing.reynolds import FilmGrid
 from foilbearing.structure import preload_shape, stiffness_function
 
 __all__ = ["FilmModel", "film_model"]
@@ -57,7 +57,7 @@ class FilmModel:
         that the film holds none (P ≥ 1, a complementarity condition).
     """
 
-    grid: Grid
+    grid: FilmGrid
     preload: FloatArray
     compliance: FloatArray
     stiffness: FloatArray | None
@@ -87,7 +87,7 @@ class FilmModel:
 
 def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -> FilmModel:
     """Build the film model of a case on its grid (or on ``n_theta`` × ``n_z``)."""
-    grid = Grid(
+    grid = FilmGrid(
         n_theta=n_theta or case.grid.n_theta,
         n_z=n_z or case.grid.n_z,
         half_length=case.bearing.length / (2.0 * case.bearing.radius),

@@ -42,12 +42,14 @@ def write_text(target: str | Path, text: str) -> Path:
 
 
 def save_figure(fig: Any, target: str | Path, dpi: int = 130) -> Path:
-    """Save a matplotlib figure atomically as PNG and close it."""
-    import matplotlib.pyplot as plt
+    """Save a matplotlib figure atomically as PNG.
 
+    The package's figures are :class:`matplotlib.figure.Figure` objects built
+    without pyplot, so no backend is selected and nothing needs closing: the
+    figure is freed with its last reference.
+    """
     with atomic_path(target) as tmp:
         fig.savefig(tmp, format="png", dpi=dpi)
-    plt.close(fig)
     return Path(target)
 
 

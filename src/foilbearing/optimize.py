@@ -24,6 +24,7 @@ from scipy.optimize import minimize
 from scipy.stats import qmc
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 
 __all__ = [
@@ -38,7 +39,6 @@ __all__ = [
     "voltage_box",
 ]
 
-RPM = math.pi / 30.0
 PAPER_VOLTAGES = (0.0, 50.0, 100.0, 150.0)  # V, the paper's equal-voltage choices
 FAILED_MERIT = 1e30  # merit of a point without a result; finite so that Powell's line search copes
 Voltages = tuple[float, ...]

@@ -1,7 +1,7 @@
 """Nonlinear orbit of the journal during a speed-up, with the actuator voltage changed on the run.
 
 The semi-discrete system of :mod:`foilbearing.reynolds.transient` (film, foil,
-journal; MODEL.md section 5) is integrated by a variable-step BDF (order 3
+journal; docs/model.md §5) is integrated by a variable-step BDF (order 3
 by default, ``OrbitSettings.order``) in physical time with a modified Newton
 iteration: the sparse Jacobian is factorised once and reused over many steps,
 refreshed only when the Newton iteration slows down. The time step is a fixed
@@ -29,8 +29,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
-from foilbearing.errors import InputError
+from foilbearing.errors import InputError, SolverError
 from foilbearing.film import film_model
 from foilbearing.reynolds._kernels import MAX_MOVED_KEPT
 from foilbearing.reynolds.transient import (
@@ -46,7 +47,6 @@ from foilbearing.structure import base_preload, preload_shape
 __all__ = ["OrbitResult", "OrbitSettings", "OrbitSimulation", "simulate"]
 
 FloatArray = NDArray[np.float64]
-RPM = math.pi / 30.0
 #: Simulated time between two evaluations of the film's power loss, s (it is
 #: averaged over runs of seconds; 1 ms keeps its cost below 1 % of a step's).
 POWER_INTERVAL = 1e-3
@@ -354,7 +354,10 @@ class OrbitSimulation:
             case = case.with_voltages(tuple(float(v) for v in self.volts(0.0)))
         st = solve_equilibrium(case, speed=self.profile.omega(0.0), model=None)
         if not st.converged:
-            raise InputError(f"no static equilibrium at the start of the run: {st.message}")
+            raise SolverError(
+                f"no static equilibrium at the start of the run: {st.message}; start the "
+                "run at a higher speed or a lower load"
+            )
         sys_ = self.system
         q = np.maximum(st.P.mean(axis=1) - 1.0, 0.0)
         u = sys_.c_bump * q if sys_.dynamic_bump else np.zeros(sys_.nt)
@@ -583,7 +586,7 @@ def _run(
                     t - times[1] if count > 1 else None,
                     times[1] - times[2] if count > 2 else None,
                 )  # fmt: skip
-                ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _newton(
+                ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _step_newton(
                     sim, guess, inp, c0, hist, weights, lu, lu_c0, work, branches
                 )
                 counters[2] += its
@@ -632,7 +635,7 @@ def _run(
                 last_checkpoint = time.perf_counter()
     except KeyboardInterrupt:
         status, message = "interrupted", f"interrupted by the user at t = {st.t:.4f} s"
-    except (FloatingPointError, ValueError, RuntimeError) as exc:
+    except ArithmeticError as exc:  # a numerical failure (step collapse, singular factor)
         status, message = "failed", f"the integration failed at t = {st.t:.4f} s: {exc}"
     finally:
         if bar is not None:
@@ -655,7 +658,7 @@ _MAX_ORDER = 4
 _MAX_REFRESH = 3
 
 
-def _newton(
+def _step_newton(
     sim: OrbitSimulation,
     y0: FloatArray,
     inp: Inputs,

@@ -1,4 +1,4 @@
-"""The paper's reported numbers (MODEL.md section 6) and our numbers beside them.
+"""The paper's reported numbers (docs/model.md §6) and our numbers beside them.
 
 The values here are reproduction *targets*, used only for comparison tables
 and tests with stated tolerances, never inside a computation.
@@ -259,7 +259,7 @@ def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
 def orbit_comparison(
     runs: list[dict[str, Any]], linear_onsets_rpm: dict[float, float | None] | None = None
 ) -> list[Row]:
-    """The speed-up runs beside the paper's Figs. 13-15 (MODEL.md section 6).
+    """The speed-up runs beside the paper's Figs. 13-15 (docs/model.md §6).
 
     ``linear_onsets_rpm`` (final voltage → linear onset, rpm) adds each run's lag of
     its divergence behind the linear onset at its final voltage: an onset read from
@@ -272,7 +272,7 @@ def orbit_comparison(
         150.0: "no divergence up to 90 krpm; whip onset 79.1 krpm, ~143 Hz",
     }
     note = (
-        "μ, rotor mass and imbalance are assumed (MODEL.md section 1); onset = sustained "
+        "μ, rotor mass and imbalance are assumed (docs/model.md §1); onset = sustained "
         "sub-synchronous amplitude > 1 µm (0.25 s windows, 1X removed by order tracking); "
         "divergence speeds are good to about 2 %: a run ends when a whirl that grew "
         "over many revolutions reaches the clearance, from a seed that is partly "

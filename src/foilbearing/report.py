@@ -50,7 +50,7 @@ STAGES: tuple[tuple[str, str], ...] = (
 _SUBSYNC = "Fig. 15: filtered sub-synchronous amplitude of the vertical journal motion (oil whip)."
 _CAPTIONS = {
     "fig05b_stack_displacement.png": "Fig. 5(b): PZT stack displacement versus driving voltage "
-    "(synthetic measurements from examples/data) with the fitted curves.",
+    "(the synthetic measurements shipped in foilbearing/data) with the fitted curves.",
     "fig06_stack_stiffness.png": "Fig. 6(b, c): stack displacement versus static load and the "
     "identified stack stiffness of stacks #1-#3.",
     "stack_displacement.png": "PZT stack displacement versus driving voltage from the "
@@ -413,7 +413,7 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         "section."
         + (
             " The film under the foil holds no sub-ambient pressure (top-foil lift-off, "
-            "MODEL.md section 3); the suction-retained columns keep it, as a rigid surface "
+            "docs/model.md §3); the suction-retained columns keep it, as a rigid surface "
             "would, and go unstable 2-3.5 times earlier."
             if others["kept"]
             else ""

@@ -10,7 +10,7 @@ matched_whirl=True)``, ``Rotor.run_campbell(..., matched_whirl=True)``).
 
 Frame mapping
 -------------
-Ours (MODEL.md section 2): X along the static load (gravity, pointing down), Y
+Ours (docs/model.md §2): X along the static load (gravity, pointing down), Y
 horizontal, the journal rotating from +X towards +Y (θ grows from −X in that
 sense). ROSS: x horizontal, y vertical and pointing up (its gravity acts along
 −y), rotation and forward whirl from +x towards +y (its orbit parameter κ > 0).
@@ -30,7 +30,6 @@ and the same for the damping. Both frames define ``K_ij = −∂F_i/∂q_j``
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -39,6 +38,7 @@ from numpy.typing import NDArray
 
 from foilbearing.case import Case
 from foilbearing.coefficients import force_coefficients
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import Workspace
@@ -46,7 +46,6 @@ from foilbearing.static import StaticResult, solve_equilibrium
 
 __all__ = ["coefficient_table", "ross_coefficients", "to_ross_bearing"]
 
-RPM = math.pi / 30.0
 ROSS_MIN_VERSION = (3, 0)
 _INSTALL_HINT = (
     "pip install 'foilbearing[ross]' (ross-rotordynamics >= 3.0, which needs Python >= 3.13; "

@@ -9,7 +9,7 @@ that
 - minimise the power loss P(v) = T_drag(v) · Ω of the static equilibrium, subject
   to a stability margin: the logarithmic decrement δ(v) of the least stable
   whirl mode of the rotor on the bearing (:func:`foilbearing.stability.whirl_mode`,
-  the linear analysis of MODEL.md section 4) is at least ``margin``;
+  the linear analysis of docs/model.md §4) is at least ``margin``;
 - where no voltages meet the margin, the most stable voltages found (largest δ).
 
 The search is the optimiser of :mod:`foilbearing.optimize` (the paper's equal
@@ -49,7 +49,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from foilbearing.case import RPM, Case
+from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 from foilbearing.optimize import (
     FAILED_MERIT,

@@ -29,7 +29,8 @@ from typing import Any
 
 import numpy as np
 
-from foilbearing.case import RPM, Case, TableReader, per_item_quantities
+from foilbearing.case import Case, TableReader, per_item_quantities
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.schedule import DEFAULT_SLEW_RATE, SpeedSchedule
 

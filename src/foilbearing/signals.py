@@ -1,6 +1,6 @@
 """Signal analysis of a speed-up orbit: waterfall, sub-synchronous amplitude, onset, divergence.
 
-Pure functions on uniformly sampled arrays (the paper's Figs. 13–15, MODEL.md
+Pure functions on uniformly sampled arrays (the paper's Figs. 13–15, docs/model.md
 section 5): ``t`` (s), a journal displacement ``x`` (m, usually e_X, along the
 static load), the rotor speed ``speed`` = ω(t) (rad/s) and the rotor angle
 ``phase`` = φ(t) = ∫ω dt (rad). Speeds are reported in rpm, as in the paper.
@@ -27,6 +27,7 @@ import numpy as np
 from scipy.signal import ShortTimeFFT
 from scipy.signal.windows import hann
 
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 
 __all__ = [
@@ -41,7 +42,6 @@ __all__ = [
     "waterfall",
 ]
 
-RPM = 30.0 / math.pi  # rad/s → rpm
 WINDOW_S = 0.25
 OVERLAP = 0.75
 PAD = 4  # zero padding: bins 1/(4T) apart, so a tone between bins reads within 1 %
@@ -235,7 +235,7 @@ def waterfall(
     keep = freqs <= (fmax_hz if fmax_hz is not None else np.inf)
     return Waterfall(
         times=times,
-        speeds_rpm=np.interp(times, t, speed) * RPM,
+        speeds_rpm=np.interp(times, t, speed) / RPM,
         frequencies_hz=freqs[keep],
         amplitude=spec[:, keep],
         window_s=float(window_s),
@@ -382,10 +382,10 @@ def order_interval(
         return None
     k = int(np.argmax(amplitude))
     return (
-        float(speed[above[0]] * RPM),
-        float(speed[above[-1]] * RPM),
+        float(speed[above[0]] / RPM),
+        float(speed[above[-1]] / RPM),
         float(amplitude[k]),
-        float(speed[k] * RPM),
+        float(speed[k] / RPM),
     )
 
 
@@ -504,9 +504,9 @@ def divergence_speed(
     fs = _sampling(t, e_x, e_y, speed)
     if stopped_by_contact:
         tc = t[-1] if contact_time is None else contact_time
-        return float(np.interp(tc, t, speed) * RPM)
+        return float(np.interp(tc, t, speed) / RPM)
     n = max(1, round(window_s * fs))
     z = e_x + 1j * e_y
     radius = np.abs(z - _moving_mean(z, n))
     over = np.flatnonzero(radius > fraction * clearance)
-    return float(speed[over[0]] * RPM) if over.size else None
+    return float(speed[over[0]] / RPM) if over.size else None

@@ -3,7 +3,7 @@
 The rotor mass carried by the bearing, m, moves in X and Y under the film's
 linearised force: ``m s² + C(ω_e) s + K(ω_e) = 0`` (2 × 2). The coefficients
 depend on the whirl frequency they are taken at, so each eigenvalue is iterated
-to consistency, ``ω_e = Im s`` (MODEL.md section 4). The least stable whirl
+to consistency, ``ω_e = Im s`` (docs/model.md §4). The least stable whirl
 mode decides stability; its logarithmic decrement ``δ = −2π Re s / Im s``
 changes sign at the onset speed of instability, found by bracketing on a speed
 grid and refining with Brent's method.
@@ -21,14 +21,13 @@ from scipy.optimize import brentq
 
 from foilbearing.case import Case
 from foilbearing.coefficients import force_coefficients
-from foilbearing.errors import InputError
+from foilbearing.constants import RPM
+from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import Workspace
 from foilbearing.static import StaticResult, solve_equilibrium
 
 __all__ = ["OnsetResult", "WhirlMode", "onset_speed", "stability_map", "whirl_mode"]
-
-RPM = math.pi / 30.0
 
 
 @dataclass(frozen=True)
@@ -124,7 +123,10 @@ def whirl_mode(
         if best is None or dec < best[0]:
             best = (dec, s, fc, it)
     if best is None:
-        raise InputError(f"no whirl mode found at {omega / RPM:.0f} rpm (over-damped rotor)")
+        raise SolverError(
+            f"no whirl mode found at {omega / RPM:.0f} rpm (over-damped rotor, or the "
+            "eigenvalue iteration did not converge from any seed): try another speed"
+        )
     dec, s, fc, it = best
     return WhirlMode(
         speed=omega,
@@ -176,7 +178,7 @@ class _Scanner:
         if not st.converged:
             st = solve_equilibrium(self.case, speed=speed, model=self.model)
         if not st.converged:
-            raise InputError(
+            raise SolverError(
                 f"no static equilibrium at {speed / RPM:.0f} rpm ({st.message}); the linear "
                 "stability analysis needs one: narrow the speed range"
             )
@@ -294,7 +296,7 @@ def stability_map(
         for s, w in enumerate(speeds):
             try:
                 mode = scan.mode(float(w))
-            except InputError:
+            except SolverError:
                 scan.start = None
                 continue
             dec[v, s], ratio[v, s] = mode.log_decrement, mode.whirl_ratio

@@ -2,7 +2,7 @@
 
 Newton on the whole discrete system: the pressures P of the foil-coupled
 Reynolds equation (paper Eq. 4, steady) and the journal position (ε_X, ε_Y),
-with the force balance ``F + W = 0`` (MODEL.md section 2, load W along +X) as
+with the force balance ``F + W = 0`` (docs/model.md §2, load W along +X) as
 the two extra equations. Each iteration factorises the coupled Jacobian once
 and eliminates (ε_X, ε_Y) by a 2 × 2 Schur complement. The same residual and
 Jacobian (``reynolds.coupled_system``) serve the dynamic coefficients and
@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
@@ -33,7 +34,6 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
-RPM = math.pi / 30.0
 
 
 @dataclass(frozen=True)
@@ -364,7 +364,7 @@ def solve_equilibrium(
 
 
 @dataclass(frozen=True)
-class _Outcome:
+class _EquilibriumOutcome:
     P: FloatArray
     eps: FloatArray
     converged: bool
@@ -408,7 +408,7 @@ class _Equilibrium:
         h = m.h_rigid(*eps)[:, 0] + m.compliance * np.maximum(p_mean, 0.0)
         return float(h.min())
 
-    def solve(self, load: float, eps: FloatArray, P0: FloatArray | None) -> _Outcome:
+    def solve(self, load: float, eps: FloatArray, P0: FloatArray | None) -> _EquilibriumOutcome:
         """Damped Newton on (P, ε) for a dimensionless load along +X."""
         m, opts = self.model, self.opts
         g = m.grid
@@ -426,7 +426,7 @@ class _Equilibrium:
         P = first.P.ravel().copy()
         load_ref = max(abs(load), 1e-12)
         if not first.converged:
-            return _Outcome(
+            return _EquilibriumOutcome(
                 P,
                 eps,
                 False,
@@ -442,11 +442,15 @@ class _Equilibrium:
             res = float(np.max(np.abs(R))) * self.scale
             force_res = float(np.hypot(*G)) / load_ref
             if res <= opts.newton.tol and force_res <= opts.force_tol:
-                return _Outcome(P, eps, True, iterations + it, res, force_res, "converged")
+                return _EquilibriumOutcome(
+                    P, eps, True, iterations + it, res, force_res, "converged"
+                )
             try:
                 lu = self._factor(j_pp)
             except RuntimeError:
-                return _Outcome(P, eps, False, iterations + it, res, force_res, "singular Jacobian")
+                return _EquilibriumOutcome(
+                    P, eps, False, iterations + it, res, force_res, "singular Jacobian"
+                )
             # Schur complement: dP = a - Y dε with J a = -R, J Y = dR/dε; then the force rows.
             a = -lu.solve(R)
             y = lu.solve(np.column_stack([j_ph @ self.cos_t, j_ph @ self.sin_t]))
@@ -469,7 +473,7 @@ class _Equilibrium:
                         break
                 step *= 0.5
             else:
-                return _Outcome(
+                return _EquilibriumOutcome(
                     P,
                     eps,
                     False,
@@ -482,7 +486,7 @@ class _Equilibrium:
             P, eps, R, j_pp, j_ph, G, merit = P_t, eps_t, R_t, jpp_t, jph_t, G_t, m_t
         res = float(np.max(np.abs(R))) * self.scale
         force_res = float(np.hypot(*G)) / load_ref
-        return _Outcome(
+        return _EquilibriumOutcome(
             P,
             eps,
             False,

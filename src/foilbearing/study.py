@@ -17,8 +17,6 @@ from foilbearing.io import write_text
 
 __all__ = ["run_study"]
 
-REPO_EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "data"
-
 
 #: Evaluations of the study's uncertainty stage: "quick" is the Sobol estimator's least
 #: sample for the built-in file's 5 inputs (8 base rows), "full" the file's own.
@@ -79,11 +77,11 @@ def run_study(
     if progress:
         print(format_summary(results["case"]))
 
-    no_load = REPO_EXAMPLES / "stack_no_load.csv"
-    stiffness = REPO_EXAMPLES / "stack_stiffness.csv"
-    if paper and case.actuators is not None and no_load.exists() and stiffness.exists():
-        stage("identification of the PZT stacks from examples/data (synthetic measurements)")
-        from foilbearing.identification import identify
+    if paper and case.actuators is not None:
+        stage("identification of the PZT stacks from the shipped synthetic measurements")
+        from foilbearing.identification import example_measurements, identify
+
+        no_load, stiffness = example_measurements()
 
         ident = identify(no_load, stiffness, case.actuators.contact_area)
         results["identification"] = ident.headline()
@@ -255,7 +253,7 @@ def _stability_stage(
     scan = [s * rpm for s in range(5_000, 150_001, 2_500)]
     onsets: dict[str, dict[float, Any]] = {"C-GFB": {}, "shimmed": {}}
     # Both film models where the case has lift-off: the suction-retained one beside it
-    # shows what relieving the sub-ambient film does to the onset (MODEL.md section 3).
+    # shows what relieving the sub-ambient film does to the onset (docs/model.md §3).
     retained = case.foil is not None and case.foil.lift_off
     if retained:
         onsets |= {"C-GFB, suction retained": {}, "shimmed, suction retained": {}}

@@ -38,7 +38,8 @@ from typing import Any
 
 import numpy as np
 
-from foilbearing.case import RPM, Case
+from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 from foilbearing.study_plan import CASE_POINT_KEYS, REFERENCE_KEYS, StudyPlan, shown_reference
 
@@ -204,7 +205,7 @@ def _stability(
     for w, st in found.items():
         try:
             m = whirl_mode(st, case.rotor.mass)
-        except InputError as exc:
+        except SolverError as exc:
             modes.append({"speed_rpm": w / RPM, "message": str(exc)})
             continue
         modes.append(

@@ -5,7 +5,7 @@ The paper's protocol: 0 V throughout, and ramps of all actuators from 0 to
 motions", just before its 0 V run diverges (~33 krpm), during the speed-up at
 500 rad/s². The 0 V run goes first. A controlled run is identical to it until
 its ramp starts, so if our 0 V run diverges before the paper's control time
-(our viscosity, rotor mass and imbalance are assumptions, MODEL.md section 1)
+(our viscosity, rotor mass and imbalance are assumptions, docs/model.md §1)
 the protocol's controlled runs would diverge with it; they are not run and the
 study says so. Two labelled variants then keep what the protocol was for:
 
@@ -23,7 +23,6 @@ NetCDF as it finishes.
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -32,10 +31,10 @@ from pathlib import Path
 from typing import Any
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 
 __all__ = ["PAPER_ORBITS", "OrbitRun", "paper_orbit_runs", "run_one"]
 
-RPM = math.pi / 30.0
 #: Final voltage of the ramp of each of the paper's runs (0: no control).
 PAPER_ORBITS = (0.0, 50.0, 100.0, 150.0)
 RAMP = (6.0, 6.5)  # s, the paper's

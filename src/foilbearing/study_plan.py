@@ -42,7 +42,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from foilbearing.case import RPM, Case, TableReader
+from foilbearing.case import Case, TableReader
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 
 __all__ = [

@@ -29,7 +29,8 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-from foilbearing.case import RPM, Case
+from foilbearing.case import Case
+from foilbearing.constants import RPM
 
 __all__ = ["SCHEDULE_SPEEDS_RPM", "schedule_stage"]
 

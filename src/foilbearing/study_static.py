@@ -13,12 +13,12 @@ from typing import Any
 import numpy as np
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.film import film_model
 from foilbearing.static import StaticResult, solve_equilibrium
 
 __all__ = ["PAPER_SPEEDS_RPM", "PAPER_VOLTAGES", "static_sweep"]
 
-RPM = math.pi / 30.0
 PAPER_SPEEDS_RPM = tuple(float(s) for s in range(10_000, 90_001, 10_000))
 PAPER_VOLTAGES = (0.0, 50.0, 100.0, 150.0)
 

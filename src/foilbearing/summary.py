@@ -10,11 +10,10 @@ from collections.abc import Sequence
 from typing import Any
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.structure import walowit_anno_bump_stiffness
 
 __all__ = ["BEARING_TYPES", "case_summary", "format_summary", "structure_summary", "sweep_points"]
-
-RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 
 
 def case_summary(case: Case) -> dict[str, Any]:

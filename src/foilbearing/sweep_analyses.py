@@ -21,8 +21,6 @@ from foilbearing.units import parse_quantity
 
 __all__ = ["ANALYSES", "Analysis"]
 
-RPM = math.pi / 30.0  # rad/s per rpm
-
 
 def value_list(raw: Any, kind: str, where: str, src: str) -> tuple[Any, ...]:
     """A list of values in a sweep file, in SI.

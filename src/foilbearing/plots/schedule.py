@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["plot_run_power", "plot_schedule"]
+from foilbearing.constants import RPM
 
-RPM = math.pi / 30.0
+__all__ = ["plot_run_power", "plot_schedule"]
 
 
 def plot_schedule(schedule: Any, angles_deg: list[float] | None = None) -> Figure:

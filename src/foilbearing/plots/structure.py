@@ -5,10 +5,6 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
@@ -33,7 +29,8 @@ def plot_stiffness_function(
     k_assy = case.assembly_stiffness()
     assert k_assy is not None
     theta = np.linspace(0.0, 2.0 * np.pi, 2001)
-    fig, ax = plt.subplots(figsize=(7.5, 4.0), layout="constrained")
+    fig = Figure(figsize=(7.5, 4.0), layout="constrained")
+    ax = fig.subplots()
     for alpha in smoothness:
         k = stiffness_function(
             theta, foil.bump_stiffness, k_assy, act.angles, act.stinger_arc, alpha
@@ -69,7 +66,8 @@ def plot_preloads(case: Case, voltages: Sequence[float] = (0.0, 50.0, 100.0, 150
         act.holder_spring_stiffness,
         act.holder_pre_extension,
     )
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.0), layout="constrained")
+    fig = Figure(figsize=(11, 4.0), layout="constrained")
+    ax1, ax2 = fig.subplots(1, 2)
     ax1.plot(v, stroke * 1e6, label="PZT stack free stroke (Eq. 2)")
     ax1.plot(v, base * 1e6, "--", label="base piezoelectric preload (Eq. 3b) = shim thickness")
     vv = np.asarray(voltages, dtype=float)

@@ -1,11 +1,11 @@
 """Finite-volume solvers of the compressible Reynolds equation (Eq. (4) of the paper).
 
-Array-in/array-out numerics: a :class:`Grid`, fields of shape
+Array-in/array-out numerics: a :class:`FilmGrid`, fields of shape
 ``(n_theta, n_z)`` on the half bearing (mid-plane symmetry), dimensionless
 ``P = p/p_a``, ``H = h/C`` and bearing number ``Λ = 6 μ ω R²/(p_a C²)``.
 """
 
-from foilbearing.reynolds.grid import Grid
+from foilbearing.reynolds.grid import FilmGrid
 from foilbearing.reynolds.steady import (
     NewtonOptions,
     SteadyFilm,
@@ -17,7 +17,7 @@ from foilbearing.reynolds.steady import (
 )
 
 __all__ = [
-    "Grid",
+    "FilmGrid",
     "NewtonOptions",
     "SteadyFilm",
     "Workspace",

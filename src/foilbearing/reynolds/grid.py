@@ -6,7 +6,7 @@ solved. Index conventions used by every array of the Reynolds solvers:
 
 * ``i = 0 .. n_theta-1`` is the circumferential cell, centre
   ``θ_i = (i + 1/2) Δθ``, ``Δθ = 2π/n_theta``, periodic (cell ``n_theta`` is
-  cell ``0``); θ is measured counter-clockwise from the −X axis (MODEL.md §2).
+  cell ``0``); θ is measured counter-clockwise from the −X axis (docs/model.md §2).
 * ``j = 0 .. n_z-1`` is the axial cell, centre ``Z_j = (j + 1/2) ΔZ``,
   ``ΔZ = Z_end/n_z``. The face ``j = -1/2`` lies on the mid-plane (symmetry,
   zero flux); the face ``j = n_z - 1/2`` lies on the bearing end, where
@@ -22,13 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["Grid"]
+__all__ = ["FilmGrid"]
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class Grid:
+class FilmGrid:
     """Finite-volume grid on ``θ ∈ [0, 2π)`` × ``Z ∈ [0, L/(2R)]``.
 
     Parameters
@@ -48,14 +48,14 @@ class Grid:
     def __post_init__(self) -> None:
         if int(self.n_theta) != self.n_theta or self.n_theta < 8:
             raise ValueError(
-                f"Grid.n_theta must be an integer >= 8 (periodic 5-point stencil), "
+                f"FilmGrid.n_theta must be an integer >= 8 (periodic 5-point stencil), "
                 f"got {self.n_theta!r}"
             )
         if int(self.n_z) != self.n_z or self.n_z < 2:
-            raise ValueError(f"Grid.n_z must be an integer >= 2, got {self.n_z!r}")
+            raise ValueError(f"FilmGrid.n_z must be an integer >= 2, got {self.n_z!r}")
         if not (np.isfinite(self.half_length) and self.half_length > 0.0):
             raise ValueError(
-                f"Grid.half_length = L/(2R) must be finite and > 0, got {self.half_length!r}"
+                f"FilmGrid.half_length = L/(2R) must be finite and > 0, got {self.half_length!r}"
             )
 
     @property
@@ -115,7 +115,7 @@ class Grid:
         """Quadrature weights of the film force over the full bearing length.
 
         ``Σ wX·(P − 1) = ∫∫ (P − 1) cos θ dθ dZ = F_X/(p_a R²)`` and likewise
-        ``wY`` with ``sin θ`` (MODEL.md §2). The factor 2 accounts for the
+        ``wY`` with ``sin θ`` (docs/model.md §2). The factor 2 accounts for the
         mirrored half ``Z < 0``.
 
         Returns

@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.blocksolve import factor_coupled
-from foilbearing.reynolds.grid import Grid
+from foilbearing.reynolds.grid import FilmGrid
 from foilbearing.reynolds.steady import Workspace, held_cells, set_unit_rows
 
 __all__ = ["foil_operator", "pressure_response", "reynolds_jacobians"]
@@ -41,7 +41,7 @@ ComplexArray = NDArray[np.complex128]
 
 
 def reynolds_jacobians(
-    grid: Grid, P: FloatArray, H: FloatArray, lam: float, workspace: Workspace | None = None
+    grid: FilmGrid, P: FloatArray, H: FloatArray, lam: float, workspace: Workspace | None = None
 ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """``J_P = ∂R/∂P`` and ``J_H = ∂R/∂H`` at fixed film, CSR on the 5-point pattern.
 
@@ -62,7 +62,7 @@ def reynolds_jacobians(
 
 
 def _jacobians_into(
-    workspace: Workspace | None, grid: Grid, P: FloatArray, H: FloatArray, lam: float
+    workspace: Workspace | None, grid: FilmGrid, P: FloatArray, H: FloatArray, lam: float
 ) -> Workspace:
     """Fill ``ws.jp`` and ``ws.jh`` with the stencil data of J_P and J_H; the workspace."""
     ws = workspace if workspace is not None else Workspace(grid)
@@ -73,11 +73,11 @@ def _jacobians_into(
     return ws
 
 
-def foil_operator(grid: Grid, compliance: ComplexArray | FloatArray) -> sp.csr_matrix:
+def foil_operator(grid: FilmGrid, compliance: ComplexArray | FloatArray) -> sp.csr_matrix:
     """``S``: the film change of each cell per unit pressure change in its θ-row.
 
     ``ΔH[i, j] = c_i · mean_k ΔP[i, k]``: the foil responds to the axially
-    averaged pressure (MODEL.md section 3). ``compliance`` is (n_theta,),
+    averaged pressure (docs/model.md §3). ``compliance`` is (n_theta,),
     zero where the foil is not engaged (p̄ <= 0).
     """
     block = np.ones((grid.n_z, grid.n_z)) / grid.n_z
@@ -85,7 +85,7 @@ def foil_operator(grid: Grid, compliance: ComplexArray | FloatArray) -> sp.csr_m
 
 
 def pressure_response(
-    grid: Grid,
+    grid: FilmGrid,
     P: FloatArray,
     H: FloatArray,
     lam: float,

@@ -1,11 +1,11 @@
 """Steady compressible Reynolds equation with a compliant foil: Newton solver.
 
-Solves the steady form of Eq. (4) of the paper (MODEL.md §4)::
+Solves the steady form of Eq. (4) of the paper (docs/model.md §4)::
 
     ∂/∂θ(P H³ ∂P/∂θ − Λ P H) + ∂/∂Z(P H³ ∂P/∂Z) = 0,
 
 P = 1 at the bearing end, zero flux at the mid-plane, periodic in θ, on a
-:class:`~foilbearing.reynolds.grid.Grid`, with the film (MODEL.md §2-3)::
+:class:`~foilbearing.reynolds.grid.FilmGrid`, with the film (docs/model.md §2-3)::
 
     H[i, j] = h_rigid[i, j] + c_i · max(p̄_i, 0),     p̄_i = axial_mean(P − 1)[i],
 
@@ -13,7 +13,7 @@ P = 1 at the bearing end, zero flux at the mid-plane, periodic in θ, on a
 pressure does not pull the foil towards the journal: bumps carry no tension,
 so ``max(p̄, 0)`` (``H = h_rigid`` wherever ``p̄_i <= 0``).
 
-Top-foil lift-off (``lift_off=True``, MODEL.md section 3): the top foil only
+Top-foil lift-off (``lift_off=True``, docs/model.md §3): the top foil only
 rests on the bumps, so where the film would fall below ambient it is pulled
 off them until the suction is relieved, and the film holds no sub-ambient
 pressure. Each cell then satisfies the complementarity conditions
@@ -46,7 +46,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
-from foilbearing.reynolds.grid import Grid
+from foilbearing.reynolds.grid import FilmGrid
 
 __all__ = [
     "NewtonOptions",
@@ -162,7 +162,7 @@ class Workspace:
     workspace per concurrent solve.
     """
 
-    grid: Grid
+    grid: FilmGrid
     indptr: NDArray[np.int64] = field(init=False, repr=False)
     indices: NDArray[np.int64] = field(init=False, repr=False)
     c_indptr: NDArray[np.int64] = field(init=False, repr=False)
@@ -201,13 +201,13 @@ class Workspace:
 
 
 def film_thickness(
-    grid: Grid, h_rigid: FloatArray, compliance: FloatArray, P: FloatArray
+    grid: FilmGrid, h_rigid: FloatArray, compliance: FloatArray, P: FloatArray
 ) -> tuple[FloatArray, FloatArray]:
     """Film with foil deflection, ``H = h_rigid + c · max(p̄, 0)``.
 
     Parameters
     ----------
-    grid : Grid
+    grid : FilmGrid
     h_rigid : ndarray, shape (n_theta, n_z)
     compliance : ndarray, shape (n_theta,)
         ``c_i = p_a/(C k(θ_i))``, dimensionless.
@@ -224,7 +224,7 @@ def film_thickness(
 
 
 def held_cells(
-    grid: Grid, P: FloatArray, H: FloatArray, lam: float, workspace: Workspace | None = None
+    grid: FilmGrid, P: FloatArray, H: FloatArray, lam: float, workspace: Workspace | None = None
 ) -> NDArray[np.bool_]:
     """The cells top-foil lift-off holds at ambient in the film (P, H) (n,).
 
@@ -297,7 +297,7 @@ def _assemble(
 
 def coupled_system(
     P: ArrayLike,
-    grid: Grid,
+    grid: FilmGrid,
     h_rigid: ArrayLike,
     compliance: ArrayLike,
     lam: float,
@@ -314,7 +314,7 @@ def coupled_system(
     ----------
     P : array_like, shape (n_theta, n_z) or (n_theta*n_z,)
         Pressure ``p/p_a`` (> 0).
-    grid : Grid
+    grid : FilmGrid
     h_rigid : array_like, shape (n_theta, n_z)
         Film without foil deflection (journal, preload, housing), ``h/C``.
     compliance : array_like, shape (n_theta,)
@@ -358,10 +358,10 @@ def coupled_system(
     return ws.res.ravel().copy(), j_pp, j_ph
 
 
-def film_force(grid: Grid, P: ArrayLike) -> tuple[float, float]:
+def film_force(grid: FilmGrid, P: ArrayLike) -> tuple[float, float]:
     """Film force on the journal, ``(F_X, F_Y)/(p_a R²)``, full bearing length.
 
-    ``F_X = ∫∫ (P − 1) cos θ dθ dZ``, ``F_Y`` with ``sin θ`` (MODEL.md §2): a
+    ``F_X = ∫∫ (P − 1) cos θ dθ dZ``, ``F_Y`` with ``sin θ`` (docs/model.md §2): a
     pressure peak near θ = 180° pushes the journal towards −X.
     """
     p = _as_field(grid, P, "P")
@@ -375,7 +375,7 @@ def film_force(grid: Grid, P: ArrayLike) -> tuple[float, float]:
 # ---------------------------------------------------------------------------
 
 
-def _as_field(grid: Grid, a: ArrayLike, name: str) -> FloatArray:
+def _as_field(grid: FilmGrid, a: ArrayLike, name: str) -> FloatArray:
     arr = np.asarray(a, dtype=np.float64)
     if arr.shape == (grid.size,):
         arr = arr.reshape(grid.shape)
@@ -385,7 +385,7 @@ def _as_field(grid: Grid, a: ArrayLike, name: str) -> FloatArray:
 
 
 def _check_film_inputs(
-    grid: Grid, h_rigid: ArrayLike, compliance: ArrayLike
+    grid: FilmGrid, h_rigid: ArrayLike, compliance: ArrayLike
 ) -> tuple[FloatArray, FloatArray]:
     h = np.asarray(h_rigid, dtype=np.float64)
     if h.shape == (grid.n_theta,):
@@ -422,7 +422,7 @@ def _opening_start(h_rigid: FloatArray, comp: FloatArray, floor: float = 0.05) -
 
 
 @dataclass
-class _Outcome:
+class _FilmOutcome:
     P: FloatArray
     iterations: int
     residual: float
@@ -430,7 +430,7 @@ class _Outcome:
     reason: str
 
 
-def _newton(
+def _film_newton(
     ws: Workspace,
     P: FloatArray,
     h_rigid: FloatArray,
@@ -438,7 +438,7 @@ def _newton(
     lam: float,
     opts: NewtonOptions,
     lift_off: bool = False,
-) -> _Outcome:
+) -> _FilmOutcome:
     """Damped (semismooth, with lift-off) Newton with positivity-preserving step limit and
     Armijo backtracking."""
     g = ws.grid
@@ -453,9 +453,9 @@ def _newton(
     merit = float(np.sum(ws.res**2))
     for it in range(opts.max_iter):
         if not np.isfinite(res):
-            return _Outcome(P, it, res, False, "residual is not finite")
+            return _FilmOutcome(P, it, res, False, "residual is not finite")
         if res <= opts.tol:
-            return _Outcome(P, it, res, True, "converged")
+            return _FilmOutcome(P, it, res, True, "converged")
         try:
             if coupled:  # the compiled block-cyclic LU (SuperLU if it cannot pivot)
                 lu = factor_coupled(data, indices, indptr, g.n_theta, g.n_z)
@@ -463,9 +463,9 @@ def _newton(
                 lu = TransposedSuperLU(data, indices, indptr, n)
             step = -lu.solve(ws.res.ravel()).reshape(g.shape)
         except RuntimeError as exc:  # exactly singular Jacobian
-            return _Outcome(P, it, res, False, f"singular Jacobian ({exc})")
+            return _FilmOutcome(P, it, res, False, f"singular Jacobian ({exc})")
         if not np.all(np.isfinite(step)):
-            return _Outcome(P, it, res, False, "Newton step is not finite")
+            return _FilmOutcome(P, it, res, False, "Newton step is not finite")
         # Step limit: no cell loses more than max_drop of its pressure.
         ratio = float(np.min(step / P))
         alpha = min(1.0, opts.max_drop / -ratio) if ratio < 0.0 else 1.0
@@ -482,18 +482,20 @@ def _newton(
             # it is already at the round-off floor of the residual.
             _assemble(ws, P, h_rigid, comp, lam, coupled, lift_off)
             if res <= 100.0 * opts.tol:
-                return _Outcome(P, it + 1, res, True, "converged (at the round-off floor)")
-            return _Outcome(P, it + 1, res, False, "line search stalled")
+                return _FilmOutcome(P, it + 1, res, True, "converged (at the round-off floor)")
+            return _FilmOutcome(P, it + 1, res, False, "line search stalled")
         P, trial = trial, P
         merit = new_merit
         res = float(np.max(np.abs(ws.res))) * scale
     if res <= opts.tol:
-        return _Outcome(P, opts.max_iter, res, True, "converged")
-    return _Outcome(P, opts.max_iter, res, False, f"no convergence in {opts.max_iter} iterations")
+        return _FilmOutcome(P, opts.max_iter, res, True, "converged")
+    return _FilmOutcome(
+        P, opts.max_iter, res, False, f"no convergence in {opts.max_iter} iterations"
+    )
 
 
 def solve_steady(
-    grid: Grid,
+    grid: FilmGrid,
     h_rigid: ArrayLike,
     compliance: ArrayLike,
     lam: float,
@@ -506,7 +508,8 @@ def solve_steady(
     """Solve the steady foil-coupled Reynolds equation (Eq. (4), ∂/∂τ = 0).
 
     Newton's method on all ``n_theta*n_z`` pressures with the exact coupled
-    Jacobian (film and foil included), sparse LU (SuperLU), a step limit that
+    Jacobian (film and foil included), factorised by the compiled block-cyclic
+    LU when a foil couples the film (SuperLU otherwise, or where it cannot pivot), a step limit that
     keeps P positive and an Armijo backtracking line search on ``½‖R‖²``. If
     plain Newton from ``p0`` fails, the solve restarts from P = 1 (the exact
     solution at Λ = 0) and continues in Λ with adaptive steps; this is
@@ -514,7 +517,7 @@ def solve_steady(
 
     Parameters
     ----------
-    grid : Grid
+    grid : FilmGrid
     h_rigid : array_like, shape (n_theta, n_z) or (n_theta,)
         Film thickness ``h/C`` without foil deflection (journal position,
         preload and housing), > 0 everywhere.
@@ -554,7 +557,7 @@ def solve_steady(
         if not np.all(np.isfinite(start)) or start.min() <= 0.0:
             raise ValueError("p0 must be finite and > 0 everywhere")
 
-    out = _newton(ws, start, h_r, comp, lam, opts, lift_off)
+    out = _film_newton(ws, start, h_r, comp, lam, opts, lift_off)
     total = out.iterations
     steps = 0
     message = out.reason
@@ -598,16 +601,16 @@ def _continuation(
     lam: float,
     opts: NewtonOptions,
     lift_off: bool = False,
-) -> tuple[_Outcome, int, int, str]:
+) -> tuple[_FilmOutcome, int, int, str]:
     """Adaptive continuation from Λ = 0 (P = 1 exact) to ``lam``."""
     done = 0.0
     P = np.ones(ws.grid.shape)
     delta = lam / 4.0
     total = 0
-    last = _Outcome(P, 0, np.inf, False, "no step taken")
+    last = _FilmOutcome(P, 0, np.inf, False, "no step taken")
     for k in range(opts.max_continuation_steps):
         target = lam if abs(done + delta) >= abs(lam) else done + delta
-        last = _newton(ws, P, h_r, comp, target, opts, lift_off)
+        last = _film_newton(ws, P, h_r, comp, target, opts, lift_off)
         total += last.iterations
         if last.converged:
             done, P = target, last.P

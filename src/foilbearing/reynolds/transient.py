@@ -11,18 +11,18 @@ the implicit form used by every stepper, ``d Q(y)/dt = f(y, t)`` with
 where R is the steady finite-volume residual (so steady states are exactly the
 static solutions), A = ΔθΔZ, σ = 12 μ R²/(p_a C²) (unsteady term of Eq. 4 in
 physical time: 2Λ ∂/∂τ = σ ∂/∂t), q = max(p̄, 0) the engaged axial-mean gauge
-pressure, and the film (MODEL.md sections 2-3)
+pressure, and the film (docs/model.md §2-3)
 
     H = 1 + ε_X cos θ + ε_Y sin θ − r_p(θ, t)/C + U + c_a q.
 
 The bump is a spring k_b in parallel with a viscous damper c_b = γ k_b/ω (the
-loss factor's equivalent at the running speed, MODEL.md section 3) in series
+loss factor's equivalent at the running speed, docs/model.md §3) in series
 with the massless elastic actuator of compliance c_a = φ(θ) p_a/(C k_act) under
 the stingers. With γ = 0 the bump is purely elastic and joins c_a. The dynamic
 coefficients use the same bump, ``k_b (1 + jγ ω_e/ω)``
 (:mod:`foilbearing.coefficients`).
 
-Top-foil lift-off (``lift_off``, MODEL.md section 3): the film holds no
+Top-foil lift-off (``lift_off``, docs/model.md §3): the film holds no
 sub-ambient pressure. Each pressure cell's BDF equation G = 0 becomes the
 complementarity condition of the static solver
 (:mod:`foilbearing.reynolds.steady`),
@@ -52,7 +52,7 @@ from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.blocksolve import BlockCyclicLU, factor_coupled
-from foilbearing.reynolds.grid import Grid
+from foilbearing.reynolds.grid import FilmGrid
 from foilbearing.reynolds.steady import Workspace, set_unit_rows
 
 __all__ = [
@@ -118,7 +118,7 @@ class TransientSystem:
 
     def __init__(
         self,
-        grid: Grid,
+        grid: FilmGrid,
         sigma: float,
         c_act: FloatArray,
         c_bump: FloatArray,

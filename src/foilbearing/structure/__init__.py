@@ -1,6 +1,6 @@
 """Structure models: PZT stack and actuator springs, bump foil, stiffness function, preload shape.
 
-Paper Eqs. (1)-(3) and (6)-(8); conventions of MODEL.md section 3. Every function
+Paper Eqs. (1)-(3) and (6)-(8); conventions of docs/model.md §3. Every function
 takes and returns SI values (per-unit-area stiffnesses in N/m³).
 """
 

@@ -1,4 +1,4 @@
-"""PZT stack and actuator spring model (paper Eqs. (1)-(3), MODEL.md section 3).
+"""PZT stack and actuator spring model (paper Eqs. (1)-(3), docs/model.md §3).
 
 The stack (stiffness per unit area ``k_p``) sits in parallel with four holder
 springs (``4 k_sp``); that pair is in series with the bump foil under the
@@ -53,7 +53,7 @@ def base_preload(
     δ_base = k_p/(k_p + 4k_sp)·(D33,1 V² + D33,2 V) − 4k_sp δ_pre/(k_p + 4k_sp)
 
     The factor k_p/(k_p + 4k_sp) < 1 makes it slightly smaller than the stack's
-    free stroke (MODEL.md slip S6).
+    free stroke (docs/model.md slip S6).
 
     Parameters
     ----------

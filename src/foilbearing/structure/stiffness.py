@@ -1,6 +1,6 @@
 """Assembly stiffness under a stinger and the structural stiffness function k(θ).
 
-Paper Eqs. (7) and (8), in the per-actuator form of MODEL.md section 3.
+Paper Eqs. (7) and (8), in the per-actuator form of docs/model.md §3.
 """
 
 from __future__ import annotations

@@ -15,11 +15,11 @@ from collections.abc import Mapping
 from typing import Any
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 
 __all__ = ["evaluate_sample", "output_names"]
 
-RPM = math.pi / 30.0  # rad/s per rpm
 #: Static readouts: (name with unit, function of the StaticResult's headline).
 STATIC_QUANTITIES = (
     "eccentricity_ratio",

@@ -35,7 +35,6 @@ __all__ = [
     "load_uncertainty",
 ]
 
-RPM = math.pi / 30.0  # rad/s per rpm
 DISTRIBUTIONS = ("uniform", "normal", "log-uniform")
 #: Case fields an uncertainty file may not make uncertain: the outputs set them.
 _SET_BY_OUTPUTS = ("operation.speed", "actuators.voltages")

@@ -1,12 +1,12 @@
 """Compiled kernels of the finite-volume Reynolds equation (the only numba code).
 
 Discretisation of the steady, dimensionless, isothermal Reynolds equation
-(Eq. (4) of the paper, MODEL.md §4, written in conservative flux form)::
+(Eq. (4) of the paper, docs/model.md §4, written in conservative flux form)::
 
     ∂q_θ/∂θ + ∂q_Z/∂Z = 0,
     q_θ = P H³ ∂P/∂θ − Λ P H,      q_Z = P H³ ∂P/∂Z,
 
-on the cell-centred grid of :class:`foilbearing.reynolds.grid.Grid` (fields of
+on the cell-centred grid of :class:`foilbearing.reynolds.grid.FilmGrid` (fields of
 shape ``(n_theta, n_z)``, unknown ``k = i*n_z + j``).
 
 Scaling of the residual
