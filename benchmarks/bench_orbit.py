@@ -68,7 +68,7 @@ def segment_accuracy() -> None:
 
 def readouts() -> None:
     """The paper's speed-ups at the default settings against a converged run."""
-    from foilbearing.orbit_analysis import analyse_orbit
+    from foilbearing.orbit.analysis import analyse_orbit
 
     base = default_case()
     runs = [

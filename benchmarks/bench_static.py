@@ -13,7 +13,7 @@ import time
 from foilbearing.case import default_case
 from foilbearing.film import film_model
 from foilbearing.static import solve_equilibrium
-from foilbearing.study_static import PAPER_SPEEDS_RPM, PAPER_VOLTAGES, static_sweep
+from foilbearing.study.static import PAPER_SPEEDS_RPM, PAPER_VOLTAGES, static_sweep
 
 RPM = math.pi / 30.0
 

@@ -40,7 +40,7 @@ def _warm() -> None:
 def _timed_run(spec: object, n_workers: int, folder: Path) -> float:
     from distributed import Client, LocalCluster
 
-    from foilbearing.sweep import run_sweep
+    from foilbearing.sweep.runner import run_sweep
 
     with (
         LocalCluster(
@@ -57,7 +57,7 @@ def _timed_run(spec: object, n_workers: int, folder: Path) -> float:
 
 
 def main() -> None:
-    from foilbearing.sweep import load_sweep
+    from foilbearing.sweep.runner import load_sweep
 
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)

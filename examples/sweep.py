@@ -19,7 +19,7 @@ from typing import Any
 import xarray as xr
 
 import foilbearing as fb
-from foilbearing.sweep_file import load_sweep
+from foilbearing.sweep.spec import load_sweep
 
 HERE = Path(__file__).resolve().parent
 

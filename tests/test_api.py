@@ -15,10 +15,10 @@ def test_the_package_and_the_command_line_load_no_numerics_until_asked() -> None
     matplotlib (the numerics are imported on first use), and choose no matplotlib backend."""
     code = (
         "import sys, contextlib, io\n"
-        "import foilbearing, foilbearing.cli\n"
+        "import foilbearing, foilbearing.cli.main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         "    try:\n"
-        "        foilbearing.cli.main(['--help'])\n"
+        "        foilbearing.cli.main.main(['--help'])\n"
         "    except SystemExit:\n"
         "        pass\n"
         "heavy = ('pint', 'scipy', 'numba', 'matplotlib', 'xarray', 'dask')\n"

@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from foilbearing.case import case_from_dict, default_case, default_case_path, load_case
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 from foilbearing.errors import InputError
 
 DEFAULT = tomllib.loads(default_case_path().read_text())

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from foilbearing.cli import main, parse_list
+from foilbearing.cli.main import main, parse_list
 from foilbearing.errors import InputError
 
 

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 
 
 def test_coefficients_json(capsys) -> None:

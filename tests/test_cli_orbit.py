@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 
 
 @pytest.fixture()

@@ -342,7 +342,7 @@ def test_update_case_file_without_actuators_table(tmp_path: Path) -> None:
 
 
 def test_plots_return_figures() -> None:
-    from foilbearing.plots.identification import plot_no_load, plot_stiffness
+    from foilbearing.output.plots.identification import plot_no_load, plot_stiffness
 
     ident = identify(NO_LOAD, STIFFNESS, AREA)
     fig = plot_no_load(ident.no_load_data, ident.no_load)

@@ -13,7 +13,7 @@ import tomlkit
 
 import foilbearing.optimize as opt
 from foilbearing.case import load_case
-from foilbearing.cli_optimize import cmd_optimize, register
+from foilbearing.cli.optimize import cmd_optimize, register
 from foilbearing.errors import InputError
 
 RPM = math.pi / 30.0

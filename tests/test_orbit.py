@@ -20,7 +20,7 @@ from foilbearing.control import (
 )
 from foilbearing.errors import InputError
 from foilbearing.orbit import OrbitSettings, OrbitSimulation, simulate
-from foilbearing.orbit_reference import reference_orbit
+from foilbearing.orbit.reference import reference_orbit
 from foilbearing.stability import whirl_mode
 from foilbearing.static import solve_equilibrium
 
@@ -119,9 +119,10 @@ def test_settles_at_the_static_equilibrium() -> None:
     y0 = sim.initial_state()
     k = sim.system.n + sim.system.nt
     y0[k] += 0.05  # a kick of 5 % of C along the load
-    from foilbearing.orbit import _run, _Samples, _State
+    from foilbearing.orbit.sampling import Samples
+    from foilbearing.orbit.stepper import State, run
 
-    res = _run(sim, _State(0.0, y0), _Samples(1e-4), False, None, None, 30.0)
+    res = run(sim, State(0.0, y0), Samples(1e-4), False, None, None, 30.0)
     st = solve_equilibrium(case, speed=10e3 * RPM)
     c = case.bearing.clearance
     assert abs(res.e_x[-1] / c - st.eps_x) < 0.005
@@ -145,9 +146,10 @@ def test_free_whirl_matches_the_linear_eigenvalue(subambient: str, loss_factor: 
     y0 = sim.initial_state()
     k = sim.system.n + sim.system.nt
     y0[k] += 0.002
-    from foilbearing.orbit import _run, _Samples, _State
+    from foilbearing.orbit.sampling import Samples
+    from foilbearing.orbit.stepper import State, run
 
-    res = _run(sim, _State(0.0, y0), _Samples(1e-4), False, None, None, 30.0)
+    res = run(sim, State(0.0, y0), Samples(1e-4), False, None, None, 30.0)
     x = res.e_x - res.e_x[-200:].mean()
     peaks, _ = find_peaks(x, distance=20)
     freq = 1.0 / np.median(np.diff(res.time[peaks]))
@@ -269,7 +271,7 @@ def test_paper_protocol_with_a_light_imbalance_control_delays_the_divergence() -
     # grows while the speed ramps); the preload raises the divergence speed (paper Figs.
     # 13-14). Measured: 56.0 / 61.9 / 60.0 krpm at 0 / 100 / 150 V (100 V left out for
     # the CI's time).
-    from foilbearing.orbit_analysis import analyse_orbit
+    from foilbearing.orbit.analysis import analyse_orbit
 
     case = default_case()
     case = replace(case, rotor=replace(case.rotor, imbalance=1e-6))
@@ -289,7 +291,7 @@ def test_power_loss_at_rest_is_the_static_power_loss() -> None:
     loss (the static drag law on the orbit's own pressure and film) equals the static one:
     the two analyses share the discretisation, so they agree to round-off. With a voltage
     ramp the power loss follows the preload (measured: more preload, more drag)."""
-    from foilbearing.orbit_analysis import mean_power_loss
+    from foilbearing.orbit.analysis import mean_power_loss
 
     case = coarse(100.0, imbalance=0.0)
     w = 30_000 * RPM
@@ -312,7 +314,8 @@ def test_the_linear_onset_is_bracketed_by_free_whirl_orbits() -> None:
     """The nonlinear orbit and the linear analysis share the film, the foil and its damping
     law: 10 % below the linear onset (0 V, 32 x 4 grid: 45.5 krpm) a small free whirl
     decays, 10 % above it grows (linear log decrements +0.019 and -0.104)."""
-    from foilbearing.orbit import _run, _Samples, _State
+    from foilbearing.orbit.sampling import Samples
+    from foilbearing.orbit.stepper import State, run
     from foilbearing.stability import onset_speed
 
     case = coarse(0.0, imbalance=0.0)
@@ -323,7 +326,7 @@ def test_the_linear_onset_is_bracketed_by_free_whirl_orbits() -> None:
         sim = OrbitSimulation(case, constant_speed(factor * onset, 0.4))
         y0 = sim.initial_state()
         y0[sim.system.n + sim.system.nt] += 0.002  # e_X kicked by 0.2 um
-        res = _run(sim, _State(0.0, y0), _Samples(1e-4), False, None, None, 30.0)
+        res = run(sim, State(0.0, y0), Samples(1e-4), False, None, None, 30.0)
         assert res.status == "completed", res.message
         x = res.e_x - res.e_x[res.time > 0.3].mean()
         early = np.abs(x[(res.time > 0.1) & (res.time < 0.2)]).max()
@@ -386,7 +389,7 @@ def test_ctrl_c_at_any_line_of_a_step_resumes_to_the_uninterrupted_run() -> None
     import signal
     import sys
 
-    from foilbearing.orbit import _run
+    from foilbearing.orbit.stepper import run as stepper_run
 
     case = coarse(100.0, imbalance=1e-6)
     prof = constant_speed(20e3 * RPM, 0.004)
@@ -406,7 +409,9 @@ def test_ctrl_c_at_any_line_of_a_step_resumes_to_the_uninterrupted_run() -> None
                     signal.raise_signal(signal.SIGINT)
             return in_run
 
-        sys.settrace(lambda frame, event, arg: in_run if frame.f_code is _run.__code__ else None)
+        sys.settrace(
+            lambda frame, event, arg: in_run if frame.f_code is stepper_run.__code__ else None
+        )
         try:
             res = simulate(case, prof, progress=progress)
         finally:

@@ -18,7 +18,7 @@ from typing import Any
 
 import pytest
 
-from foilbearing.report import write_report
+from foilbearing.output.report import write_report
 
 PNG = b"\x89PNG\r\n\x1a\n"
 
@@ -201,7 +201,7 @@ def test_no_summary_is_an_input_error(tmp_path: Path) -> None:
 def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The study without orbits (about 50 s, 35 of them the voltage schedule), once."""
     from foilbearing import default_case
-    from foilbearing.study import run_study
+    from foilbearing.study.paper import run_study
 
     out = tmp_path_factory.mktemp("study")
     run_study(default_case(), out, progress=False, orbits=False, uncertainty="none")

@@ -5,7 +5,7 @@ skipped without it; run them with
 
     bash scripts/setup_ross_env.sh && .venv-ross/bin/python -m pytest -q tests/test_ross.py
 
-Frame mapping under test (``foilbearing.ross_export``): x_ROSS = Y, y_ROSS = −X,
+Frame mapping under test (``foilbearing.export.ross``): x_ROSS = Y, y_ROSS = −X,
 i.e. ``K_ROSS = T K Tᵀ`` with ``T = [[0, 1], [−1, 0]]``. It is proved three
 ways: (1) ROSS's "Forward" label is the sense of its own spin (gyroscopic
 stiffening); (2) a bearing whose cross-coupling drives whirl from +X towards +Y
@@ -29,7 +29,7 @@ from scipy.optimize import brentq
 from foilbearing.case import default_case
 from foilbearing.coefficients import force_coefficients
 from foilbearing.errors import InputError
-from foilbearing.ross_export import coefficient_table, to_ross_bearing
+from foilbearing.export.ross import coefficient_table, to_ross_bearing
 from foilbearing.stability import onset_speed
 from foilbearing.static import solve_equilibrium
 

@@ -16,7 +16,7 @@ import pytest
 import tomlkit
 
 from foilbearing.case import load_case
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 from foilbearing.control import linear_ramp
 from foilbearing.errors import InputError
 from foilbearing.schedule import (
@@ -204,7 +204,7 @@ def test_orbit_on_the_schedule_stays_stable_below_the_limit(coarse) -> None:
     stable to it); the 0 V run on the same speed-up does not get there (so the test
     can fail)."""
     from foilbearing.orbit import simulate
-    from foilbearing.orbit_analysis import analyse_orbit
+    from foilbearing.orbit.analysis import analyse_orbit
 
     case = replace(coarse, rotor=replace(coarse.rotor, imbalance=1e-6))
     speeds = np.arange(30_000, 80_001, 5_000) * RPM

@@ -189,7 +189,7 @@ def test_rejects_non_uniform_time():
 def test_plots_return_figures(whirl):
     from matplotlib.figure import Figure
 
-    from foilbearing.plots.orbit import (
+    from foilbearing.output.plots.orbit import (
         plot_orbits,
         plot_subsync,
         plot_transient,

@@ -17,7 +17,7 @@ from foilbearing.case import Foil, default_case
 from foilbearing.errors import InputError
 from foilbearing.film import film_model
 from foilbearing.static import film_at_position, solve_equilibrium
-from foilbearing.study_static import static_sweep
+from foilbearing.study.static import static_sweep
 
 RPM = math.pi / 30.0
 

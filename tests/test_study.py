@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 import xarray as xr
 
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 
 
 @pytest.mark.slow

@@ -17,10 +17,10 @@ import numpy as np
 import pytest
 
 from foilbearing.case import load_case
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 from foilbearing.errors import InputError
 from foilbearing.identification import example_measurements
-from foilbearing.study_plan import study_plan
+from foilbearing.study.plan import study_plan
 
 RPM = math.pi / 30.0
 

@@ -19,10 +19,10 @@ import pytest
 import xarray as xr
 
 from foilbearing.case import Grid, default_case
-from foilbearing.cli_sweep import register
+from foilbearing.cli.sweep import register
 from foilbearing.errors import InputError
 from foilbearing.static import solve_equilibrium
-from foilbearing.sweep import ANALYSES, load_sweep, output_paths, run_point, run_sweep
+from foilbearing.sweep.runner import ANALYSES, load_sweep, output_paths, run_point, run_sweep
 from foilbearing.units import parse_quantity
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "sweep_voltage_speed.toml"

@@ -16,10 +16,10 @@ import pytest
 import xarray as xr
 
 from foilbearing.case import case_from_dict, default_case_path
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 from foilbearing.errors import InputError
 from foilbearing.static import solve_equilibrium
-from foilbearing.sweep import run_point
+from foilbearing.sweep.runner import run_point
 from foilbearing.uncertainty import load_uncertainty, run_uncertainty, summarise, summary_json
 from foilbearing.uncertainty.design import unit_sample
 from foilbearing.uncertainty.evaluate import ONSET_REL_TOL, evaluate_sample
@@ -332,8 +332,8 @@ def test_the_study_s_stage_and_its_report_section(tmp_path: Path, monkeypatch) -
     and the report shows its envelopes: the table's percentiles are the run's,
     both figures are embedded."""
     import foilbearing.uncertainty.spec as uq_spec
-    from foilbearing.report import render_report
-    from foilbearing.study import _uncertainty_stage
+    from foilbearing.output.report import render_report
+    from foilbearing.study.paper import _uncertainty_stage
 
     small = _write(
         tmp_path,

@@ -32,12 +32,12 @@ if TYPE_CHECKING:
     from foilbearing.coefficients import force_coefficients
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
     from foilbearing.orbit import OrbitSettings, simulate
-    from foilbearing.orbit_analysis import analyse_orbit
+    from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.schedule import voltage_schedule
     from foilbearing.stability import onset_speed, stability_map, whirl_mode
     from foilbearing.static import solve_equilibrium
-    from foilbearing.study import run_study
-    from foilbearing.sweep import run_sweep
+    from foilbearing.study.paper import run_study
+    from foilbearing.sweep.runner import run_sweep
     from foilbearing.uncertainty import run_uncertainty
 
 #: Public name -> module that defines it (imported on first access, PEP 562).
@@ -52,12 +52,12 @@ _LAZY = {
     "stability_map": "foilbearing.stability",
     "simulate": "foilbearing.orbit",
     "OrbitSettings": "foilbearing.orbit",
-    "analyse_orbit": "foilbearing.orbit_analysis",
+    "analyse_orbit": "foilbearing.orbit.analysis",
     "constant_speed": "foilbearing.control",
     "linear_ramp": "foilbearing.control",
     "voltage_ramp": "foilbearing.control",
-    "run_sweep": "foilbearing.sweep",
-    "run_study": "foilbearing.study",
+    "run_sweep": "foilbearing.sweep.runner",
+    "run_study": "foilbearing.study.paper",
     "run_uncertainty": "foilbearing.uncertainty",
     "voltage_schedule": "foilbearing.schedule",
 }

@@ -1,5 +1,5 @@
 """``python -m foilbearing`` is the ``foilbearing`` command."""
 
-from foilbearing.cli import main
+from foilbearing.cli.main import main
 
 raise SystemExit(main())

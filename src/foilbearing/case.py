@@ -234,7 +234,7 @@ class Case:
     title: str = ""
     source: str | None = None
     #: The optional ``[study]`` table as JSON text, read and checked by
-    #: :func:`foilbearing.study_plan.study_plan` (it belongs to the study, not the bearing).
+    #: :func:`foilbearing.study.plan.study_plan` (it belongs to the study, not the bearing).
     study_table: str | None = None
 
     @property

@@ -123,12 +123,9 @@ def dynamic_compliance(
     gamma = case.foil.loss_factor if loss_factor is None else loss_factor
     if gamma < 0:
         raise InputError(f"loss factor = {gamma!r}: must be >= 0")
-    k_b = case.foil.bump_stiffness
-    inv_k: Any = 1.0 / (k_b * (1.0 + 1j * gamma * frequency / static.speed))
-    if model.actuator_stiffness is not None and model.stiffness is not None:
-        stinger = model.actuator_stiffness * (1.0 / model.stiffness - 1.0 / k_b)
-        inv_k = inv_k + stinger / model.actuator_stiffness
-    compliance = case.gas.ambient_pressure / case.bearing.clearance * inv_k
+    # The bump's spring with its damper γ k_b/ω, in series with the actuator's springs.
+    compliance = model.bump_compliance / (1.0 + 1j * gamma * frequency / static.speed)
+    compliance = compliance + model.actuator_compliance
     engaged = static.P.mean(axis=1) - 1.0 > 0.0
     return np.where(engaged, compliance, 0.0).astype(complex)
 

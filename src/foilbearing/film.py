@@ -3,7 +3,10 @@
 docs/model.md §2-3: ``h(θ) = C + e_X cos θ + e_Y sin θ − r_p(θ) + w(θ)`` with
 the foil deflection ``w = max(p_A, 0)/k(θ)``. Here the parts that do not
 depend on the pressure are put on the Reynolds grid; the Reynolds solvers add
-``w`` through the compliance ``c(θ) = p_a/(C k(θ))``. A foil bearing's film
+``w`` through the compliance ``c(θ) = p_a/(C k(θ))``, kept as its two springs in
+series: the bump foil's ``p_a/(C k_b)`` and, under the stingers, the
+actuator's share ``p_a/C · (1/k(θ) − 1/k_b)`` (the dynamic analyses damp the
+bump alone, docs/model.md §3.5). A foil bearing's film
 holds no sub-ambient pressure by default (top-foil lift-off: ``lift_off``,
 docs/model.md §3); a rigid bearing, or a case with ``[foil] subambient =
 "retained"``, keeps it.
@@ -19,6 +22,7 @@ the same r_p and ``k = k_b`` everywhere (rigid shims).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -42,8 +46,11 @@ class FilmModel:
         The finite-volume grid (half bearing).
     preload
         r_p(θ_i)/C at the cell centres, shape (n_theta,).
-    compliance
-        c(θ_i) = p_a/(C k(θ_i)), shape (n_theta,); zeros for a rigid bearing.
+    bump_compliance
+        p_a/(C k_b) at the cell centres, shape (n_theta,); zeros for a rigid bearing.
+    actuator_compliance
+        The actuators' share p_a/C · (1/k(θ_i) − 1/k_b) (stinger and holder springs
+        in series with the bump), shape (n_theta,); zeros without actuators.
     stiffness
         k(θ_i) in N/m³, shape (n_theta,), or None for a rigid bearing.
     preload_angles
@@ -59,12 +66,18 @@ class FilmModel:
 
     grid: FilmGrid
     preload: FloatArray
-    compliance: FloatArray
+    bump_compliance: FloatArray
+    actuator_compliance: FloatArray
     stiffness: FloatArray | None
     preload_angles: tuple[float, ...]
     base_preloads: tuple[float, ...]
     actuator_stiffness: float | None
     lift_off: bool = False
+
+    @cached_property
+    def compliance(self) -> FloatArray:
+        """c(θ_i) = p_a/(C k(θ_i)) = bump + actuator compliance, shape (n_theta,)."""
+        return self.bump_compliance + self.actuator_compliance
 
     def h_rigid(self, eps_x: float, eps_y: float) -> FloatArray:
         """Film thickness without foil deflection, H_r = 1 + ε_X cos θ + ε_Y sin θ − r_p/C.
@@ -105,7 +118,9 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         angles, deltas = case.shims.angles, case.shims.thicknesses
     preload = preload_shape(theta, angles, deltas) / c if angles else np.zeros(grid.n_theta)
     stiffness = None
-    compliance = np.zeros(grid.n_theta)
+    c_bump = np.zeros(grid.n_theta)
+    c_act = np.zeros(grid.n_theta)
+    scale = case.gas.ambient_pressure / c  # compliance = scale / stiffness
     if case.foil is not None:
         k_b = case.foil.bump_stiffness
         if case.actuators is not None:
@@ -115,8 +130,10 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
             stiffness = stiffness_function(
                 theta, k_b, k_assy, act.angles, act.stinger_arc, act.smoothness
             )
+            # k ≤ k_b everywhere (springs in series); the clip only absorbs round-off.
+            c_act = np.maximum(scale * (1.0 / stiffness - 1.0 / k_b), 0.0)
         else:
             stiffness = np.full(grid.n_theta, k_b)
-        compliance = case.gas.ambient_pressure / (c * stiffness)
+        c_bump = np.full(grid.n_theta, scale / k_b)
     lift_off = case.foil is not None and case.foil.lift_off
-    return FilmModel(grid, preload, compliance, stiffness, angles, deltas, k_act, lift_off)
+    return FilmModel(grid, preload, c_bump, c_act, stiffness, angles, deltas, k_act, lift_off)

@@ -55,7 +55,7 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
     structure
         ``cli.structure_summary`` at 0/50/100/150 V.
     sweep
-        ``study_static.static_sweep`` dataset over speeds and 0/50/100/150 V, or None.
+        ``foilbearing.study.static.static_sweep`` dataset over speeds and 0/50/100/150 V, or None.
     """
     rows: list[Row] = []
     volts = structure.get("voltages_V", [])

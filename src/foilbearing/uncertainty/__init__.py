@@ -20,7 +20,7 @@ from typing import Any
 
 from foilbearing.errors import InputError
 from foilbearing.io import write_text, write_with
-from foilbearing.sweep import done_points, run_points
+from foilbearing.sweep.runner import done_points, run_points
 from foilbearing.uncertainty.evaluate import evaluate_sample
 from foilbearing.uncertainty.result import summarise, summary_json
 from foilbearing.uncertainty.spec import UncertaintySpec, default_uncertainty_path, load_uncertainty
@@ -70,7 +70,7 @@ def run_uncertainty(
         finishes), ``uncertainty.nc`` and ``uncertainty.json`` (written
         atomically when the sample is done, or stopped).
     client, scheduler, n_workers, resume, compute, progress, on_point
-        As :func:`foilbearing.sweep.run_sweep`.
+        As :func:`foilbearing.sweep.runner.run_sweep`.
 
     Returns
     -------

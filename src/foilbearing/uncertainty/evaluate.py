@@ -33,7 +33,7 @@ STABILITY_QUANTITIES = ("onset_speed_krpm", "whirl_frequency_Hz")
 #: (docs/orbit-performance.md), so a finer root buys nothing; it saves 3 of the 43
 #: equilibria of the default case's four onsets.
 ONSET_REL_TOL = 1e-3
-#: Readouts of a speed-up (the orbit's signal analysis, :mod:`foilbearing.orbit_analysis`).
+#: Readouts of a speed-up (the orbit's signal analysis, :mod:`foilbearing.orbit.analysis`).
 ORBIT_QUANTITIES = (
     "orbit_onset_krpm",
     "orbit_whip_frequency_Hz",
@@ -210,7 +210,7 @@ def _orbit(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: lis
     """One speed-up per voltage, read as ``foilbearing orbit`` reads it (default settings)."""
     from foilbearing.control import linear_ramp, voltage_ramp
     from foilbearing.orbit import simulate
-    from foilbearing.orbit_analysis import analyse_orbit
+    from foilbearing.orbit.analysis import analyse_orbit
 
     profile = linear_ramp(*opts["speed_ramp"])
     ramp = opts["voltage_ramp_s"]

@@ -21,8 +21,8 @@ from scipy import stats
 from foilbearing.case import case_from_dict
 from foilbearing.errors import InputError
 from foilbearing.io import read_toml
-from foilbearing.sweep_analyses import speed_scan, value_list
-from foilbearing.sweep_file import FIELD_KINDS, base_tables, write_field
+from foilbearing.sweep.analyses import speed_scan, value_list
+from foilbearing.sweep.spec import FIELD_KINDS, base_tables, write_field
 from foilbearing.uncertainty.design import ESTIMATORS, SAMPLERS, minimum_samples, unit_sample
 from foilbearing.units import SI_UNITS, ureg
 

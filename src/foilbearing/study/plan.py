@@ -1,7 +1,7 @@
 """The study's plan for any bearing: what to run, derived from the case and its ``[study]`` table.
 
 The paper's C-GFB has its own plan (the paper's speeds, voltages and protocol,
-:mod:`foilbearing.study`). Every other bearing (a passive gas foil bearing, a
+:mod:`foilbearing.study.paper`). Every other bearing (a passive gas foil bearing, a
 shimmed one, a rigid gas journal bearing) gets the plan below; a ``[study]``
 table in the case file sets any part of it (docs/case-format.md):
 
@@ -225,7 +225,7 @@ def study_plan(case: Case) -> StudyPlan:
     InputError
         An unknown key, a bad value, a speed beyond ``operation.max_speed``; one line.
     """
-    from foilbearing.sweep_analyses import speed_scan
+    from foilbearing.sweep.analyses import speed_scan
 
     data = json.loads(case.study_table) if case.study_table else {}
     t = TableReader(data, "study", case.source)

@@ -124,7 +124,7 @@ def write_orbit_figures(
 ) -> list[Path]:
     """Transient (Fig. 13a/14), waterfall colour map and 3-D (Fig. 13b), orbits; PNG files."""
     from foilbearing.io import save_figure
-    from foilbearing.plots import orbit as po
+    from foilbearing.output.plots import orbit as po
 
     c = result.case.bearing.clearance
     paths = [

@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli_common import add_dask_args, check_dask_args
+from foilbearing.cli.common import add_dask_args, check_dask_args
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_sweep", "register"]
@@ -59,7 +59,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         Bad sweep file, case, point, option, or a results folder that cannot
         be used; nothing is computed then.
     """
-    from foilbearing.sweep import load_sweep, output_paths, run_sweep
+    from foilbearing.sweep.runner import load_sweep, output_paths, run_sweep
 
     check_dask_args(args)
     spec = load_sweep(args.sweep_file)

@@ -89,8 +89,8 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
     from foilbearing.control import linear_ramp, voltage_ramp
     from foilbearing.io import write_with
     from foilbearing.orbit import simulate
-    from foilbearing.orbit_analysis import analyse_orbit
-    from foilbearing.orbit_io import to_netcdf
+    from foilbearing.orbit.analysis import analyse_orbit
+    from foilbearing.orbit.netcdf import to_netcdf
 
     case = replace(case, rotor=replace(case.rotor, imbalance=run.imbalance))
     profile = linear_ramp(3000 * RPM, 90000 * RPM, 500.0)
@@ -196,8 +196,8 @@ def paper_orbit_runs(
     (``"result"``, ``"analysis"``, ``"headline"``).
     """
     from foilbearing.io import save_figure
-    from foilbearing.orbit_analysis import write_orbit_figures
-    from foilbearing.plots.orbit import plot_subsync
+    from foilbearing.orbit.analysis import write_orbit_figures
+    from foilbearing.output.plots.orbit import plot_subsync
 
     imb = case.rotor.imbalance
     done: dict[str, dict[str, Any]] = {}

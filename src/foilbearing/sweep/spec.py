@@ -22,7 +22,7 @@ import numpy as np
 from foilbearing.case import Case, case_from_dict, default_case_path, load_case
 from foilbearing.errors import InputError
 from foilbearing.io import read_toml
-from foilbearing.sweep_analyses import ANALYSES, value_list
+from foilbearing.sweep.analyses import ANALYSES, value_list
 from foilbearing.units import SI_UNITS, ureg
 
 __all__ = ["FIELD_KINDS", "Parameter", "SweepSpec", "base_tables", "load_sweep", "write_field"]

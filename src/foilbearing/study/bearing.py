@@ -1,6 +1,6 @@
 """The study of any bearing other than the paper's C-GFB: every analysis that applies.
 
-Runs the plan of :func:`foilbearing.study_plan.study_plan` on a passive gas foil
+Runs the plan of :func:`foilbearing.study.plan.study_plan` on a passive gas foil
 bearing, a shimmed one or a rigid gas journal bearing, each stage writing its
 figures into the output folder as it finishes:
 
@@ -41,7 +41,7 @@ import numpy as np
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
-from foilbearing.study_plan import CASE_POINT_KEYS, REFERENCE_KEYS, StudyPlan, shown_reference
+from foilbearing.study.plan import CASE_POINT_KEYS, REFERENCE_KEYS, StudyPlan, shown_reference
 
 __all__ = ["bearing_study", "reference_rows"]
 
@@ -92,8 +92,8 @@ def _static(
 ) -> tuple[dict[str, Any], dict[float, Any]]:
     from foilbearing.film import film_model
     from foilbearing.io import save_figure
-    from foilbearing.plots.bearing import plot_against
-    from foilbearing.plots.static import plot_point
+    from foilbearing.output.plots.bearing import plot_against
+    from foilbearing.output.plots.static import plot_point
 
     model = film_model(case)
     points, found = [], {}
@@ -125,7 +125,7 @@ def _load_capacity(
 
     from foilbearing.film import film_model
     from foilbearing.io import save_figure
-    from foilbearing.plots.bearing import plot_against
+    from foilbearing.output.plots.bearing import plot_against
 
     w = case.operation.speed
     model = film_model(case)
@@ -167,8 +167,8 @@ def _coefficients(
 ) -> dict[str, Any]:
     from foilbearing.coefficients import force_coefficients
     from foilbearing.io import save_figure
-    from foilbearing.plots.bearing import plot_synchronous
-    from foilbearing.plots.dynamics import plot_coefficients
+    from foilbearing.output.plots.bearing import plot_synchronous
+    from foilbearing.output.plots.dynamics import plot_coefficients
 
     rows = []
     for w, st in found.items():
@@ -198,7 +198,7 @@ def _stability(
     case: Case, plan: StudyPlan, found: dict[float, Any], out: Path, stage: Callable[[str], None]
 ) -> dict[str, Any]:
     from foilbearing.io import save_figure
-    from foilbearing.plots.bearing import plot_log_decrement
+    from foilbearing.output.plots.bearing import plot_log_decrement
     from foilbearing.stability import whirl_mode
 
     modes = []
@@ -238,7 +238,7 @@ def _shims(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None])
     from dataclasses import replace
 
     from foilbearing.io import save_figure
-    from foilbearing.plots.bearing import plot_onsets
+    from foilbearing.output.plots.bearing import plot_onsets
 
     assert case.shims is not None
     rows = []
@@ -258,7 +258,7 @@ def _voltages(
 ) -> dict[str, Any]:
     """Linear onset against the actuators' voltage (all the same)."""
     from foilbearing.io import save_figure
-    from foilbearing.plots.bearing import plot_onsets
+    from foilbearing.output.plots.bearing import plot_onsets
 
     rows = []
     for v in plan.voltages:
@@ -275,7 +275,7 @@ def _actuators(
     """Static readouts, preloads and actuator pressures against voltage (all actuators the
     same) at the case speed and load, continued from one voltage to the next."""
     from foilbearing.io import save_figure
-    from foilbearing.plots.bearing import plot_against, plot_preloads
+    from foilbearing.output.plots.bearing import plot_against, plot_preloads
 
     w = case.operation.speed
     points: list[dict[str, Any]] = []
@@ -334,8 +334,8 @@ def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None])
     from foilbearing.control import linear_ramp, voltage_ramp
     from foilbearing.io import write_with
     from foilbearing.orbit import simulate
-    from foilbearing.orbit_analysis import analyse_orbit, write_orbit_figures
-    from foilbearing.orbit_io import to_netcdf
+    from foilbearing.orbit.analysis import analyse_orbit, write_orbit_figures
+    from foilbearing.orbit.netcdf import to_netcdf
 
     lo, hi = plan.speeds[0], plan.speeds[-1]
     profile = linear_ramp(lo, hi, plan.orbit_acceleration)

@@ -56,9 +56,9 @@ def run_study(
     -------
     The headline numbers of every stage, unit-named keys.
     """
-    from foilbearing.figures import write_identification_figures, write_structure_figures
-    from foilbearing.study_plan import check_load_is_carried, study_plan
-    from foilbearing.summary import case_summary, format_summary, structure_summary
+    from foilbearing.output.figures import write_identification_figures, write_structure_figures
+    from foilbearing.output.summary import case_summary, format_summary, structure_summary
+    from foilbearing.study.plan import check_load_is_carried, study_plan
 
     plan = study_plan(case)  # the [study] table is checked before any work
     paper = case.actuators is not None and is_default_case_file(case.source)
@@ -97,9 +97,9 @@ def run_study(
     results["structure"] = structure_summary(case, list(plan.voltages) or [0.0])
     results["structure"]["figures"] = [str(p) for p in write_structure_figures(case, out)]
 
-    if not paper:  # any other case: its own plan (foilbearing.study_plan); the paper's
+    if not paper:  # any other case: its own plan (foilbearing.study.plan); the paper's
         # numbers, its synthetic stack data and the uncertainty file fit its bearing only
-        from foilbearing.study_bearing import bearing_study
+        from foilbearing.study.bearing import bearing_study
 
         if plan.identification is not None and case.actuators is not None:
             stage("identification of the PZT stacks from the case's test files")
@@ -115,7 +115,7 @@ def run_study(
 
         results |= bearing_study(case, plan, out, stage, orbits=orbits)
         if schedule and case.actuators is not None:
-            from foilbearing.study_schedule import schedule_stage
+            from foilbearing.study.schedule import schedule_stage
 
             stage("voltage schedule over the plan's speeds")
             results["schedule"] = schedule_stage(
@@ -132,14 +132,14 @@ def run_study(
 
     orbit_runs: dict[str, Any] = {}  # the runs by label, for the schedule's comparison
     if orbits:
-        from foilbearing.study_orbits import paper_orbit_runs
+        from foilbearing.study.orbits import paper_orbit_runs
 
         stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
         results["orbits"] = paper_orbit_runs(case, out, stage, results=orbit_runs)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     if schedule:
-        from foilbearing.study_schedule import schedule_stage
+        from foilbearing.study.schedule import schedule_stage
 
         stage(
             "voltage schedule: least-drag voltages with log decrement >= 0.1, 10-90 krpm"
@@ -199,7 +199,7 @@ def _finish(
     case: Case, out: Path, results: dict[str, Any], stage: Any, progress: bool
 ) -> dict[str, Any]:
     """Write summary.json and report.html."""
-    from foilbearing.report import write_report
+    from foilbearing.output.report import write_report
 
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
     report = write_report(out)
@@ -213,10 +213,10 @@ def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) ->
     """Figs. 9-12: C-GFB and shimmed GFB, 10-90 krpm, 0/50/100/150 V."""
     import math
 
-    from foilbearing.figures import write_static_figures
     from foilbearing.io import write_with
-    from foilbearing.study_static import PAPER_SPEEDS_RPM, PAPER_VOLTAGES, static_sweep
-    from foilbearing.summary import sweep_points
+    from foilbearing.output.figures import write_static_figures
+    from foilbearing.output.summary import sweep_points
+    from foilbearing.study.static import PAPER_SPEEDS_RPM, PAPER_VOLTAGES, static_sweep
 
     stage("static analysis: C-GFB and shimmed GFB, 10-90 krpm x 0/50/100/150 V (Figs. 9-12)")
     speeds = [s * math.pi / 30.0 for s in PAPER_SPEEDS_RPM]
@@ -238,10 +238,10 @@ def _stability_stage(
 
     from foilbearing.coefficients import force_coefficients
     from foilbearing.io import save_figure
-    from foilbearing.plots.dynamics import plot_coefficients, plot_stability_map
+    from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
     from foilbearing.stability import onset_speed, stability_map
     from foilbearing.static import solve_equilibrium
-    from foilbearing.study_static import PAPER_VOLTAGES
+    from foilbearing.study.static import PAPER_VOLTAGES
 
     rpm = math.pi / 30.0
     stage("dynamic coefficients at 50 krpm, 150 V")
@@ -281,7 +281,7 @@ def _stability_stage(
 
 def _uncertainty_stage(out: Path, samples: int | None, stage: Any) -> dict[str, Any]:
     """Envelopes and sensitivity indices of what the paper leaves open (issue 15)."""
-    from foilbearing.figures import write_uncertainty_figures
+    from foilbearing.output.figures import write_uncertainty_figures
     from foilbearing.uncertainty import load_uncertainty, run_uncertainty
 
     spec = load_uncertainty(samples=samples)

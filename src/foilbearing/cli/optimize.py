@@ -14,7 +14,7 @@ import json
 import sys
 from typing import Any
 
-from foilbearing.cli_common import add_case_arg
+from foilbearing.cli.common import add_case_arg
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_optimize", "register"]

@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from foilbearing.cli_common import add_case_arg, add_subambient_arg, apply_subambient
+from foilbearing.cli.common import add_case_arg, add_subambient_arg, apply_subambient
 from foilbearing.errors import InputError, SolverError
 
 if TYPE_CHECKING:
@@ -153,11 +153,11 @@ def _parser() -> argparse.ArgumentParser:
     stab.add_argument("--json", action="store_true", help="print one JSON object")
     stab.set_defaults(func=_cmd_stability)
 
-    from foilbearing.cli_optimize import register as register_optimize
-    from foilbearing.cli_orbit import register as register_orbit
-    from foilbearing.cli_schedule import register as register_schedule
-    from foilbearing.cli_sweep import register as register_sweep
-    from foilbearing.cli_uncertainty import register as register_uncertainty
+    from foilbearing.cli.optimize import register as register_optimize
+    from foilbearing.cli.orbit import register as register_orbit
+    from foilbearing.cli.schedule import register as register_schedule
+    from foilbearing.cli.sweep import register as register_sweep
+    from foilbearing.cli.uncertainty import register as register_uncertainty
 
     register_orbit(sub)
     register_sweep(sub)
@@ -229,7 +229,7 @@ def _json_default(x: Any) -> Any:
 
 def _cmd_case_show(args: argparse.Namespace) -> int:
     from foilbearing.case import load_case
-    from foilbearing.summary import case_summary, format_summary
+    from foilbearing.output.summary import case_summary, format_summary
 
     case = load_case(args.case)
     summary = case_summary(case)
@@ -243,8 +243,8 @@ def _cmd_case_show(args: argparse.Namespace) -> int:
 
 def _cmd_structure(args: argparse.Namespace) -> int:
     from foilbearing.case import load_case
-    from foilbearing.figures import write_structure_figures
-    from foilbearing.summary import structure_summary
+    from foilbearing.output.figures import write_structure_figures
+    from foilbearing.output.summary import structure_summary
 
     case = load_case(args.case)
     voltages = parse_list(args.voltage, "voltage", "--voltage")
@@ -267,7 +267,7 @@ def _cmd_structure(args: argparse.Namespace) -> int:
 
 def _cmd_identify(args: argparse.Namespace) -> int:
     from foilbearing import identification as ident
-    from foilbearing.figures import write_identification_figures
+    from foilbearing.output.figures import write_identification_figures
     from foilbearing.units import parse_quantity
 
     example_no_load, example_stiffness = ident.example_measurements()
@@ -320,7 +320,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
     out = result.headline()
     if args.plot is not None:
         from foilbearing.io import save_figure
-        from foilbearing.plots.static import plot_point
+        from foilbearing.output.plots.static import plot_point
 
         out["figures"] = [str(save_figure(plot_point(result), args.plot / "static_point.png"))]
     if args.json:
@@ -373,10 +373,10 @@ def _print_static(out: dict[str, Any]) -> None:
 def _static_sweep_cli(
     case: Case, speeds: list[float], volts: list[float | None], args: argparse.Namespace
 ) -> int:
-    from foilbearing.figures import write_static_figures
     from foilbearing.io import write_with
-    from foilbearing.study_static import static_sweep
-    from foilbearing.summary import sweep_points
+    from foilbearing.output.figures import write_static_figures
+    from foilbearing.output.summary import sweep_points
+    from foilbearing.study.static import static_sweep
 
     if case.actuators is None:
         raise InputError("a static sweep over voltages needs a case with [actuators]")
@@ -434,7 +434,7 @@ def _cmd_coefficients(args: argparse.Namespace) -> int:
     if args.out is not None:
         write_with(args.out, lambda tmp: fc.to_dataset().to_netcdf(tmp))
     if args.plot is not None:
-        from foilbearing.plots.dynamics import plot_coefficients
+        from foilbearing.output.plots.dynamics import plot_coefficients
 
         out["figures"] = [str(save_figure(plot_coefficients(fc), args.plot / "coefficients.png"))]
     if args.json:
@@ -478,7 +478,7 @@ def _cmd_stability(args: argparse.Namespace) -> int:
             progress(f"{volt:g} V: {res.message}")
     out: dict[str, Any] = {"rotor_mass_kg": case.rotor.mass, "voltages": entries}
     if args.plot is not None:
-        from foilbearing.plots.dynamics import plot_stability_map
+        from foilbearing.output.plots.dynamics import plot_stability_map
 
         ds = stability_map(case, speeds, voltages, shimmed=args.shimmed, progress=progress)
         name = "stability_map_shimmed.png" if args.shimmed else "stability_map.png"
@@ -502,7 +502,7 @@ def _cmd_stability(args: argparse.Namespace) -> int:
 
 def _cmd_study(args: argparse.Namespace) -> int:
     from foilbearing.case import load_case
-    from foilbearing.study import run_study
+    from foilbearing.study.paper import run_study
 
     case = load_case(args.case)
     summary = run_study(

@@ -17,7 +17,7 @@ import math
 import sys
 from typing import Any
 
-from foilbearing.cli_common import add_case_arg
+from foilbearing.cli.common import add_case_arg
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_schedule", "register", "schedule_speeds"]
@@ -90,7 +90,7 @@ def cmd_schedule(args: argparse.Namespace) -> int:
 
     from foilbearing.case import load_case
     from foilbearing.io import save_figure, write_text
-    from foilbearing.plots.schedule import plot_schedule
+    from foilbearing.output.plots.schedule import plot_schedule
     from foilbearing.schedule import DEFAULT_MARGIN, check_speed_range, voltage_schedule
     from foilbearing.schedule_file import schedule_toml
     from foilbearing.units import parse_quantity

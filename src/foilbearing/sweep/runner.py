@@ -10,8 +10,8 @@ task (:func:`run_point`); the client writes each finished point atomically to
 one xarray Dataset (NetCDF, ``RESULT.nc``) with the parameters as dimensions.
 
 This module runs and assembles; the sweep file is read and validated in
-:mod:`foilbearing.sweep_file`, and the analysis kinds are the entries of
-:data:`foilbearing.sweep_analyses.ANALYSES` (a new kind is one more entry);
+:mod:`foilbearing.sweep.spec`, and the analysis kinds are the entries of
+:data:`foilbearing.sweep.analyses.ANALYSES` (a new kind is one more entry);
 both are re-exported here.
 """
 
@@ -33,8 +33,8 @@ import numpy as np
 from foilbearing.case import Case, case_from_dict
 from foilbearing.errors import InputError
 from foilbearing.io import write_text, write_with
-from foilbearing.sweep_analyses import ANALYSES, Analysis
-from foilbearing.sweep_file import FIELD_KINDS, Parameter, SweepSpec, load_sweep
+from foilbearing.sweep.analyses import ANALYSES, Analysis
+from foilbearing.sweep.spec import FIELD_KINDS, Parameter, SweepSpec, load_sweep
 
 __all__ = [
     "ANALYSES",

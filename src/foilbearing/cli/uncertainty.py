@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli_common import add_dask_args, check_dask_args
+from foilbearing.cli.common import add_dask_args, check_dask_args
 
 __all__ = ["cmd_uncertainty", "register"]
 
@@ -75,7 +75,7 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
         Bad uncertainty file, case, sample count or results folder; nothing is
         computed then.
     """
-    from foilbearing.figures import write_uncertainty_figures
+    from foilbearing.output.figures import write_uncertainty_figures
     from foilbearing.uncertainty import load_uncertainty, result_paths, run_uncertainty
 
     check_dask_args(args)

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from foilbearing.cli_common import add_case_arg, add_subambient_arg, apply_subambient
+from foilbearing.cli.common import add_case_arg, add_subambient_arg, apply_subambient
 from foilbearing.errors import InputError
 
 __all__ = ["register", "run_spec_from_args"]
@@ -217,8 +217,8 @@ def _controller_args(text: str) -> dict[str, float]:
 def _cmd_orbit(args: argparse.Namespace) -> int:
     from foilbearing.io import write_with
     from foilbearing.orbit import simulate
-    from foilbearing.orbit_analysis import analyse_orbit, write_orbit_figures
-    from foilbearing.orbit_io import load_orbit, to_netcdf
+    from foilbearing.orbit.analysis import analyse_orbit, write_orbit_figures
+    from foilbearing.orbit.netcdf import load_orbit, to_netcdf
 
     resume = None
     if args.resume is not None:

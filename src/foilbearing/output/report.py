@@ -169,8 +169,9 @@ def render_report(summary: dict[str, Any], out_dir: Path) -> str:
     str
         A complete HTML document with every figure embedded.
     """
-    from foilbearing import __version__
+    from importlib.metadata import version
 
+    __version__ = version("foilbearing")
     case = summary.get("case") or {}
     title = f"foilbearing study: {case.get('title', 'unnamed case')}"
     used: set[str] = set()

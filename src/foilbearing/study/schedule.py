@@ -13,7 +13,7 @@ programs on the same speed-up:
 
 All four with the 1 g·mm imbalance of the study's sensitivity series (with the
 paper's 8.5 g·mm our 0 V rotor reaches contact near 14 krpm by its imbalance
-response, before any whirl could be controlled; see ``study_orbits``). Runs the
+response, before any whirl could be controlled; see ``foilbearing.study.orbits``). Runs the
 orbit stage already made are taken from it; the others are
 separate processes, one per core. Each run is read for the onset of sustained
 sub-synchronous motion, its whip frequency, the divergence speed and the power
@@ -40,7 +40,7 @@ VERIFY_IMBALANCE = 1e-6  # kg·m, 1 g·mm
 
 
 def _runs(schedule: Any) -> list[Any]:
-    from foilbearing.study_orbits import RAMP, OrbitRun
+    from foilbearing.study.orbits import RAMP, OrbitRun
 
     series = "schedule verification"
     return [
@@ -64,16 +64,16 @@ def schedule_stage(
     """Compute, write and (with ``verify``) run the schedule; returns its summary.
 
     ``previous`` holds the orbit stage's runs by label, as
-    :func:`foilbearing.study_orbits.run_one` returns them: those with the same
+    :func:`foilbearing.study.orbits.run_one` returns them: those with the same
     program and imbalance are reused, results and analyses alike.
     """
     from foilbearing.io import save_figure, write_text
-    from foilbearing.orbit_analysis import mean_power_loss
-    from foilbearing.plots.orbit import plot_subsync
-    from foilbearing.plots.schedule import plot_run_power, plot_schedule
+    from foilbearing.orbit.analysis import mean_power_loss
+    from foilbearing.output.plots.orbit import plot_subsync
+    from foilbearing.output.plots.schedule import plot_run_power, plot_schedule
     from foilbearing.schedule import voltage_schedule
     from foilbearing.schedule_file import schedule_toml
-    from foilbearing.study_orbits import run_one
+    from foilbearing.study.orbits import run_one
 
     assert case.actuators is not None
     if speeds is None:

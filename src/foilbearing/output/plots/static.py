@@ -1,4 +1,4 @@
-"""Static figures from a :func:`foilbearing.study_static.static_sweep` dataset (paper Figs. 9-12)."""
+"""Static figures from a :func:`foilbearing.study.static.static_sweep` dataset (paper Figs. 9-12)."""
 
 from __future__ import annotations
 

@@ -18,7 +18,7 @@ __all__ = [
 def write_structure_figures(case: Case, folder: Path) -> list[Path]:
     """Figs. 7 and 8 as PNG files in ``folder``; returns their paths."""
     from foilbearing.io import save_figure
-    from foilbearing.plots.structure import plot_preloads, plot_stiffness_function
+    from foilbearing.output.plots.structure import plot_preloads, plot_stiffness_function
 
     paths: list[Path] = []
     if case.actuators is not None and case.foil is not None:
@@ -37,7 +37,7 @@ def write_identification_figures(
     """Figs. 5b and 6b-c as PNG files in ``folder`` (``names``: the no-load figure's and
     the stiffness figure's file names)."""
     from foilbearing.io import save_figure
-    from foilbearing.plots.identification import plot_no_load, plot_stiffness
+    from foilbearing.output.plots.identification import plot_no_load, plot_stiffness
 
     return [
         save_figure(plot_no_load(result.no_load_data, result.no_load), folder / names[0]),
@@ -48,7 +48,7 @@ def write_identification_figures(
 def write_static_figures(ds: Any, folder: Path) -> list[Path]:
     """Figs. 9-12 from a static sweep dataset, as PNG files in ``folder``."""
     from foilbearing.io import save_figure
-    from foilbearing.plots import static as sp
+    from foilbearing.output.plots import static as sp
 
     speed = 50.0 if 50.0 in ds.speed.values else float(ds.speed.values[len(ds.speed) // 2])
     return [
@@ -67,8 +67,8 @@ def write_uncertainty_figures(ds: Any, folder: Path) -> list[Path]:
     """
     from foilbearing.case import is_default_case_file
     from foilbearing.io import save_figure
+    from foilbearing.output.plots.uncertainty import plot_bands, plot_indices
     from foilbearing.paper import PAPER
-    from foilbearing.plots.uncertainty import plot_bands, plot_indices
 
     paper = PAPER if is_default_case_file(ds.attrs.get("case_file")) else None
     return [

@@ -1,0 +1,1 @@
+"""Export to other rotordynamics tools: ``ross`` builds a ROSS ``BearingElement``."""

@@ -1,0 +1,176 @@
+"""Output of an orbit run: the samples at a fixed rate, interpolated between steps, and the progress bar."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from foilbearing.constants import RPM
+from foilbearing.control import SpeedProfile
+from foilbearing.orbit.result import OrbitResult
+from foilbearing.orbit.system import POWER_INTERVAL, OrbitSimulation
+from foilbearing.reynolds.transient import (
+    Inputs,
+)
+from foilbearing.static import drag_torque
+
+__all__ = ["Samples", "progress_bar"]
+
+FloatArray = NDArray[np.float64]
+
+
+class Samples:
+    """Uniformly sampled output, by linear interpolation between accepted steps.
+
+    The accepted states are recorded (time, journal position, minimum film,
+    voltages); the uniform samples are interpolated from them at once when the
+    result is made (vectorised), and one step at a time only for a controller
+    that watches the signal as it comes (:meth:`new_samples`). A sample takes
+    the minimum film and voltages of the first step at or after it.
+    """
+
+    def __init__(self, dt: float) -> None:
+        self.dt = dt
+        self.start = 0.0  # time of the first sample to come from the recorded steps
+        self.next = 0.0  # next sample for new_samples()
+        self.done: tuple[FloatArray, ...] | None = None  # samples of the run resumed
+        self.t: list[float] = []
+        self.ex: list[float] = []
+        self.ey: list[float] = []
+        self.h_min: list[float] = []
+        self.volts: list[FloatArray] = []
+        self.power_t: list[float] = []  # times of the power-loss evaluations, s
+        self.power: list[float] = []  # W
+        self.next_power = 0.0
+
+    def add(
+        self,
+        t: float,
+        y: FloatArray,
+        sim: OrbitSimulation,
+        volts: FloatArray,
+        inp: Inputs,
+        min_film: float | None = None,
+    ) -> None:
+        """Record the accepted state y at t; ``min_film`` (h/C of y) if known."""
+        sys_ = sim.system
+        c = sim.case.bearing.clearance
+        k = sys_.n + sys_.nt
+        if min_film is None:
+            min_film = sys_.min_film(y, inp.preload)
+        self.t.append(t)
+        self.ex.append(float(y[k]) * c)
+        self.ey.append(float(y[k + 1]) * c)
+        self.h_min.append(min_film * c)
+        self.volts.append(volts)
+        if t >= self.next_power:
+            w = sim.profile.state(t)[0]
+            P = sys_.split(y)[0]
+            H = sys_.film(y, inp.preload)[0]
+            self.power_t.append(t)
+            self.power.append(drag_torque(sim.case, sys_.grid, P, H, w) * w)
+            self.next_power = t + POWER_INTERVAL
+
+    @classmethod
+    def from_result(cls, res: OrbitResult) -> Samples:
+        """Continue the samples of a stopped run."""
+        out = cls(1.0 / res.settings.sample_rate)
+        out.done = (
+            res.time,
+            res.e_x,
+            res.e_y,
+            res.speed,
+            res.phase,
+            res.min_film,
+            np.asarray(res.voltages, float),
+            np.full(res.time.size, np.nan) if res.power_loss is None else res.power_loss,
+        )
+        out.start = float(res.time[-1]) + out.dt if res.time.size else 0.0
+        out.next = out.next_power = out.start
+        return out
+
+    def new_samples(self) -> list[tuple[float, float]]:
+        """(time, e_X) of the samples between the last two recorded steps (for a controller)."""
+        fresh: list[tuple[float, float]] = []
+        t1, x1 = self.t[-1], self.ex[-1]
+        t0, x0 = (self.t[-2], self.ex[-2]) if len(self.t) > 1 else (t1, x1)
+        while self.next <= t1 + 1e-12:
+            ts = self.next
+            w = (ts - t0) / (t1 - t0) if t1 > t0 else 1.0
+            fresh.append((ts, (1 - w) * x0 + w * x1))
+            self.next = ts + self.dt
+        return fresh
+
+    def arrays(self, n_act: int, profile: SpeedProfile) -> tuple[FloatArray, ...]:
+        """Samples (time, e_x, e_y, speed, phase, min_film, voltages, power_loss), SI.
+
+        A run interrupted (Ctrl-C) inside :meth:`add` leaves the last step recorded in
+        some lists only: the step is dropped from all of them.
+        """
+        n = min(len(self.t), len(self.ex), len(self.ey), len(self.h_min), len(self.volts))
+        del self.t[n:], self.ex[n:], self.ey[n:], self.h_min[n:], self.volts[n:]
+        m = min(len(self.power_t), len(self.power))
+        del self.power_t[m:], self.power[m:]
+        t = np.asarray(self.t, dtype=float)
+        if t.size and t[-1] + 1e-12 >= self.start:
+            count = math.floor((t[-1] + 1e-12 - self.start) / self.dt) + 1
+        else:
+            count = 0
+        ts: FloatArray = self.start + self.dt * np.arange(count, dtype=np.float64)
+        ex = np.interp(ts, t, np.asarray(self.ex)) if count else np.empty(0)
+        ey = np.interp(ts, t, np.asarray(self.ey)) if count else np.empty(0)
+        at = np.searchsorted(t, ts - 1e-12, side="left")
+        h_min = np.asarray(self.h_min, dtype=float)[at] if count else np.empty(0)
+        volts = (
+            np.asarray(self.volts, dtype=float).reshape(len(self.volts), n_act)[at]
+            if n_act
+            else np.zeros((count, 0))
+        )
+        speed, phase = profile.speed_and_phase(ts)
+        power = np.interp(ts, self.power_t, self.power) if self.power_t else np.full(count, np.nan)
+        new = (ts, ex, ey, speed, phase, h_min, volts, power)
+        if self.done is None:
+            return new
+        return tuple(
+            np.concatenate([old, fresh]) for old, fresh in zip(self.done, new, strict=True)
+        )
+
+
+def progress_bar(
+    progress: bool | Callable[[float, float], None], t_end: float, t_start: float = 0.0
+) -> Callable[[float | None, float | None], None] | None:
+    if progress is False:
+        return None
+    if callable(progress):
+        cb = progress
+
+        def call(t: float | None, w: float | None) -> None:
+            if t is not None and w is not None:
+                cb(t, w)
+
+        return call
+    from tqdm import tqdm
+
+    bar = tqdm(
+        total=t_end,
+        unit="s",
+        unit_scale=False,
+        desc="orbit",
+        dynamic_ncols=True,
+        bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s simulated [{elapsed}<{remaining}{postfix}]",
+    )
+    last = [t_start]
+
+    def update(t: float | None, w: float | None) -> None:
+        if t is None:
+            bar.close()
+            return
+        if t - last[0] >= 0.002 * t_end:
+            bar.update(t - last[0])
+            last[0] = t
+            bar.set_postfix_str(f"{(w or 0.0) / RPM:,.0f} rpm")
+
+    return update

@@ -1,0 +1,166 @@
+"""Assembly of the orbit's semi-discrete system: the case, the programs, the preload and the inputs.
+
+The film, foil and journal of :mod:`foilbearing.reynolds.transient`
+(docs/model.md §5) under the speed profile and the voltage program of a run:
+the preload lobes at the present voltages, the imbalance and load inputs at a
+time, the initial static equilibrium and the error weights.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from foilbearing.case import Case
+from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
+from foilbearing.errors import InputError, SolverError
+from foilbearing.film import film_model
+from foilbearing.orbit.settings import OrbitSettings
+from foilbearing.reynolds.transient import (
+    Inputs,
+    TransientSystem,
+)
+from foilbearing.static import solve_equilibrium
+from foilbearing.structure import base_preload, preload_shape
+
+__all__ = ["POWER_INTERVAL", "OrbitSimulation"]
+
+FloatArray = NDArray[np.float64]
+
+
+#: Simulated time between two evaluations of the film's power loss, s (it is
+#: averaged over runs of seconds; 1 ms keeps its cost below 1 % of a step's).
+POWER_INTERVAL = 1e-3
+
+
+class OrbitSimulation:
+    """One run: the system, the programs, the stepper state and the output buffers."""
+
+    def __init__(
+        self,
+        case: Case,
+        speed: SpeedProfile,
+        voltage: VoltageSchedule | SubsyncController | None = None,
+        settings: OrbitSettings | None = None,
+    ) -> None:
+        self.case, self.profile = case, speed
+        self.settings = settings or OrbitSettings()
+        self.settings.check(float(np.max(speed.speeds)))
+        act = case.actuators
+        self.n_act = 0 if act is None else len(act.angles)
+        if voltage is not None:
+            if act is None:
+                raise InputError("a voltage program needs a case with [actuators]")
+            voltage.check(act.max_voltage, self.n_act)
+        self.voltage = voltage
+        self.model = film_model(case)
+        g = self.model.grid
+        b, gas = case.bearing, case.gas
+        gamma = 0.0 if case.foil is None else case.foil.loss_factor
+        self.system = TransientSystem(
+            g,
+            sigma=12.0 * gas.viscosity * b.radius**2 / (gas.ambient_pressure * b.clearance**2),
+            c_act=self.model.actuator_compliance,
+            c_bump=self.model.bump_compliance,
+            loss_factor=gamma,
+            film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
+            lift_off=self.model.lift_off,
+        )
+        # Unit preload lobes per actuator (or shim), so r_p follows the voltages in time.
+        if act is not None:
+            self.lobes = np.array(
+                [
+                    preload_shape(g.theta, act.angles, np.eye(self.n_act)[n])
+                    for n in range(self.n_act)
+                ]
+            )
+        else:
+            self.lobes = np.zeros((0, g.n_theta))
+        self.static_preload = self.model.preload if act is None else None
+        self._preload_cache: tuple[bytes, FloatArray] | None = None
+        self._lambda_per_speed = case.bearing_number(1.0)  # Λ ∝ ω
+        self._atol: FloatArray | None = None
+
+    # ------------------------------------------------------------------ inputs
+    def volts(self, t: float) -> FloatArray:
+        """Actuator voltages at t (V)."""
+        if self.case.actuators is None:
+            return np.zeros(0)
+        if self.voltage is None:
+            return np.asarray(self.case.actuators.voltages, float)
+        v = np.asarray(self.voltage(t), float)
+        if v.shape == (self.n_act,):
+            return v.copy()
+        if v.shape == (1,):
+            return np.full(self.n_act, v[0])
+        return np.broadcast_to(v, (self.n_act,)).copy()
+
+    def preload(self, volts: FloatArray) -> FloatArray:
+        """r_p(θ_i)/C for actuator voltages (static shims if no actuators)."""
+        if self.static_preload is not None:
+            return self.static_preload
+        # Voltages are held most of the run: reuse the last preload (never written to).
+        key = np.asarray(volts, float).tobytes()
+        cached = self._preload_cache
+        if cached is not None and cached[0] == key:
+            return cached[1]
+        act = self.case.actuators
+        assert act is not None
+        delta = base_preload(
+            volts,
+            act.d33_quadratic,
+            act.d33_linear,
+            act.k_p,
+            act.holder_spring_stiffness,
+            act.holder_pre_extension,
+        )
+        r_p = (delta @ self.lobes) / self.case.bearing.clearance
+        self._preload_cache = (key, r_p)
+        return r_p
+
+    def inputs(self, t: float, volts: FloatArray, imbalance: bool = True) -> Inputs:
+        """Inputs of the system at time t."""
+        w, wd, phi = self.profile.state(t)
+        case = self.case
+        c, m = case.bearing.clearance, case.rotor.mass
+        u = case.rotor.imbalance_radius if imbalance else 0.0
+        cos_phi, sin_phi = math.cos(phi), math.sin(phi)
+        fx = case.operation.load / m + u * (w * w * cos_phi + wd * sin_phi)
+        fy = u * (w * w * sin_phi - wd * cos_phi)
+        force = np.array([fx / c, fy / c])
+        return Inputs(self._lambda_per_speed * w, w, self.preload(volts), force)
+
+    # ------------------------------------------------------------ start state
+    def initial_state(self) -> FloatArray:
+        """Static equilibrium without imbalance at the initial speed and voltages, as a state."""
+        case = self.case
+        if case.actuators is not None:
+            case = case.with_voltages(tuple(float(v) for v in self.volts(0.0)))
+        st = solve_equilibrium(case, speed=self.profile.omega(0.0), model=None)
+        if not st.converged:
+            raise SolverError(
+                f"no static equilibrium at the start of the run: {st.message}; start the "
+                "run at a higher speed or a lower load"
+            )
+        sys_ = self.system
+        q = np.maximum(st.P.mean(axis=1) - 1.0, 0.0)
+        u = sys_.c_bump * q if sys_.dynamic_bump else np.zeros(sys_.nt)
+        return np.concatenate([st.P.ravel(), u, [st.eps_x, st.eps_y, 0.0, 0.0]])
+
+    def atol(self) -> FloatArray:
+        """Absolute tolerances of the state (P; U and ε in C; v in C/s)."""
+        s, sys_ = self.settings, self.system
+        atol = self._atol
+        if atol is None:
+            atol = np.empty(sys_.size)
+            atol[: sys_.n] = s.atol_pressure
+            atol[sys_.n : -2] = s.atol_position
+            atol[-2:] = s.atol_position * max(self.profile.speeds.max(), 1.0)
+            self._atol = atol
+        return atol
+
+    def weights(self, y: FloatArray) -> FloatArray:
+        """Error weights 1/(atol + rtol |y|) of the Newton convergence test."""
+        return 1.0 / (self.atol() + self.settings.rtol * np.abs(y))
