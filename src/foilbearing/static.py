@@ -161,33 +161,33 @@ class StaticResult:
         }
 
     def to_dataset(self) -> Any:
-        """The fields and headline numbers as an xarray Dataset (coordinates and units)."""
+        """The fields as an xarray Dataset in SI (``units`` attributes), the headline as attrs."""
         import xarray as xr
 
         g = self.model.grid
         r = self.case.bearing.radius
         pa = self.case.gas.ambient_pressure
         coords = {
-            "theta": ("theta", np.degrees(g.theta), {"units": "deg", "long_name": "θ from −X"}),
-            "z": ("z", g.z * r * 1e3, {"units": "mm", "long_name": "z from the mid-plane"}),
+            "theta": ("theta", g.theta, {"units": "rad", "long_name": "θ from −X"}),
+            "z": ("z", g.z * r, {"units": "m", "long_name": "z from the mid-plane"}),
         }
         ds = xr.Dataset(
             {
-                "pressure": (("theta", "z"), self.P * pa / 1e3, {"units": "kPa", "long_name": "p"}),
+                "pressure": (("theta", "z"), self.P * pa, {"units": "Pa", "long_name": "p"}),
                 "gauge_pressure_mean": (
                     "theta",
-                    (self.P.mean(axis=1) - 1.0) * pa / 1e3,
-                    {"units": "kPa", "long_name": "axially averaged gauge pressure p_A"},
+                    (self.P.mean(axis=1) - 1.0) * pa,
+                    {"units": "Pa", "long_name": "axially averaged gauge pressure p_A"},
                 ),
                 "film_thickness": (
                     ("theta", "z"),
-                    self.H * self.case.bearing.clearance * 1e6,
-                    {"units": "um", "long_name": "h"},
+                    self.H * self.case.bearing.clearance,
+                    {"units": "m", "long_name": "h"},
                 ),
                 "preload_shape": (
                     "theta",
-                    self.model.preload * self.case.bearing.clearance * 1e6,
-                    {"units": "um", "long_name": "r_p (base preload shape)"},
+                    self.model.preload * self.case.bearing.clearance,
+                    {"units": "m", "long_name": "r_p (base preload shape)"},
                 ),
             },
             coords=coords,

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 
 __all__ = ["load_orbit", "to_netcdf"]
@@ -21,8 +21,22 @@ def to_netcdf(result: Any, spec: dict[str, Any], path: Path) -> None:
     ds.to_netcdf(path)
 
 
+#: SI factor of each unit an orbit file may hold (files before SI datasets held um and rpm).
+_TO_SI = {"m": 1.0, "um": 1e-6, "rad/s": 1.0, "rpm": RPM}
+
+
+def _si(ds: Any, name: str) -> np.ndarray:
+    """Variable ``name`` of the dataset in SI, by its ``units`` attribute."""
+    return np.asarray(ds[name].values) * _TO_SI[ds[name].attrs.get("units", "m")]
+
+
 def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
-    """Read a saved run: the ``OrbitResult`` (with its checkpoint) and the run specification."""
+    """Read a saved run: the ``OrbitResult`` (with its checkpoint) and the run specification.
+
+    The file is SI (:meth:`OrbitResult.to_dataset`); files written before the
+    datasets were SI (e_x, e_y, min_film in µm, speed in rpm) are read by their
+    ``units`` attributes.
+    """
     import xarray as xr
 
     from foilbearing.case import load_case
@@ -58,11 +72,11 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
         case,
         settings,
         ds.time.values,
-        ds.e_x.values * 1e-6,
-        ds.e_y.values * 1e-6,
-        ds.speed.values * math.pi / 30.0,
+        _si(ds, "e_x"),
+        _si(ds, "e_y"),
+        _si(ds, "speed"),
         ds.phase.values,
-        ds.min_film.values * 1e-6,
+        _si(ds, "min_film"),
         ds.voltage.values,
         str(a["status"]),
         str(a["message"]),

@@ -9,7 +9,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
-from foilbearing.constants import RPM
 from foilbearing.orbit.settings import OrbitSettings
 
 __all__ = ["OrbitResult"]
@@ -59,17 +58,21 @@ class OrbitResult:
     power_loss: FloatArray | None = None
 
     def to_dataset(self) -> Any:
-        """The run as an xarray Dataset (time series, settings, status, checkpoint)."""
+        """The run as an xarray Dataset in SI units (time series, settings, status, checkpoint).
+
+        Every variable carries its ``units`` attribute; a reader converts with it
+        (:func:`foilbearing.orbit.netcdf.load_orbit` does).
+        """
         import xarray as xr
 
         n_act = self.voltages.shape[1] if self.voltages.ndim == 2 else 0
         ds = xr.Dataset(
             {
-                "e_x": ("time", self.e_x * 1e6, {"units": "um", "long_name": "journal X (load)"}),
-                "e_y": ("time", self.e_y * 1e6, {"units": "um", "long_name": "journal Y"}),
-                "speed": ("time", self.speed / RPM, {"units": "rpm"}),
+                "e_x": ("time", self.e_x, {"units": "m", "long_name": "journal X (load)"}),
+                "e_y": ("time", self.e_y, {"units": "m", "long_name": "journal Y"}),
+                "speed": ("time", self.speed, {"units": "rad/s", "long_name": "rotor speed"}),
                 "phase": ("time", self.phase, {"units": "rad", "long_name": "rotation angle"}),
-                "min_film": ("time", self.min_film * 1e6, {"units": "um"}),
+                "min_film": ("time", self.min_film, {"units": "m", "long_name": "minimum film"}),
                 "voltage": (
                     ("time", "actuator"),
                     self.voltages.reshape(self.time.size, n_act),
@@ -97,9 +100,9 @@ class OrbitResult:
             max_step_s=s.max_step,
             sample_rate_Hz=s.sample_rate,
             contact_film=s.contact_film,
-            clearance_um=self.case.bearing.clearance * 1e6,
+            clearance_m=self.case.bearing.clearance,
             case_title=self.case.title,
-            imbalance_g_mm=self.case.rotor.imbalance * 1e6,
+            imbalance_kg_m=self.case.rotor.imbalance,
             rotor_mass_kg=self.case.rotor.mass,
         )
         if self.contact:

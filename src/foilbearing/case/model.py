@@ -1,0 +1,338 @@
+"""The bearing case as frozen dataclasses, SI inside, validated on creation and on change.
+
+The tables of a case file (docs/case-format.md) map one to one onto these
+classes; :mod:`foilbearing.case.toml` reads and checks a file into them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from foilbearing.constants import RPM
+from foilbearing.errors import InputError
+from foilbearing.structure import (
+    actuator_stiffness,
+    assembly_stiffness,
+    base_preload,
+    iordanoff_bump_stiffness,
+    stack_displacement,
+    walowit_anno_bump_stiffness,
+)
+
+__all__ = [
+    "MAX_SPEED_DEFAULT",
+    "SUBAMBIENT_MODELS",
+    "Actuators",
+    "Bearing",
+    "BumpGeometry",
+    "Case",
+    "Foil",
+    "Gas",
+    "Grid",
+    "Operation",
+    "Rotor",
+    "Shims",
+    "check_actuators",
+    "per_item",
+    "require",
+]
+
+
+#: Default top of the speeds an analysis may be asked for, rad/s (150 000 rpm, the top
+#: of the default onset scan); a case sets its own with ``[operation] max_speed``.
+MAX_SPEED_DEFAULT = 150_000 * RPM
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """Journal and bearing geometry, m."""
+
+    radius: float
+    length: float
+    clearance: float
+
+
+@dataclass(frozen=True)
+class Gas:
+    """Isothermal, isoviscous ideal gas."""
+
+    viscosity: float  # Pa·s
+    ambient_pressure: float  # Pa
+
+
+@dataclass(frozen=True)
+class BumpGeometry:
+    """Bump-foil geometry and material, SI."""
+
+    thickness: float  # t_b, m
+    height: float  # h_b, m
+    pitch: float  # s, m
+    half_length: float  # l_0, m
+    youngs_modulus: float  # E, Pa
+    poisson_ratio: float  # ν
+    friction_coefficient: float = 0.0  # μ_f at the bump feet (Iordanoff)
+    top_foil_thickness: float | None = None  # m, informational
+    formula: str = "iordanoff"  # or "walowit-anno"
+
+    def stiffness(self) -> float:
+        """Bump stiffness per unit area from the geometry, N/m³."""
+        if self.formula == "walowit-anno":
+            return walowit_anno_bump_stiffness(
+                self.thickness,
+                self.pitch,
+                self.half_length,
+                self.youngs_modulus,
+                self.poisson_ratio,
+            )
+        return iordanoff_bump_stiffness(
+            self.thickness,
+            self.height,
+            self.pitch,
+            self.half_length,
+            self.youngs_modulus,
+            self.poisson_ratio,
+            self.friction_coefficient,
+        )
+
+
+#: How a foil bearing treats sub-ambient film pressure (docs/model.md §3).
+SUBAMBIENT_MODELS = ("lift-off", "retained")
+
+
+@dataclass(frozen=True)
+class Foil:
+    """Compliant foil: an elastic foundation of stiffness k_b per unit area with loss factor γ.
+
+    ``subambient`` says what the film does where its pressure falls below
+    ambient (docs/model.md §3): ``"lift-off"`` (default) — the top foil,
+    which only rests on the bumps, is pulled off them towards the journal
+    until the suction is relieved, so the film holds no sub-ambient pressure
+    (``P ≥ 1`` as a complementarity condition); ``"retained"`` — the foil
+    stays on the bumps and the film keeps its sub-ambient pressure, as a rigid
+    surface would (the model before lift-off, kept for comparison).
+    """
+
+    bump_stiffness: float  # k_b, N/m³
+    loss_factor: float  # γ
+    bump: BumpGeometry | None = None
+    subambient: str = "lift-off"
+
+    @property
+    def lift_off(self) -> bool:
+        """Whether sub-ambient film pressure lifts the top foil (no suction held)."""
+        return self.subambient == "lift-off"
+
+
+@dataclass(frozen=True)
+class Actuators:
+    """PZT actuators pushing the foil through stingers (paper section 2-3)."""
+
+    angles: tuple[float, ...]  # θ_n, rad
+    stinger_arc: float  # θ_s, rad
+    contact_area: float  # A_c, m²
+    d33_quadratic: float  # D33,1, m/V²
+    d33_linear: float  # D33,2, m/V
+    stack_stiffness: float  # K_p, N/m
+    holder_spring_stiffness: float  # k_sp per unit area, each of four, N/m³
+    holder_pre_extension: float  # δ_pre, m
+    voltages: tuple[float, ...]  # V per actuator
+    max_voltage: float  # V
+    smoothness: float = 50.0  # α of k(θ), 1/rad
+
+    @property
+    def k_p(self) -> float:
+        """Stack stiffness per unit contact area, N/m³."""
+        return self.stack_stiffness / self.contact_area
+
+    @property
+    def stiffness(self) -> float:
+        """Actuator stiffness per unit area k_p + 4k_sp, N/m³."""
+        return actuator_stiffness(self.k_p, self.holder_spring_stiffness)
+
+    def stack_strokes(self) -> np.ndarray:
+        """Free stroke of each stack at its voltage, m (Eq. 2)."""
+        return stack_displacement(np.array(self.voltages), self.d33_quadratic, self.d33_linear)
+
+    def base_preloads(self) -> np.ndarray:
+        """Base piezoelectric preload of each actuator at its voltage, m (Eq. 3b, p_A = 0)."""
+        return base_preload(
+            np.array(self.voltages),
+            self.d33_quadratic,
+            self.d33_linear,
+            self.k_p,
+            self.holder_spring_stiffness,
+            self.holder_pre_extension,
+        )
+
+
+@dataclass(frozen=True)
+class Shims:
+    """Rigid shims under the foil: the shimmed GFB."""
+
+    angles: tuple[float, ...]  # rad
+    arc: float  # rad
+    thicknesses: tuple[float, ...]  # m, one per shim
+
+
+@dataclass(frozen=True)
+class Rotor:
+    """Rigid rotor mass carried by this bearing and its imbalance."""
+
+    mass: float  # kg
+    imbalance: float  # kg·m (mass times radius)
+
+    @property
+    def imbalance_radius(self) -> float:
+        """u_im = imbalance / mass, m."""
+        return self.imbalance / self.mass
+
+
+@dataclass(frozen=True)
+class Operation:
+    """Operating point: static load along +X and rotor speed, and the speeds analyses may use."""
+
+    load: float  # N
+    speed: float  # rad/s
+    max_speed: float = MAX_SPEED_DEFAULT  # rad/s, the top of any speed range asked for
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Finite-volume grid of the film: cells around the bearing and axially over half its length."""
+
+    n_theta: int = 96
+    n_z: int = 12
+
+
+@dataclass(frozen=True)
+class Case:
+    """A bearing case. All fields SI; see the module docstring for the file format."""
+
+    bearing: Bearing
+    gas: Gas
+    rotor: Rotor
+    operation: Operation
+    grid: Grid = field(default_factory=Grid)
+    foil: Foil | None = None
+    actuators: Actuators | None = None
+    shims: Shims | None = None
+    title: str = ""
+    source: str | None = None
+    #: The optional ``[study]`` table as JSON text, read and checked by
+    #: :func:`foilbearing.study.plan.study_plan` (it belongs to the study, not the bearing).
+    study_table: str | None = None
+
+    @property
+    def kind(self) -> str:
+        """``"C-GFB"`` (actuators), ``"shimmed GFB"``, ``"GFB"`` (passive foil) or ``"rigid"``."""
+        if self.foil is None:
+            return "rigid"
+        if self.actuators is not None:
+            return "C-GFB"
+        return "shimmed GFB" if self.shims is not None else "GFB"
+
+    def bearing_number(self, speed: float | None = None) -> float:
+        """Λ = 6 μ ω R² / (p_a C²) at ``speed`` (rad/s; default: the operating speed)."""
+        omega = self.operation.speed if speed is None else speed
+        b, g = self.bearing, self.gas
+        return 6.0 * g.viscosity * omega * b.radius**2 / (g.ambient_pressure * b.clearance**2)
+
+    def assembly_stiffness(self) -> float | None:
+        """k_assy under a stinger, N/m³ (Eq. 7); None without foil or actuators."""
+        if self.foil is None or self.actuators is None:
+            return None
+        return assembly_stiffness(
+            self.foil.bump_stiffness, self.actuators.k_p, self.actuators.holder_spring_stiffness
+        )
+
+    def with_voltages(self, voltages: float | tuple[float, ...]) -> Case:
+        """The same case with new actuator voltages (one for all, or one per actuator), validated."""
+        if self.actuators is None:
+            raise InputError(
+                "this case has no [actuators]: a voltage cannot be set", source=self.source
+            )
+        volts = per_item(voltages, len(self.actuators.angles), "actuators.voltages", self.source)
+        act = replace(self.actuators, voltages=volts)
+        check_actuators(act, self.bearing, self.source)
+        return replace(self, actuators=act)
+
+    def with_subambient(self, model: str) -> Case:
+        """The same case with another sub-ambient film model: ``"lift-off"`` or ``"retained"``.
+
+        Only a bearing with a ``[foil]`` has the choice: rigid surfaces hold suction.
+        """
+        if model not in SUBAMBIENT_MODELS:
+            raise InputError(
+                f"subambient = {model!r}: expected one of "
+                + ", ".join(repr(m) for m in SUBAMBIENT_MODELS),
+                source=self.source,
+            )
+        if self.foil is None:
+            raise InputError(
+                f"subambient = {model!r}: this bearing has no [foil]; a rigid surface holds "
+                "sub-ambient pressure (add a [foil] table, or drop the option)",
+                source=self.source,
+            )
+        return replace(self, foil=replace(self.foil, subambient=model))
+
+    def with_speed(self, speed: float) -> Case:
+        """The same case at another rotor speed (rad/s, > 0)."""
+        require(speed > 0.0, "operation.speed", speed, "> 0 rad/s", self.source)
+        return replace(self, operation=replace(self.operation, speed=speed))
+
+    def shimmed(self) -> Case:
+        """The shimmed GFB equivalent to this C-GFB (paper Fig. 8).
+
+        Rigid shims at the actuator angles, of the stinger arc, as thick as the
+        base piezoelectric preloads at the present voltages; no actuators.
+        """
+        if self.actuators is None:
+            raise InputError("this case has no [actuators] to replace by shims", source=self.source)
+        act = self.actuators
+        shims = Shims(act.angles, act.stinger_arc, tuple(float(x) for x in act.base_preloads()))
+        return replace(self, actuators=None, shims=shims, title=f"{self.title} (shimmed)")
+
+
+def check_actuators(act: Actuators, bearing: Bearing, source: str | None) -> None:
+    for i, v in enumerate(act.voltages):
+        if not 0.0 <= v <= act.max_voltage:
+            raise InputError(
+                f"actuators.voltages[{i}] = {v:g} V: allowed 0 to max_voltage = {act.max_voltage:g} V",
+                source=source,
+            )
+    base = act.base_preloads()
+    for i, d in enumerate(base):
+        if d < 0.0:
+            raise InputError(
+                f"actuators.holder_pre_extension = {act.holder_pre_extension * 1e6:g} um at "
+                f"voltages[{i}] = {act.voltages[i]:g} V gives a negative base preload "
+                f"({d * 1e6:.2f} um): the stinger would leave the foil; lower the pre-extension",
+                source=source,
+            )
+        if d >= bearing.clearance:
+            raise InputError(
+                f"actuators.voltages[{i}] = {act.voltages[i]:g} V gives a base preload of "
+                f"{d * 1e6:.2f} um, at or beyond the clearance {bearing.clearance * 1e6:.2f} um: "
+                "lower the voltage or enlarge the clearance",
+                source=source,
+            )
+
+
+def per_item(value: Any, n: int, field: str, source: str | None) -> tuple[float, ...]:
+    if isinstance(value, int | float):
+        return (float(value),) * n
+    items = tuple(float(v) for v in value)
+    if len(items) != n:
+        raise InputError(
+            f"{field}: {len(items)} values given, expected 1 or {n} (one per actuator)",
+            source=source,
+        )
+    return items
+
+
+def require(ok: bool, field: str, value: float, allowed: str, source: str | None) -> None:
+    if not ok:
+        raise InputError(f"{field} = {value!r}: expected {allowed}", source=source)
