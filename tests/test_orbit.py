@@ -263,6 +263,33 @@ def test_controller_triggers_on_subsynchronous_motion_and_respects_slew_rate() -
     assert np.max(np.diff(v)) <= 1000.0 * 1e-4 + 1e-9
 
 
+def test_a_resumed_run_keeps_the_controllers_latch_and_voltage() -> None:
+    """A closed-loop run stopped after its controller triggered and slewed to the target,
+    then resumed with a fresh controller, goes on at the target voltage (the latch and the
+    applied voltage are in the checkpoint) and follows the uninterrupted run: the same
+    voltages, e_X within 0.5 % of its peak-to-peak (measured 0.06 %). Without the latch the
+    fresh controller would start again from 0 V. (Coarse 32 x 4 grid, 20 krpm, 8.5 g·mm;
+    the transient of the imbalance trips the 0.05 µm threshold at 1.5 ms.)"""
+    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4))
+    prof = constant_speed(20e3 * RPM, 0.06)
+
+    def controller() -> SubsyncController:
+        return SubsyncController(
+            threshold=0.05e-6, target=50.0, slew_rate=2000.0, window=0.02, period=0.002
+        )
+
+    whole = simulate(case, prof, controller())
+    first = controller()
+    part = simulate(case, prof, first, stop_time=0.03)
+    assert first.triggered_at is not None and part.voltages[-1, 0] == 50.0
+    again = controller()
+    rest = simulate(case, prof, again, resume=part)
+    assert again.triggered_at == first.triggered_at
+    assert rest.time.size == whole.time.size
+    np.testing.assert_array_equal(rest.voltages, whole.voltages)
+    assert np.max(np.abs(rest.e_x - whole.e_x)) < 0.005 * np.ptp(whole.e_x)
+
+
 @pytest.mark.slow
 def test_paper_protocol_with_a_light_imbalance_control_delays_the_divergence() -> None:
     # The paper's protocol as published (the ramp to 150 V at 6.0-6.5 s, 32.6 krpm) with

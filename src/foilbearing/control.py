@@ -11,7 +11,9 @@ from __future__ import annotations
 import bisect
 import math
 from collections import deque
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any, ClassVar, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,6 +23,7 @@ from foilbearing.errors import InputError
 __all__ = [
     "SpeedProfile",
     "SubsyncController",
+    "VoltageProgram",
     "VoltageSchedule",
     "constant_speed",
     "linear_ramp",
@@ -126,6 +129,27 @@ def linear_ramp(start: float, stop: float, acceleration: float) -> SpeedProfile:
     return SpeedProfile(np.array([0.0, (stop - start) / acceleration]), np.array([start, stop]))
 
 
+class VoltageProgram(Protocol):
+    """What the orbit asks of a voltage program, open loop or closed loop.
+
+    ``observes`` says whether it wants the displacement samples (``observe`` is
+    then called with each new one); ``checkpoint`` and ``restore`` carry its
+    state across a stopped and resumed run.
+    """
+
+    observes: ClassVar[bool]
+
+    def __call__(self, t: float) -> FloatArray: ...
+
+    def check(self, max_voltage: float, n_actuators: int) -> None: ...
+
+    def observe(self, t: float, e_x: float, phase: float) -> None: ...
+
+    def checkpoint(self) -> dict[str, float]: ...
+
+    def restore(self, checkpoint: Mapping[str, Any]) -> None: ...
+
+
 @dataclass(frozen=True)
 class VoltageSchedule:
     """Open-loop voltage program: piecewise-linear V_n(t) per actuator.
@@ -141,6 +165,18 @@ class VoltageSchedule:
 
     times: FloatArray
     volts: FloatArray
+    #: An open-loop program needs no samples and has no state to checkpoint.
+    observes: ClassVar[bool] = False
+
+    def observe(self, t: float, e_x: float, phase: float) -> None:
+        """Open loop: the samples change nothing."""
+
+    def checkpoint(self) -> dict[str, float]:
+        """Open loop: no state."""
+        return {}
+
+    def restore(self, checkpoint: Mapping[str, Any]) -> None:
+        """Open loop: no state."""
 
     def __post_init__(self) -> None:
         t = np.asarray(self.times, float)
@@ -235,6 +271,33 @@ class SubsyncController:
     _volts: float = math.nan
     _last_time: float = 0.0
     amplitude: float = 0.0
+    #: The controller reads the displacement samples as the run produces them.
+    observes: ClassVar[bool] = True
+
+    def checkpoint(self) -> dict[str, float]:
+        """The latch (when the control triggered, NaN: not yet) and the applied voltage.
+
+        The analysis window is not kept: a run resumed before the trigger refills
+        it from the samples that follow.
+        """
+        return {
+            "triggered_at": math.nan if self.triggered_at is None else self.triggered_at,
+            "controller_volts": self._volts,
+            "controller_time": self._last_time,
+        }
+
+    def restore(self, checkpoint: Mapping[str, Any]) -> None:
+        """Take the latch and the applied voltage back (older checkpoints may lack them)."""
+
+        def value(key: str) -> float | None:
+            return float(np.ravel(checkpoint[key])[0]) if key in checkpoint else None
+
+        trig = value("triggered_at")
+        if trig is not None:
+            self.triggered_at = None if math.isnan(trig) else trig
+        volts, last = value("controller_volts"), value("controller_time")
+        if volts is not None and last is not None:
+            self._volts, self._last_time = volts, last
 
     def __post_init__(self) -> None:
         if self.threshold <= 0 or self.slew_rate <= 0 or self.window <= 0 or self.period <= 0:

@@ -16,14 +16,13 @@ the speed profile, and keeps every sample computed until then.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
-from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
+from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError
 from foilbearing.orbit.result import OrbitResult
 from foilbearing.orbit.sampling import Samples
@@ -39,7 +38,7 @@ FloatArray = NDArray[np.float64]
 def simulate(
     case: Case,
     speed: SpeedProfile,
-    voltage: VoltageSchedule | SubsyncController | None = None,
+    voltage: VoltageProgram | None = None,
     settings: OrbitSettings | None = None,
     *,
     progress: bool | Callable[[float, float], None] = False,
@@ -76,9 +75,8 @@ def simulate(
         if not resume.checkpoint:
             raise InputError("the run to resume has no checkpoint")
         state = State.from_checkpoint(resume.checkpoint)
-        if isinstance(voltage, SubsyncController) and "triggered_at" in resume.checkpoint:
-            trig = float(np.ravel(resume.checkpoint["triggered_at"])[0])
-            voltage.triggered_at = None if math.isnan(trig) else trig
+        if voltage is not None:
+            voltage.restore(resume.checkpoint)
         samples = Samples.from_result(resume)
     else:
         state = State(0.0, sim.initial_state())

@@ -18,7 +18,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.constants import RPM
-from foilbearing.control import SubsyncController
 from foilbearing.orbit.result import OrbitResult
 from foilbearing.orbit.sampling import Samples, progress_bar
 from foilbearing.orbit.settings import MAX_ORDER
@@ -131,13 +130,14 @@ def run(
     # Lift-off boundary coordinate at the last three accepted steps (None: unknown).
     lift_s: list[FloatArray | None] = [None, None, None]
     status, message, contact = "completed", "", None
+    # A closed-loop program reads the displacement samples as they are produced.
+    observer = sim.voltage if sim.voltage is not None and sim.voltage.observes else None
 
     def result(status: str, message: str) -> OrbitResult:
         st.past = [(float(times[j] - times[j + 1]), ys[j + 1].copy()) for j in range(count - 1)]
         cp = st.as_checkpoint()
-        if isinstance(sim.voltage, SubsyncController):
-            trig = sim.voltage.triggered_at
-            cp["triggered_at"] = math.nan if trig is None else trig
+        if sim.voltage is not None:
+            cp.update(sim.voltage.checkpoint())
         t_s, e_x, e_y, speed, phase, h_min, volts_s, power = out.arrays(sim.n_act, sim.profile)
         return OrbitResult(
             sim.case,
@@ -212,9 +212,9 @@ def run(
             count = min(count + 1, depth)
             st.t, st.y = t_new, ys[0].copy()
             out.add(t_new, y_new, sim, volts, inp, min_film=h_min)
-            if isinstance(sim.voltage, SubsyncController):
+            if observer is not None:
                 for t_s, ex in out.new_samples():
-                    sim.voltage.observe(t_s, ex, sim.profile.phase(t_s))
+                    observer.observe(t_s, ex, sim.profile.phase(t_s))
             if h_min < s.contact_film:
                 w = sim.profile.omega(t_new)
                 k = sys_.n + sys_.nt

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
-from foilbearing.control import SpeedProfile, SubsyncController, VoltageSchedule
+from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import film_model
 from foilbearing.orbit.settings import OrbitSettings
@@ -42,7 +42,7 @@ class OrbitSimulation:
         self,
         case: Case,
         speed: SpeedProfile,
-        voltage: VoltageSchedule | SubsyncController | None = None,
+        voltage: VoltageProgram | None = None,
         settings: OrbitSettings | None = None,
     ) -> None:
         self.case, self.profile = case, speed
