@@ -150,6 +150,29 @@ def test_stability_map_entries_are_the_whirl_modes_at_their_points() -> None:
         stability_map(passive, speeds, volts)
 
 
+def test_onsets_per_voltage_are_the_onsets_of_each_case() -> None:
+    """The onset per voltage (32 x 4) is onset_speed of the case at that voltage, on the C-GFB
+    and with shimmed on its shimmed twin; one progress line per voltage; a case without
+    actuators is refused."""
+    from foilbearing.errors import InputError
+    from foilbearing.stability import onsets_per_voltage
+
+    case = _coarse()
+    scan = [20e3 * RPM, 60e3 * RPM, 100e3 * RPM]
+    lines: list[str] = []
+    got = onsets_per_voltage(case, [0.0, 150.0], scan, progress=lines.append)
+    shim = onsets_per_voltage(case, [150.0], scan, shimmed=True)
+    assert list(got) == [0.0, 150.0] and len(lines) == 2 and lines[1].startswith("150 V: ")
+    for volt, res in got.items():
+        assert res.onset_speed == onset_speed(case.with_voltages(volt), scan).onset_speed
+    assert (
+        shim[150.0].onset_speed
+        == onset_speed(case.with_voltages(150.0).shimmed(), scan).onset_speed
+    )
+    with pytest.raises(InputError, match=r"needs a case with \[actuators\]"):
+        onsets_per_voltage(replace(case, actuators=None), [0.0], scan)
+
+
 def test_whirl_eigenvalues_of_a_damped_oscillator_in_closed_form() -> None:
     """m s² + c s + k = 0 in X and Y (m = 2 kg): s = −c/2m ± j √(k/m − (c/2m)²); only the
     roots with Im s > 0 are whirl modes. An over-damped direction has none, and a mode

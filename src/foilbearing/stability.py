@@ -27,7 +27,14 @@ from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import Workspace
 from foilbearing.static import StaticResult, solve_equilibrium
 
-__all__ = ["OnsetResult", "WhirlMode", "onset_speed", "stability_map", "whirl_mode"]
+__all__ = [
+    "OnsetResult",
+    "WhirlMode",
+    "onset_speed",
+    "onsets_per_voltage",
+    "stability_map",
+    "whirl_mode",
+]
 
 
 @dataclass(frozen=True)
@@ -270,6 +277,39 @@ def onset_speed(
         np.array(ratio),
         f"stable up to {speeds_arr[-1] / RPM:.0f} rpm",
     )
+
+
+def onsets_per_voltage(
+    case: Case,
+    voltages: Sequence[float],
+    speeds: Sequence[float],
+    *,
+    shimmed: bool = False,
+    progress: Callable[[str], None] | None = None,
+) -> dict[float, OnsetResult]:
+    """The onset speed at each common actuator voltage (V), on the C-GFB or its shimmed twin.
+
+    Parameters
+    ----------
+    case
+        A case with ``[actuators]``; each voltage is applied to all of them
+        (``shimmed``: shims of the base preload's thickness instead).
+    voltages
+        Voltages, V.
+    speeds
+        Scan speeds of :func:`onset_speed`, rad/s.
+    progress
+        Called with one line per voltage.
+    """
+    if case.actuators is None:
+        raise InputError("the onset over voltages needs a case with [actuators]")
+    out: dict[float, OnsetResult] = {}
+    for volt in voltages:
+        c = case.with_voltages(float(volt))
+        out[float(volt)] = onset_speed(c.shimmed() if shimmed else c, speeds)
+        if progress is not None:
+            progress(f"{volt:g} V: {out[float(volt)].message}")
+    return out
 
 
 def stability_map(

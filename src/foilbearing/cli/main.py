@@ -454,8 +454,9 @@ def _cmd_coefficients(args: argparse.Namespace) -> int:
 
 def _cmd_stability(args: argparse.Namespace) -> int:
     from foilbearing.case import load_case
+    from foilbearing.constants import RPM
     from foilbearing.io import save_figure
-    from foilbearing.stability import onset_speed, stability_map
+    from foilbearing.stability import onsets_per_voltage, stability_map
     from foilbearing.units import parse_speed_range
 
     case = apply_subambient(load_case(args.case), args.subambient)
@@ -464,18 +465,10 @@ def _cmd_stability(args: argparse.Namespace) -> int:
     if case.actuators is None:
         raise InputError("the stability study over voltages needs a case with [actuators]")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
-    entries, onsets = [], []
-    for volt in voltages:
-        c = case.with_voltages(volt)
-        if args.shimmed:
-            c = c.shimmed()
-        res = onset_speed(c, speeds)
-        entry = {"voltage_V": volt, "bearing": "shimmed" if args.shimmed else "C-GFB"}
-        entry.update(res.headline())
-        entries.append(entry)
-        onsets.append(res.onset_speed / (3.141592653589793 / 30.0) if res.onset_speed else None)
-        if progress is not None:
-            progress(f"{volt:g} V: {res.message}")
+    per_volt = onsets_per_voltage(case, voltages, speeds, shimmed=args.shimmed, progress=progress)
+    bearing = "shimmed" if args.shimmed else "C-GFB"
+    entries = [{"voltage_V": v, "bearing": bearing} | r.headline() for v, r in per_volt.items()]
+    onsets = [None if r.onset_speed is None else r.onset_speed / RPM for r in per_volt.values()]
     out: dict[str, Any] = {"rotor_mass_kg": case.rotor.mass, "voltages": entries}
     if args.plot is not None:
         from foilbearing.output.plots.dynamics import plot_stability_map

@@ -239,7 +239,7 @@ def _stability_stage(
     from foilbearing.coefficients import force_coefficients
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
-    from foilbearing.stability import onset_speed, stability_map
+    from foilbearing.stability import onsets_per_voltage, stability_map
     from foilbearing.static import solve_equilibrium
     from foilbearing.study.static import PAPER_VOLTAGES
 
@@ -257,15 +257,16 @@ def _stability_stage(
     retained = case.foil is not None and case.foil.lift_off
     if retained:
         onsets |= {"C-GFB, suction retained": {}, "shimmed, suction retained": {}}
-    for volt in PAPER_VOLTAGES:
-        c = case.with_voltages(volt)
-        onsets["C-GFB"][volt] = onset_speed(c, scan)
-        onsets["shimmed"][volt] = onset_speed(c.shimmed(), scan)
-        if retained:
-            kept = c.with_subambient("retained")
-            onsets["C-GFB, suction retained"][volt] = onset_speed(kept, scan)
-            onsets["shimmed, suction retained"][volt] = onset_speed(kept.shimmed(), scan)
-        stage(f"  {volt:g} V: C-GFB {onsets['C-GFB'][volt].message}")
+    onsets["C-GFB"] = onsets_per_voltage(
+        case, PAPER_VOLTAGES, scan, progress=lambda line: stage(f"  C-GFB at {line}")
+    )
+    onsets["shimmed"] = onsets_per_voltage(case, PAPER_VOLTAGES, scan, shimmed=True)
+    if retained:
+        kept = case.with_subambient("retained")
+        onsets["C-GFB, suction retained"] = onsets_per_voltage(kept, PAPER_VOLTAGES, scan)
+        onsets["shimmed, suction retained"] = onsets_per_voltage(
+            kept, PAPER_VOLTAGES, scan, shimmed=True
+        )
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
     fig = save_figure(

@@ -1,29 +1,27 @@
-"""One self-contained HTML page from what ``foilbearing study`` wrote.
-
-The page reads only the study folder: ``summary.json`` and the PNG figures
-beside it. Every figure is embedded as a base64 data URI and the style sheet is
-inline, so the file can be mailed or archived alone; it loads nothing from
-anywhere and runs no script. Stages appear in the paper's order and only if
-``summary.json`` has them.
-"""
+"""One function per section of the report: a part of ``summary.json`` to HTML."""
 
 from __future__ import annotations
 
-import base64
-import json
 import re
-import struct
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable
 from html import escape
 from pathlib import Path
 from typing import Any
 
-from foilbearing.errors import InputError
-from foilbearing.io import write_text
+from foilbearing.output.report.tables import (
+    Column,
+    _entry,
+    _f,
+    _key,
+    _krpm,
+    _nearest,
+    _records,
+    _table,
+    _transpose,
+)
 
-__all__ = ["STAGES", "png_size", "render_report", "write_report"]
+__all__ = ["STAGES"]
 
-PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 #: Stage keys of summary.json in the paper's order, with section titles.
 STAGES: tuple[tuple[str, str], ...] = (
@@ -47,179 +45,8 @@ STAGES: tuple[tuple[str, str], ...] = (
     ("schedule", "A voltage schedule for the controller (beyond the paper)"),
 )
 
-_SUBSYNC = "Fig. 15: filtered sub-synchronous amplitude of the vertical journal motion (oil whip)."
-_CAPTIONS = {
-    "fig05b_stack_displacement.png": "Fig. 5(b): PZT stack displacement versus driving voltage "
-    "(the synthetic measurements shipped in foilbearing/data) with the fitted curves.",
-    "fig06_stack_stiffness.png": "Fig. 6(b, c): stack displacement versus static load and the "
-    "identified stack stiffness of stacks #1-#3.",
-    "stack_displacement.png": "PZT stack displacement versus driving voltage from the "
-    "case's no-load test file, with the fitted curves (as the paper's Fig. 5b).",
-    "stack_stiffness.png": "PZT stack displacement versus static load from the case's "
-    "stiffness test file, and the identified stack stiffness (as the paper's Fig. 6b-c).",
-    "static_vs_voltage.png": "Eccentricity, attitude angle, minimum film and power loss "
-    "against the actuators' voltage (all the same) at the case speed and load.",
-    "preloads_vs_voltage.png": "Piezoelectric preload and actuator pressure of each "
-    "actuator against the voltage at the case speed and load.",
-    "fig07_stiffness_function.png": "Fig. 7: structural stiffness function k(θ) for several "
-    "smoothness constants α.",
-    "fig08_preloads.png": "Fig. 8: base preloads r_p(θ) of the C-GFB at 0/50/100/150 V and the "
-    "shims of the shimmed GFB.",
-    "fig09_midplane.png": "Fig. 9: mid-plane gas-film pressure and film thickness at 50 krpm, "
-    "(a) C-GFB and (b) shimmed GFB.",
-    "fig10_actuator_pressure.png": "Fig. 10: local gas-film pressure at θ = 60°, 180° and 300° "
-    "versus speed, C-GFB and shimmed GFB.",
-    "fig11_preload.png": "Fig. 11: piezoelectric preloads at 60°, 180° and 300° versus speed "
-    "(C-GFB).",
-    "fig12_eccentricity.png": "Fig. 12: journal eccentricity and attitude angle versus speed, "
-    "C-GFB and shimmed GFB.",
-    "coefficients_50krpm_150V.png": "Not in the paper: stiffness and damping coefficients versus "
-    "excitation frequency at 50 krpm and 150 V.",
-    "stability_map.png": "Not in the paper: linear stability over speed and voltage with the "
-    "onset speeds; compare with the nonlinear orbits of Figs. 13-15.",
-    "uncertainty_bands.png": "Beyond the paper: median and 5-95 % band of each output over "
-    "the inputs the paper leaves open; triangles are the paper's points, drawn on the bands, "
-    "never fitted to them (its whip frequencies come from nonlinear speed-ups).",
-    "uncertainty_indices.png": "Beyond the paper: first-order (filled) and total (outline) "
-    "sensitivity indices of each uncertain input, with 95 % bootstrap half-widths.",
-    "schedule.png": "Beyond the paper: the voltage schedule, least-drag actuator voltages "
-    "with a log decrement of at least the margin at each speed; its log decrement and its "
-    "power loss beside a constant 150 V.",
-    "schedule_subsync.png": "Beyond the paper: sub-synchronous amplitude of the paper's "
-    "speed-up (1 g·mm) on the schedule, beside 0 V, 150 V from the start and the paper's "
-    "ramp at 6.0-6.5 s.",
-    "schedule_power.png": "Beyond the paper: film power loss during the same four speed-ups.",
-    "fig15_subsync.png": _SUBSYNC,
-    "fig15_subsync_control.png": _SUBSYNC + " Variant: control before our 0 V run's divergence.",
-    "fig15_subsync_1gmm.png": _SUBSYNC + " Variant: the protocol as published, 1 g·mm imbalance.",
-    "orbit_subsync.png": _SUBSYNC,
-}
-_ORBIT_FIG = re.compile(r"orbit_(?P<v>[0-9.]+)V_(?P<kind>transient|waterfall3d|waterfall|orbits)")
-_ORBIT_KINDS = ("transient", "waterfall", "waterfall3d", "orbits")
+
 _FIG14 = {50.0: "a", 100.0: "b", 150.0: "c"}
-
-_CSS = """
-body{margin:0;background:#f4f5f7;color:#1a1a1a;font:16px/1.5 system-ui,-apple-system,
-"Segoe UI",Roboto,"DejaVu Sans",Arial,sans-serif}
-main{max-width:1040px;margin:0 auto;padding:1.5rem 1.25rem 3rem;background:#fff}
-h1{font-size:1.7rem;margin:.2rem 0 .8rem}h2{font-size:1.35rem;margin-top:2.4rem;
-border-bottom:2px solid #d0d7de;padding-bottom:.2rem}
-a{color:#0a58ca}nav ol{columns:2;padding-left:1.4rem}
-figure{margin:1.4rem 0;text-align:center}figure img{max-width:100%;height:auto;
-border:1px solid #e3e3e3}figcaption{font-size:.92rem;color:#444;margin-top:.35rem}
-.scroll{overflow-x:auto;margin:.8rem 0}
-table{border-collapse:collapse;font-size:.88rem}
-th,td{border:1px solid #d0d7de;padding:.25rem .45rem;text-align:left;vertical-align:top}
-th{background:#f0f3f6}td.num{text-align:right;font-variant-numeric:tabular-nums}
-tr.flag td{background:#fff1dc}
-#comparison{border:2px solid #0a58ca;border-radius:6px;padding:0 1rem 1rem;margin-top:1.5rem}
-#comparison h2{border:0;margin-top:1rem}#comparison table{width:100%}
-#comparison td:nth-child(1){width:24%}#comparison td:nth-child(4){white-space:nowrap}
-.note{color:#555;font-size:.92rem}code{background:#f3f3f3;padding:0 .2rem;border-radius:3px}
-footer{margin-top:3rem;color:#666;font-size:.85rem}
-"""
-
-#: A table column: header (with units), how to get the cell from a record, number format.
-Column = tuple[str, Callable[[dict[str, Any]], Any], str]
-
-
-def write_report(out_dir: Path) -> Path:
-    """Write ``out_dir/report.html`` from the study results in ``out_dir``.
-
-    Parameters
-    ----------
-    out_dir
-        A folder written by ``foilbearing study``: ``summary.json`` and PNG figures.
-
-    Returns
-    -------
-    Path
-        The written page (atomic write: it is there whole or not at all).
-
-    Raises
-    ------
-    InputError
-        If ``summary.json`` is missing or not a JSON object.
-    """
-    out_dir = Path(out_dir)
-    path = out_dir / "summary.json"
-    if not path.is_file():
-        raise InputError("no summary.json; run `foilbearing study --out DIR`", source=str(out_dir))
-    try:
-        summary = json.loads(path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as exc:
-        raise InputError(f"not valid JSON ({exc})", source=str(path)) from exc
-    if not isinstance(summary, dict):
-        raise InputError("expected a JSON object at the top level", source=str(path))
-    return write_text(out_dir / "report.html", render_report(summary, out_dir))
-
-
-def render_report(summary: dict[str, Any], out_dir: Path) -> str:
-    """The HTML text of the report.
-
-    Parameters
-    ----------
-    summary
-        The study's ``summary.json`` as a dict.
-    out_dir
-        Where the figures are; they are found by file name (the folder may have moved).
-
-    Returns
-    -------
-    str
-        A complete HTML document with every figure embedded.
-    """
-    from importlib.metadata import version
-
-    __version__ = version("foilbearing")
-    case = summary.get("case") or {}
-    title = f"foilbearing study: {case.get('title', 'unnamed case')}"
-    used: set[str] = set()
-    sections: list[tuple[str, str, str]] = []  # (anchor, heading, html)
-    if summary.get("paper_comparison"):
-        body = _comparison(summary["paper_comparison"])
-        sections.append(("comparison", "Our numbers beside the paper's", body))
-    # case_point: the readouts at the case speed that the reference table shows
-    known = {key for key, _ in STAGES} | {"case", "paper_comparison", "case_point"}
-    extra = [(k, k.replace("_", " ").capitalize()) for k in summary if k not in known]
-    for key, heading in [*STAGES, *extra]:
-        data = summary.get(key)
-        if not isinstance(data, dict) or not data:
-            continue
-        names = [Path(str(p)).name for p in data.get("figures") or []]
-        if key == "orbits":
-            names += [p.name for p in sorted(out_dir.glob("orbit_*.png"), key=_orbit_order)]
-        names = [n for n in dict.fromkeys(names) if n not in used]
-        used.update(names)
-        body = _TABLES.get(key, _generic)(data, case) + "".join(_figure(out_dir, n) for n in names)
-        sections.append((re.sub(r"[^A-Za-z0-9_-]", "-", key), heading, body))
-    rest = sorted(p.name for p in out_dir.glob("*.png") if p.name not in used)
-    if rest:
-        sections.append(("other", "Other figures", "".join(_figure(out_dir, n) for n in rest)))
-
-    toc = "".join(f'<li><a href="#{a}">{escape(t)}</a></li>' for a, t, _ in sections)
-    body = "".join(f'<section id="{a}"><h2>{escape(t)}</h2>{h}</section>' for a, t, h in sections)
-    return (
-        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-        '<meta name="viewport" content="width=device-width, initial-scale=1">'
-        f"<title>{escape(title)}</title><style>{_CSS}</style></head>\n<body><main>"
-        f"<h1>{escape(title)}</h1>{_intro(summary, case)}"
-        f"<nav><h2>Contents</h2><ol>{toc}</ol></nav>{body}"
-        f"<footer>Written by foilbearing {escape(__version__)} from "
-        f"<code>{escape(str(out_dir / 'summary.json'))}</code>; figures embedded.</footer>"
-        "</main></body></html>\n"
-    )
-
-
-def png_size(data: bytes) -> tuple[int, int] | None:
-    """Width and height from a PNG's IHDR chunk, or None if ``data`` is not a PNG."""
-    if len(data) < 24 or data[:8] != PNG_SIGNATURE or data[12:16] != b"IHDR":
-        return None
-    width, height = struct.unpack(">II", data[16:24])
-    return (width, height) if width > 0 and height > 0 else None
-
-
-# --- the parts of the page ---------------------------------------------------------
 
 
 def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
@@ -689,121 +516,3 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "actuator_static": _actuator_static,
     "reference_comparison": _reference,
 }
-
-
-# --- helpers -----------------------------------------------------------------------
-
-
-def _figure(out_dir: Path, name: str) -> str:
-    """A <figure> with the PNG embedded, or a note where the file is missing or not a PNG."""
-    caption = _caption(name)
-    path = out_dir / name
-    data = path.read_bytes() if path.is_file() else b""
-    size = png_size(data)
-    if size is None:
-        why = "is missing" if not data else "is not a PNG"
-        return f'<p class="note">Figure <code>{escape(name)}</code> {why}: {escape(caption)}</p>'
-    uri = "data:image/png;base64," + base64.b64encode(data).decode("ascii")
-    return (
-        f'<figure><img src="{uri}" alt="{escape(caption)}" width="{size[0]}" '
-        f'height="{size[1]}"><figcaption>{escape(caption)} '
-        f"<code>{escape(name)}</code></figcaption></figure>"
-    )
-
-
-def _caption(name: str) -> str:
-    if name in _CAPTIONS:
-        return _CAPTIONS[name]
-    m = _ORBIT_FIG.fullmatch(Path(name).stem)
-    if m is None:
-        return name
-    v, kind = float(m["v"]), m["kind"]
-    run = f"{v:g} V throughout" if v == 0 else f"ramp to {v:g} V at 6.0-6.5 s"
-    fig13b = "Fig. 13(b)" if v == 0 else "Like Fig. 13(b)"
-    fig14 = f"Fig. 14({_FIG14[v]})" if v in _FIG14 else "Like Fig. 14"
-    what = {
-        "transient": ("Fig. 13(a)" if v == 0 else fig14) + ": journal motion e_X, e_Y and speed",
-        "waterfall": fig13b + ": waterfall of e_X",
-        "waterfall3d": fig13b + ": waterfall of e_X in 3-D",
-        "orbits": "Not in the paper: journal orbits at selected speeds",
-    }[kind]
-    return f"{what}; speed-up 3-90 krpm, {run}."
-
-
-def _orbit_order(p: Path) -> tuple[float, int, str]:
-    m = _ORBIT_FIG.fullmatch(p.stem)
-    if m is None:
-        return (float("inf"), 0, p.name)
-    return (float(m["v"]), _ORBIT_KINDS.index(m["kind"]), p.name)
-
-
-def _records(records: list[dict[str, Any]], cols: list[Column]) -> str:
-    """A table with one row per record and one column per ``(header, getter, format)``."""
-    if not records or not cols:
-        return ""
-    rows = [[_f(_get(get, r), spec) for _, get, spec in cols] for r in records]
-    num = [j for j, (_, _, spec) in enumerate(cols) if spec]
-    return _table([h for h, _, _ in cols], rows, num=num)
-
-
-def _table(
-    heads: list[str], rows: list[list[str]], *, num: Iterable[int] = (), flags: Sequence[bool] = ()
-) -> str:
-    """A table of plain-text cells (escaped here); the columns in ``num`` right-aligned."""
-    cols = set(num)
-    th = "".join(f"<th>{escape(h)}</th>" for h in heads)
-    trs = []
-    for i, row in enumerate(rows):
-        flag = ' class="flag"' if i < len(flags) and flags[i] else ""
-        tds = "".join(
-            f"<td{' class=num' if j in cols else ''}>{escape(c)}</td>" for j, c in enumerate(row)
-        )
-        trs.append(f"<tr{flag}>{tds}</tr>")
-    table = f"<table><thead><tr>{th}</tr></thead><tbody>{''.join(trs)}</tbody></table>"
-    return f'<div class="scroll">{table}</div>'
-
-
-def _get(get: Callable[[dict[str, Any]], Any], record: dict[str, Any]) -> Any:
-    try:
-        return get(record)
-    except (KeyError, IndexError, TypeError, ValueError):
-        return None
-
-
-def _transpose(d: dict[str, Any], keys: tuple[str, ...]) -> list[dict[str, Any]]:
-    """Records from parallel lists: ``{k: [a, b]}`` to ``[{k: a}, {k: b}]``."""
-    cols = (d.get(k) or [] for k in keys)
-    return [dict(zip(keys, v, strict=True)) for v in zip(*cols, strict=False)]
-
-
-def _entry(name: str, i: int, scale: float = 1.0) -> Callable[[dict[str, Any]], Any]:
-    """Element ``i`` (row-major) of the 2 × 2 matrix ``record[name]``, times ``scale``."""
-    return lambda r: r[name][i // 2][i % 2] * scale
-
-
-def _key(name: str) -> Callable[[dict[str, Any]], Any]:
-    return lambda r: r.get(name)
-
-
-def _krpm(name: str) -> Callable[[dict[str, Any]], Any]:
-    return lambda r: None if r.get(name) is None else float(r[name]) / 1e3
-
-
-def _nearest(values: list[float], target: float) -> float:
-    return min(values, key=lambda s: abs(s - target))
-
-
-def _f(x: Any, spec: str) -> str:
-    """Format a number, or a list of numbers joined by ' / '; '—' for None."""
-    if x is None:
-        return "—"
-    if isinstance(x, bool):
-        return "yes" if x else "NO"
-    if isinstance(x, list | tuple):
-        return " / ".join(_f(v, spec) for v in x)
-    if isinstance(x, int | float) and spec:
-        try:
-            return format(x, spec)
-        except ValueError:
-            return format(x, "g")
-    return str(x)

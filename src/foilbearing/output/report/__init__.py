@@ -1,0 +1,28 @@
+"""One self-contained HTML page from what ``foilbearing study`` wrote.
+
+The page reads only the study folder: ``summary.json`` and the PNG figures
+beside it. Every figure is embedded as a base64 data URI and the style sheet is
+inline, so the file can be mailed or archived alone; it loads nothing from
+anywhere and runs no script. Stages appear in the paper's order and only if
+``summary.json`` has them.
+"""
+
+from __future__ import annotations
+
+from foilbearing.output.report.captions import (
+    png_size,
+)
+from foilbearing.output.report.page import (
+    render_report,
+    write_report,
+)
+from foilbearing.output.report.sections import (
+    STAGES,
+)
+
+__all__ = [
+    "STAGES",
+    "png_size",
+    "render_report",
+    "write_report",
+]

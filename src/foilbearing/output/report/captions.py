@@ -1,0 +1,124 @@
+"""Figures of the report: embedded PNGs with the paper's captions."""
+
+from __future__ import annotations
+
+import base64
+import re
+import struct
+from html import escape
+from pathlib import Path
+
+from foilbearing.output.report.sections import _FIG14
+
+__all__ = ["png_size"]
+
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+_SUBSYNC = "Fig. 15: filtered sub-synchronous amplitude of the vertical journal motion (oil whip)."
+
+
+_CAPTIONS = {
+    "fig05b_stack_displacement.png": "Fig. 5(b): PZT stack displacement versus driving voltage "
+    "(the synthetic measurements shipped in foilbearing/data) with the fitted curves.",
+    "fig06_stack_stiffness.png": "Fig. 6(b, c): stack displacement versus static load and the "
+    "identified stack stiffness of stacks #1-#3.",
+    "stack_displacement.png": "PZT stack displacement versus driving voltage from the "
+    "case's no-load test file, with the fitted curves (as the paper's Fig. 5b).",
+    "stack_stiffness.png": "PZT stack displacement versus static load from the case's "
+    "stiffness test file, and the identified stack stiffness (as the paper's Fig. 6b-c).",
+    "static_vs_voltage.png": "Eccentricity, attitude angle, minimum film and power loss "
+    "against the actuators' voltage (all the same) at the case speed and load.",
+    "preloads_vs_voltage.png": "Piezoelectric preload and actuator pressure of each "
+    "actuator against the voltage at the case speed and load.",
+    "fig07_stiffness_function.png": "Fig. 7: structural stiffness function k(θ) for several "
+    "smoothness constants α.",
+    "fig08_preloads.png": "Fig. 8: base preloads r_p(θ) of the C-GFB at 0/50/100/150 V and the "
+    "shims of the shimmed GFB.",
+    "fig09_midplane.png": "Fig. 9: mid-plane gas-film pressure and film thickness at 50 krpm, "
+    "(a) C-GFB and (b) shimmed GFB.",
+    "fig10_actuator_pressure.png": "Fig. 10: local gas-film pressure at θ = 60°, 180° and 300° "
+    "versus speed, C-GFB and shimmed GFB.",
+    "fig11_preload.png": "Fig. 11: piezoelectric preloads at 60°, 180° and 300° versus speed "
+    "(C-GFB).",
+    "fig12_eccentricity.png": "Fig. 12: journal eccentricity and attitude angle versus speed, "
+    "C-GFB and shimmed GFB.",
+    "coefficients_50krpm_150V.png": "Not in the paper: stiffness and damping coefficients versus "
+    "excitation frequency at 50 krpm and 150 V.",
+    "stability_map.png": "Not in the paper: linear stability over speed and voltage with the "
+    "onset speeds; compare with the nonlinear orbits of Figs. 13-15.",
+    "uncertainty_bands.png": "Beyond the paper: median and 5-95 % band of each output over "
+    "the inputs the paper leaves open; triangles are the paper's points, drawn on the bands, "
+    "never fitted to them (its whip frequencies come from nonlinear speed-ups).",
+    "uncertainty_indices.png": "Beyond the paper: first-order (filled) and total (outline) "
+    "sensitivity indices of each uncertain input, with 95 % bootstrap half-widths.",
+    "schedule.png": "Beyond the paper: the voltage schedule, least-drag actuator voltages "
+    "with a log decrement of at least the margin at each speed; its log decrement and its "
+    "power loss beside a constant 150 V.",
+    "schedule_subsync.png": "Beyond the paper: sub-synchronous amplitude of the paper's "
+    "speed-up (1 g·mm) on the schedule, beside 0 V, 150 V from the start and the paper's "
+    "ramp at 6.0-6.5 s.",
+    "schedule_power.png": "Beyond the paper: film power loss during the same four speed-ups.",
+    "fig15_subsync.png": _SUBSYNC,
+    "fig15_subsync_control.png": _SUBSYNC + " Variant: control before our 0 V run's divergence.",
+    "fig15_subsync_1gmm.png": _SUBSYNC + " Variant: the protocol as published, 1 g·mm imbalance.",
+    "orbit_subsync.png": _SUBSYNC,
+}
+
+
+_ORBIT_FIG = re.compile(r"orbit_(?P<v>[0-9.]+)V_(?P<kind>transient|waterfall3d|waterfall|orbits)")
+
+
+_ORBIT_KINDS = ("transient", "waterfall", "waterfall3d", "orbits")
+
+
+def png_size(data: bytes) -> tuple[int, int] | None:
+    """Width and height from a PNG's IHDR chunk, or None if ``data`` is not a PNG."""
+    if len(data) < 24 or data[:8] != PNG_SIGNATURE or data[12:16] != b"IHDR":
+        return None
+    width, height = struct.unpack(">II", data[16:24])
+    return (width, height) if width > 0 and height > 0 else None
+
+
+def _figure(out_dir: Path, name: str) -> str:
+    """A <figure> with the PNG embedded, or a note where the file is missing or not a PNG."""
+    caption = _caption(name)
+    path = out_dir / name
+    data = path.read_bytes() if path.is_file() else b""
+    size = png_size(data)
+    if size is None:
+        why = "is missing" if not data else "is not a PNG"
+        return f'<p class="note">Figure <code>{escape(name)}</code> {why}: {escape(caption)}</p>'
+    uri = "data:image/png;base64," + base64.b64encode(data).decode("ascii")
+    return (
+        f'<figure><img src="{uri}" alt="{escape(caption)}" width="{size[0]}" '
+        f'height="{size[1]}"><figcaption>{escape(caption)} '
+        f"<code>{escape(name)}</code></figcaption></figure>"
+    )
+
+
+def _caption(name: str) -> str:
+    if name in _CAPTIONS:
+        return _CAPTIONS[name]
+    m = _ORBIT_FIG.fullmatch(Path(name).stem)
+    if m is None:
+        return name
+    v, kind = float(m["v"]), m["kind"]
+    run = f"{v:g} V throughout" if v == 0 else f"ramp to {v:g} V at 6.0-6.5 s"
+    fig13b = "Fig. 13(b)" if v == 0 else "Like Fig. 13(b)"
+    fig14 = f"Fig. 14({_FIG14[v]})" if v in _FIG14 else "Like Fig. 14"
+    what = {
+        "transient": ("Fig. 13(a)" if v == 0 else fig14) + ": journal motion e_X, e_Y and speed",
+        "waterfall": fig13b + ": waterfall of e_X",
+        "waterfall3d": fig13b + ": waterfall of e_X in 3-D",
+        "orbits": "Not in the paper: journal orbits at selected speeds",
+    }[kind]
+    return f"{what}; speed-up 3-90 krpm, {run}."
+
+
+def _orbit_order(p: Path) -> tuple[float, int, str]:
+    m = _ORBIT_FIG.fullmatch(p.stem)
+    if m is None:
+        return (float("inf"), 0, p.name)
+    return (float(m["v"]), _ORBIT_KINDS.index(m["kind"]), p.name)

@@ -1,0 +1,85 @@
+"""HTML tables of the report and the formatting of their cells."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from html import escape
+from typing import Any
+
+__all__ = []
+
+
+#: A table column: header (with units), how to get the cell from a record, number format.
+Column = tuple[str, Callable[[dict[str, Any]], Any], str]
+
+
+def _records(records: list[dict[str, Any]], cols: list[Column]) -> str:
+    """A table with one row per record and one column per ``(header, getter, format)``."""
+    if not records or not cols:
+        return ""
+    rows = [[_f(_get(get, r), spec) for _, get, spec in cols] for r in records]
+    num = [j for j, (_, _, spec) in enumerate(cols) if spec]
+    return _table([h for h, _, _ in cols], rows, num=num)
+
+
+def _table(
+    heads: list[str], rows: list[list[str]], *, num: Iterable[int] = (), flags: Sequence[bool] = ()
+) -> str:
+    """A table of plain-text cells (escaped here); the columns in ``num`` right-aligned."""
+    cols = set(num)
+    th = "".join(f"<th>{escape(h)}</th>" for h in heads)
+    trs = []
+    for i, row in enumerate(rows):
+        flag = ' class="flag"' if i < len(flags) and flags[i] else ""
+        tds = "".join(
+            f"<td{' class=num' if j in cols else ''}>{escape(c)}</td>" for j, c in enumerate(row)
+        )
+        trs.append(f"<tr{flag}>{tds}</tr>")
+    table = f"<table><thead><tr>{th}</tr></thead><tbody>{''.join(trs)}</tbody></table>"
+    return f'<div class="scroll">{table}</div>'
+
+
+def _get(get: Callable[[dict[str, Any]], Any], record: dict[str, Any]) -> Any:
+    try:
+        return get(record)
+    except (KeyError, IndexError, TypeError, ValueError):
+        return None
+
+
+def _transpose(d: dict[str, Any], keys: tuple[str, ...]) -> list[dict[str, Any]]:
+    """Records from parallel lists: ``{k: [a, b]}`` to ``[{k: a}, {k: b}]``."""
+    cols = (d.get(k) or [] for k in keys)
+    return [dict(zip(keys, v, strict=True)) for v in zip(*cols, strict=False)]
+
+
+def _entry(name: str, i: int, scale: float = 1.0) -> Callable[[dict[str, Any]], Any]:
+    """Element ``i`` (row-major) of the 2 × 2 matrix ``record[name]``, times ``scale``."""
+    return lambda r: r[name][i // 2][i % 2] * scale
+
+
+def _key(name: str) -> Callable[[dict[str, Any]], Any]:
+    return lambda r: r.get(name)
+
+
+def _krpm(name: str) -> Callable[[dict[str, Any]], Any]:
+    return lambda r: None if r.get(name) is None else float(r[name]) / 1e3
+
+
+def _nearest(values: list[float], target: float) -> float:
+    return min(values, key=lambda s: abs(s - target))
+
+
+def _f(x: Any, spec: str) -> str:
+    """Format a number, or a list of numbers joined by ' / '; '—' for None."""
+    if x is None:
+        return "—"
+    if isinstance(x, bool):
+        return "yes" if x else "NO"
+    if isinstance(x, list | tuple):
+        return " / ".join(_f(v, spec) for v in x)
+    if isinstance(x, int | float) and spec:
+        try:
+            return format(x, spec)
+        except ValueError:
+            return format(x, "g")
+    return str(x)
