@@ -169,7 +169,9 @@ def test_onsets_per_voltage_are_the_onsets_of_each_case() -> None:
         shim[150.0].onset_speed
         == onset_speed(case.with_voltages(150.0).shimmed(), scan).onset_speed
     )
-    with pytest.raises(InputError, match=r"needs a case with \[actuators\]"):
+    with pytest.raises(
+        InputError, match=r"^the onset over voltages needs a case with \[actuators\]$"
+    ):
         onsets_per_voltage(replace(case, actuators=None), [0.0], scan)
 
 
