@@ -18,9 +18,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-import numpy as np
-from numpy.typing import NDArray
-
 from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError
@@ -31,8 +28,6 @@ from foilbearing.orbit.stepper import State, interrupt_at_step_boundary, run
 from foilbearing.orbit.system import OrbitSimulation
 
 __all__ = ["OrbitResult", "OrbitSettings", "OrbitSimulation", "simulate"]
-
-FloatArray = NDArray[np.float64]
 
 
 def simulate(

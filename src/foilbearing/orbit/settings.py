@@ -5,14 +5,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-from numpy.typing import NDArray
-
 from foilbearing.errors import InputError
 
 __all__ = ["MAX_ORDER", "OrbitSettings"]
 
-FloatArray = NDArray[np.float64]
 #: Highest BDF order of the stepper.
 MAX_ORDER = 4
 
