@@ -37,3 +37,39 @@ def test_study_writes_figures_results_and_comparison(tmp_path: Path, capsys) -> 
     assert json.loads((tmp_path / "summary.json").read_text())["structure"]["k_b_N_per_m3"] > 0
     onsets = [e["onset_speed_rpm"] for e in summary["stability"]["C-GFB"]]
     assert all(o is not None and o > 5000 for o in onsets)
+
+
+def test_paper_speed_ups_on_a_short_plan(tmp_path: Path) -> None:
+    """The orbit stage of the study (``paper_orbit_runs``) stopped at 0.2 s (the default
+    grid: on a coarse one the journal touches at 3000 rpm): the 0 V run does not reach contact before the paper's control at 6 s, so the
+    protocol runs as published; each controlled run is the 0 V run until its ramp starts
+    (here, to the end: the same e_X to round-off), each is saved to NetCDF and reads
+    back the same, and the headlines carry the protocol."""
+    import numpy as np
+
+    from foilbearing.case import default_case
+    from foilbearing.orbit.netcdf import load_orbit
+    from foilbearing.study.orbits import PAPER_ORBITS, paper_orbit_runs
+
+    case = default_case()
+    stages: list[str] = []
+    runs: dict = {}
+    out = paper_orbit_runs(case, tmp_path, stages.append, workers=2, stop_time=0.2, results=runs)
+    assert out["note"] == "the paper's protocol ran as published"
+    assert out["paper_control_ramp_s"] == [6.0, 6.5]
+    heads = out["runs"]
+    assert [h["voltage_V"] for h in heads] == list(PAPER_ORBITS)
+    assert heads[0]["control_ramp_s"] is None
+    assert all(h["control_ramp_s"] == [6.0, 6.5] for h in heads[1:])
+    assert all(h["imbalance_g_mm"] == pytest.approx(case.rotor.imbalance * 1e6) for h in heads)
+    assert len(stages) == 4 and all(s.startswith("  orbit ") for s in stages)
+    zero = runs[heads[0]["label"]]["result"]
+    assert zero.time[-1] == pytest.approx(0.2, abs=1e-3)
+    assert zero.speed[-1] == pytest.approx(3000 * np.pi / 30 + 500 * zero.time[-1], rel=1e-9)
+    for h in heads[1:]:
+        res = runs[h["label"]]["result"]
+        np.testing.assert_allclose(res.e_x, zero.e_x, rtol=0, atol=1e-12 * np.abs(zero.e_x).max())
+        saved, spec = load_orbit(Path(h["netcdf"]))
+        np.testing.assert_allclose(saved.e_x, res.e_x, rtol=1e-12)
+        assert spec["voltage_ramp"] == f"6.0s:6.5s:{h['voltage_V']}V"
+        assert spec["speed_ramp"] == "3000rpm:90000rpm:500rad/s**2"

@@ -486,14 +486,15 @@ class _Equilibrium:
             P, eps, R, j_pp, j_ph, G, merit = P_t, eps_t, R_t, jpp_t, jph_t, G_t, m_t
         res = float(np.max(np.abs(R))) * self.scale
         force_res = float(np.hypot(*G)) / load_ref
+        converged = res <= opts.newton.tol and force_res <= opts.force_tol  # after the last step
         return _EquilibriumOutcome(
             P,
             eps,
-            False,
+            converged,
             iterations + opts.max_iter,
             res,
             force_res,
-            f"no convergence in {opts.max_iter} iterations",
+            "converged" if converged else f"no convergence in {opts.max_iter} iterations",
         )
 
 

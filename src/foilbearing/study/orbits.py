@@ -238,12 +238,14 @@ def paper_orbit_runs(
             runs += [
                 OrbitRun(v, ramp, SENSITIVITY_IMBALANCE, "1 g·mm") for v in PAPER_ORBITS if v > 0
             ]
+    run_first = list(done)  # the 0 V runs, one after the other
     n = workers or (os.cpu_count() or 1)
     with ProcessPoolExecutor(max_workers=n) as pool:
         futures = [pool.submit(run_one, case, r, out, stop_time) for r in runs]
         for fut in as_completed(futures):
             finish(fut.result())
-    order = list(dict.fromkeys([zero.label, *done, *(r.label for r in runs)]))
+    # The protocol's order, not the order the parallel runs finished in.
+    order = list(dict.fromkeys([*run_first, *(r.label for r in runs)]))
     if results is not None:
         results.update(done)
     figures = []

@@ -1,0 +1,158 @@
+"""The orbit's assembly (``orbit.system``), input by input, on a coarse grid (32 x 4).
+
+The imbalance force is checked against the second derivative of the imbalance's position
+taken numerically, the preload at running voltages against the film model of the case at
+those voltages, the start state against the static equilibrium. They run in seconds:
+``make mutation`` runs them against every mutant of ``orbit/system.py``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from foilbearing.case import Grid, default_case
+from foilbearing.control import SubsyncController, linear_ramp, voltage_ramp
+from foilbearing.errors import InputError
+from foilbearing.film import film_model
+from foilbearing.orbit import OrbitSettings
+from foilbearing.orbit.system import OrbitSimulation
+from foilbearing.static import solve_equilibrium
+
+RPM = math.pi / 30.0
+
+
+def _coarse(volts: float = 100.0):
+    return replace(default_case().with_voltages(volts), grid=Grid(n_theta=32, n_z=4))
+
+
+def test_imbalance_force_is_the_imbalance_acceleration() -> None:
+    """f = W/m + u (ω² cos φ + ω̇ sin φ, ω² sin φ − ω̇ cos φ): the reaction to the
+    acceleration of a point at radius u turning through φ(t), here differentiated twice
+    numerically along the speed ramp (to 1e-6); in units of C, per unit mass. Without
+    imbalance only the load is left. Λ follows the speed."""
+    case = _coarse()
+    speed = linear_ramp(10e3 * RPM, 60e3 * RPM, 5000.0)
+    sim = OrbitSimulation(case, speed)
+    u, c, m = case.rotor.imbalance_radius, case.bearing.clearance, case.rotor.mass
+    assert u > 0.0
+    volts = sim.volts(0.0)
+    for t in (0.0, 0.01, 0.05):
+        inp = sim.inputs(t, volts)
+        h = 1e-6
+
+        def pos(s: float) -> np.ndarray:
+            phi = speed.phase(s)
+            return u * np.array([math.cos(phi), math.sin(phi)])
+
+        accel = (pos(t + h) - 2 * pos(t) + pos(t - h)) / (h * h)
+        expected = (np.array([case.operation.load / m, 0.0]) - accel) / c
+        np.testing.assert_allclose(inp.force, expected, rtol=1e-5, atol=1e-6 * abs(expected).max())
+        assert inp.lam == pytest.approx(case.bearing_number(speed.omega(t)), rel=1e-14)
+        assert inp.omega == speed.omega(t)
+        still = sim.inputs(t, volts, imbalance=False)
+        np.testing.assert_allclose(still.force, [case.operation.load / (m * c), 0.0], rtol=1e-15)
+
+
+def test_preload_follows_the_voltages_as_the_film_model_at_those_voltages() -> None:
+    """r_p/C at running voltages (one per actuator, unequal) equals the film model's preload
+    of the case set to those voltages; the cached value is reused for the same voltages and
+    recomputed for others; a shimmed bearing keeps its shims."""
+    case = _coarse(0.0)
+    sim = OrbitSimulation(case, linear_ramp(10e3 * RPM, 20e3 * RPM, 5000.0))
+    for volts in ((20.0, 80.0, 150.0), (150.0, 0.0, 40.0), (20.0, 80.0, 150.0)):
+        got = sim.preload(np.array(volts))
+        expected = film_model(case.with_voltages(volts)).preload
+        np.testing.assert_allclose(got, expected, rtol=1e-12, atol=1e-15)
+    a = sim.preload(np.array([50.0, 50.0, 50.0]))
+    assert sim.preload(np.array([50.0, 50.0, 50.0])) is a
+    shimmed = _coarse(100.0).shimmed()
+    sim_s = OrbitSimulation(shimmed, linear_ramp(10e3 * RPM, 20e3 * RPM, 5000.0))
+    np.testing.assert_array_equal(sim_s.preload(np.zeros(0)), film_model(shimmed).preload)
+    assert sim_s.volts(0.3).shape == (0,)
+
+
+def test_voltages_from_the_case_a_program_or_a_controller() -> None:
+    """Without a program the case's voltages; a one-column program applies to every
+    actuator; a per-actuator program its own; a controller its applied voltage."""
+    case = replace(_coarse(), actuators=replace(_coarse().actuators, voltages=(10.0, 20.0, 30.0)))
+    prof = linear_ramp(10e3 * RPM, 20e3 * RPM, 5000.0)
+    np.testing.assert_array_equal(OrbitSimulation(case, prof).volts(0.1), [10.0, 20.0, 30.0])
+    one = OrbitSimulation(case, prof, voltage_ramp(0.0, 1.0, 100.0))
+    np.testing.assert_allclose(one.volts(0.5), [50.0, 50.0, 50.0], rtol=1e-14)
+    each = OrbitSimulation(case, prof, voltage_ramp(0.0, 1.0, [100.0, 50.0, 0.0]))
+    np.testing.assert_allclose(each.volts(0.5), [50.0, 25.0, 0.0], rtol=1e-14)
+    ctrl = OrbitSimulation(case, prof, SubsyncController(initial=12.0))
+    np.testing.assert_array_equal(ctrl.volts(0.0), [12.0, 12.0, 12.0])
+
+
+def test_start_state_is_the_static_equilibrium_at_the_start() -> None:
+    """P, the bump deflection U = c_b max(p̄ − 1, 0) and ε are the static equilibrium's at
+    the initial speed and voltages, with the journal at rest; a rigid bearing has no U."""
+    case = _coarse(0.0)
+    prof = linear_ramp(30e3 * RPM, 40e3 * RPM, 5000.0)
+    sim = OrbitSimulation(case, prof, voltage_ramp(0.5, 1.0, 150.0, initial=60.0))
+    y0 = sim.initial_state()
+    st = solve_equilibrium(case.with_voltages(60.0), speed=30e3 * RPM)
+    sys_ = sim.system
+    assert y0.shape == (sys_.size,)
+    np.testing.assert_allclose(y0[: sys_.n], st.P.ravel(), rtol=1e-10)
+    u = sys_.c_bump * np.maximum(st.P.mean(axis=1) - 1.0, 0.0)
+    np.testing.assert_allclose(y0[sys_.n : -4], u, rtol=1e-8, atol=1e-14)
+    assert np.any(u > 0)
+    np.testing.assert_allclose(y0[-4:], [st.eps_x, st.eps_y, 0.0, 0.0], rtol=1e-9, atol=1e-15)
+    rigid = replace(case, foil=None, actuators=None)
+    sim_r = OrbitSimulation(rigid, prof)
+    y_r = sim_r.initial_state()
+    assert y_r.size == sim_r.system.size
+    np.testing.assert_array_equal(y_r[sim_r.system.n : -4], 0.0)
+
+
+def test_system_scales_and_tolerances() -> None:
+    """σ = 12 μ R²/(p_a C²) (the squeeze number per unit frequency), the film force per unit
+    mass in C, the foil's compliances and loss factor as the film model's; absolute
+    tolerances by part of the state and the error weights 1/(atol + rtol |y|)."""
+    case = _coarse()
+    prof = linear_ramp(10e3 * RPM, 20e3 * RPM, 5000.0)
+    settings = OrbitSettings(rtol=1e-3, atol_pressure=2e-5, atol_position=1e-4)
+    sim = OrbitSimulation(case, prof, settings=settings)
+    b, gas, m = case.bearing, case.gas, case.rotor.mass
+    sys_ = sim.system
+    assert sys_.sigma == pytest.approx(
+        12 * gas.viscosity * b.radius**2 / (gas.ambient_pressure * b.clearance**2), rel=1e-14
+    )
+    assert sys_.force_scale == pytest.approx(
+        gas.ambient_pressure * b.radius**2 / (m * b.clearance), rel=1e-14
+    )
+    model = film_model(case)
+    np.testing.assert_array_equal(sys_.c_bump, model.bump_compliance)
+    np.testing.assert_array_equal(sys_.c_act, model.actuator_compliance)
+    assert sys_.gamma == case.foil.loss_factor  # type: ignore[union-attr]
+    assert sys_.dynamic_bump and sys_.lift_off is True
+    atol = sim.atol()
+    n = sys_.n
+    np.testing.assert_array_equal(atol[:n], 2e-5)
+    np.testing.assert_array_equal(atol[n:-2], 1e-4)
+    np.testing.assert_allclose(atol[-2:], 1e-4 * 20e3 * RPM, rtol=1e-14)
+    y = np.linspace(-2.0, 2.0, sys_.size)
+    np.testing.assert_allclose(sim.weights(y), 1.0 / (atol + 1e-3 * np.abs(y)), rtol=1e-15)
+    rigid = OrbitSimulation(replace(case, foil=None, actuators=None), prof)
+    assert rigid.system.gamma == 0.0 and rigid.system.lift_off is False
+
+
+def test_bad_programs_are_one_line_errors() -> None:
+    case = _coarse()
+    prof = linear_ramp(10e3 * RPM, 20e3 * RPM, 5000.0)
+    rigid = replace(case, foil=None, actuators=None)
+    with pytest.raises(InputError) as err:
+        OrbitSimulation(rigid, prof, voltage_ramp(0.0, 1.0, 100.0))
+    assert str(err.value) == "a voltage program needs a case with [actuators]"
+    with pytest.raises(InputError) as err:
+        OrbitSimulation(case, prof, voltage_ramp(0.0, 1.0, [100.0, 50.0]))
+    assert str(err.value) == "voltage program has 2 columns; the case has 3 actuators"
+    with pytest.raises(InputError) as err:
+        OrbitSimulation(case, prof, voltage_ramp(0.0, 1.0, 200.0))
+    assert "allowed 0 to 150 V (max_voltage)" in str(err.value)
