@@ -1,5 +1,5 @@
 """The transient (BDF) Newton iteration: residual, storage, Jacobian blocks, border,
-solve and the compiled Newton loop (twins in :mod:`foilbearing.reynolds.transient`)."""
+solve and the compiled Newton loop (twins in :mod:`foilbearing.reynolds.reference`)."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ IntArray = NDArray[np.int64]
 
 
 # ---------------------------------------------------------------------------
-# Transient Newton iteration (compiled; NumPy twins in reynolds.transient)
+# Transient Newton iteration (compiled; NumPy twins in reynolds.reference)
 # ---------------------------------------------------------------------------
 
 
@@ -96,7 +96,7 @@ def transient_residual(
     ``d (P − 1) = 0`` in place of G = 0; ``slack`` says by how much each cell
     violates the branch it is on (pressure units, > 0: violated).
 
-    Twin: :meth:`foilbearing.reynolds.transient.TransientSystem.newton_residual_py`
+    Twin: :func:`foilbearing.reynolds.reference.newton_residual_py`
     (same result up to rounding: dot products are summed in another order).
 
     Parameters
@@ -252,7 +252,7 @@ def transient_solve(
     Eliminates the bump states U and the journal (ε, v), solves the pressure
     block with :func:`block_cyclic_solve` and applies the rank-2 Woodbury
     correction of the film force. Twin:
-    :meth:`foilbearing.reynolds.transient.TransientFactor.solve_py` (same result
+    :func:`foilbearing.reynolds.reference.solve_py` (same result
     up to rounding).
 
     Parameters
@@ -364,7 +364,7 @@ def transient_jacobian(
     engaged rows, the pressure block B on :func:`coupled_pattern` (bump and
     actuator eliminated, :func:`coupled_jacobian`) and the border
     ``a_pe = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂ε``. Twin:
-    :meth:`foilbearing.reynolds.transient.TransientSystem.jacobian_blocks_py`
+    :func:`foilbearing.reynolds.reference.jacobian_blocks_py`
     (same result up to rounding: the axial means are summed in another order).
 
     Parameters
@@ -495,7 +495,7 @@ def transient_border(
 
     ``y_border = B⁻¹ a_pe / c0²`` with the factors of :func:`block_cyclic_factor`
     and ``small_inv = (I + s_vp y_border)⁻¹`` in closed form. Twin:
-    :meth:`foilbearing.reynolds.transient.TransientSystem.border_py`.
+    :func:`foilbearing.reynolds.reference.border_py`.
 
     Parameters
     ----------
@@ -577,7 +577,7 @@ def transient_newton_step(
     :func:`transient_residual` into ``g``; if the film stays open (minimum
     > 0), :func:`transient_solve` into ``dy`` with the factor (taken at
     ``fac_c0``, ``fac_rate``) and :func:`newton_update` of y. Twin:
-    :meth:`foilbearing.reynolds.transient.TransientFactor.newton_step_py`
+    :func:`foilbearing.reynolds.reference.newton_step_py`
     (those three in sequence). Arguments as in those kernels.
 
     Returns
@@ -624,7 +624,7 @@ def switch_branches(lift_state: FloatArray, slack: FloatArray, weights: FloatArr
     A held cell is freed when its film has a net inflow of more than one unit
     of the Newton convergence norm (``slack · weight > 1``); a free cell is
     held as soon as it is below ambient (``slack · weight > FREE_SLACK``).
-    Twin: :func:`switch_branches_py`.
+    Twin: :func:`~foilbearing.reynolds.reference.switch_branches_py`.
     """
     moved = 0
     for k in range(lift_state.shape[0]):
@@ -634,15 +634,6 @@ def switch_branches(lift_state: FloatArray, slack: FloatArray, weights: FloatArr
             lift_state[k] = -d
             moved += 1
     return moved
-
-
-def switch_branches_py(lift_state: FloatArray, slack: FloatArray, weights: FloatArray) -> int:
-    """NumPy twin of :func:`switch_branches`."""
-    n = lift_state.shape[0]
-    e = slack * weights[:n]
-    move = ((lift_state > 0.0) & (e > 1.0)) | ((lift_state < 0.0) & (e > FREE_SLACK))
-    lift_state[move] = -lift_state[move]
-    return int(move.sum())
 
 
 #: Outcomes of :func:`transient_newton_solve`.
@@ -712,7 +703,7 @@ def transient_newton_solve(
     ``MAX_SWITCHES`` times; more than ``MAX_MOVED_KEPT`` cells at once ask for a
     refresh, and so does a fresh factor that diverges after such a switch
     (its rows no longer fit the switched cells). Twin:
-    :meth:`foilbearing.reynolds.transient.TransientFactor.newton_solve_py`.
+    :func:`foilbearing.reynolds.reference.newton_solve_py`.
 
     Returns
     -------
@@ -805,7 +796,7 @@ def bdf_setup(
     The predictor ``guess`` extrapolates the polynomial through the last
     min(k + 1, count) states to t_new, and ``weights = 1/(atol + rtol |guess|)``.
     Order 2 is the variable-step BDF2, ``c0 = (1 + 2ρ)/((1 + ρ) h)``, ρ = h/h1.
-    Twin: :func:`bdf_setup_py`.
+    Twin: :func:`~foilbearing.reynolds.reference.bdf_setup_py`.
 
     Returns
     -------
@@ -842,48 +833,13 @@ def bdf_setup(
     return c0
 
 
-def bdf_setup_py(
-    t_new: float,
-    times: FloatArray,
-    ys: FloatArray,
-    qs: FloatArray,
-    count: int,
-    order: int,
-    atol: FloatArray,
-    rtol: float,
-    guess: FloatArray,
-    hist: FloatArray,
-    weights: FloatArray,
-) -> float:
-    """NumPy twin of :func:`bdf_setup`, by differentiating the interpolating polynomial."""
-    k = min(order, count)
-    nodes = np.concatenate([[t_new], times[:k]])
-    # Derivative at t_new of each Lagrange basis polynomial on the nodes.
-    deriv = np.empty(k + 1)
-    for j in range(k + 1):
-        others = np.delete(nodes, j)
-        basis = np.poly1d(np.poly(others)) / np.prod(nodes[j] - others)
-        deriv[j] = basis.deriv()(t_new)
-    hist[:] = deriv[1:] @ qs[:k] if k else 0.0
-    p = min(k + 1, count)
-    lw = np.array(
-        [
-            np.prod([(t_new - times[i]) / (times[j] - times[i]) for i in range(p) if i != j])
-            for j in range(p)
-        ]
-    )
-    guess[:] = lw @ ys[:p]
-    weights[:] = 1.0 / (atol + rtol * np.abs(guess))
-    return float(deriv[0])
-
-
 @njit(cache=True)
 def newton_update(
     y: FloatArray, dy: FloatArray, weights: FloatArray, n: int
 ) -> tuple[float, float]:
     """``y −= dy`` in place; the weighted max-norm of dy and the smallest new pressure.
 
-    Twin :func:`newton_update_py`.
+    Twin :func:`~foilbearing.reynolds.reference.newton_update_py`.
 
     Parameters
     ----------
@@ -912,11 +868,3 @@ def newton_update(
         if k < n and y[k] < p_min:
             p_min = y[k]
     return (np.nan if bad else err), p_min
-
-
-def newton_update_py(
-    y: FloatArray, dy: FloatArray, weights: FloatArray, n: int
-) -> tuple[float, float]:
-    """NumPy twin of :func:`newton_update`."""
-    y -= dy
-    return float(np.max(np.abs(dy) * weights)), float(y[:n].min())
