@@ -19,8 +19,8 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds._kernels.bdf import FREE_SLACK
 from foilbearing.reynolds._kernels.flux import _SERIES_X, C, E, N, S, W
+from foilbearing.reynolds._kernels.newton import FREE_SLACK
 from foilbearing.reynolds.steady import set_unit_rows
 
 if TYPE_CHECKING:

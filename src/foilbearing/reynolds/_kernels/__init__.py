@@ -54,26 +54,16 @@ twins of the transient Newton iteration take the ``TransientSystem`` or
 ``tests/test_transient_kernels.py`` check each kernel against its twin.
 
 Modules: :mod:`.flux` (Bernoulli function, face fluxes, patterns, residual and
-Jacobians), :mod:`.blockcyclic` (the block cyclic LU) and :mod:`.bdf` (the
-transient Newton iteration); their names are all here.
+Jacobians), :mod:`.blockcyclic` (the block cyclic LU), :mod:`.bdf` (the BDF
+equations of the transient system: residual, Jacobian blocks, solve, step
+set-up) and :mod:`.newton` (the Newton iteration on them, with the lift-off
+branch switching); their names are all here.
 """
 
 from foilbearing.reynolds._kernels.bdf import (
-    MAX_MOVED_KEPT,
-    MAX_SWITCHES,
-    NEWTON_CONVERGED,
-    NEWTON_DIVERGED,
-    NEWTON_FILM_CLOSED,
-    NEWTON_NOT_FINITE,
-    NEWTON_REFRESH,
-    NEWTON_TOO_SLOW,
     bdf_setup,
-    newton_update,
-    switch_branches,
     transient_border,
     transient_jacobian,
-    transient_newton_solve,
-    transient_newton_step,
     transient_residual,
     transient_solve,
     transient_storage,
@@ -98,6 +88,20 @@ from foilbearing.reynolds._kernels.flux import (
     lift_off_rows,
     residual,
     stencil_pattern,
+)
+from foilbearing.reynolds._kernels.newton import (
+    MAX_MOVED_KEPT,
+    MAX_SWITCHES,
+    NEWTON_CONVERGED,
+    NEWTON_DIVERGED,
+    NEWTON_FILM_CLOSED,
+    NEWTON_NOT_FINITE,
+    NEWTON_REFRESH,
+    NEWTON_TOO_SLOW,
+    newton_update,
+    switch_branches,
+    transient_newton_solve,
+    transient_newton_step,
 )
 
 __all__ = [
