@@ -272,7 +272,7 @@ def _step_newton(
     """Modified Newton on c0·Q(y) + hist − f(y) = 0 from the guess y0, reusing the factor.
 
     The iterations with one factor are compiled
-    (:meth:`~foilbearing.reynolds.transient.TransientFactor.newton_solve`). A
+    (:meth:`~foilbearing.reynolds.transient_factor.TransientFactor.newton_solve`). A
     factor that converges too slowly (stale, or fresh but contracting at a
     rate above 0.5) is refreshed at the current iterate and the iteration
     goes on from there, up to ``_MAX_REFRESH`` times a step; a fresh factor

@@ -1,11 +1,9 @@
 """NumPy twins of the compiled kernels, used by the tests to check them.
 
-Each function mirrors one kernel of :mod:`foilbearing.reynolds._kernels`, named in
-its docstring, with the same arguments and results (dimensionless as there; times in
-s and c0 in 1/s for the transient ones), in NumPy/SciPy array operations. The twins
-of the transient Newton iteration take the ``TransientSystem`` or ``TransientFactor``
-(:mod:`foilbearing.reynolds.transient`) as first argument; they are also the path of
-its SuperLU fallback, where the block cyclic LU cannot pivot."""
+Each mirrors one kernel of :mod:`foilbearing.reynolds._kernels` (named in its docstring),
+same arguments and results (dimensionless as there; time in s, c0 in 1/s), in NumPy/SciPy
+array operations. The transient twins take the ``TransientSystem`` or ``TransientFactor``
+first; they are also the path of its SuperLU fallback (where the block LU cannot pivot)."""
 
 from __future__ import annotations
 
@@ -21,10 +19,11 @@ from numpy.typing import NDArray
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds._kernels.flux import _SERIES_X, C, E, N, S, W
 from foilbearing.reynolds._kernels.newton import FREE_SLACK
-from foilbearing.reynolds.steady import set_unit_rows
+from foilbearing.reynolds.assembly import set_unit_rows
 
 if TYPE_CHECKING:
-    from foilbearing.reynolds.transient import Inputs, TransientFactor, TransientSystem
+    from foilbearing.reynolds.transient import Inputs, TransientSystem
+    from foilbearing.reynolds.transient_factor import TransientFactor
 
 __all__ = [
     "bdf_setup_py",
@@ -48,7 +47,6 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
 
 
 def bernoulli_py(x: FloatArray | float) -> FloatArray:
@@ -201,8 +199,8 @@ def lift_off_rows_py(
     jp_data: FloatArray,
     jh_data: FloatArray,
     coupled_data: FloatArray,
-    diag_slots: IntArray,
-    indptr: IntArray,
+    diag_slots: NDArray[np.int64],
+    indptr: NDArray[np.int64],
     coupled: bool,
     held: NDArray[np.bool_],
 ) -> int:

@@ -465,7 +465,7 @@ def unit_coupled_row(data: DataArray, k: int, value: Any, n_theta: int, n_z: int
 
     Row ``k = i n_z + j`` holds 3 n_z entries, θ-blocks in sorted column order:
     its own block is first for i = 0, last for i = n_theta − 1, in the middle
-    otherwise. Twin: :func:`foilbearing.reynolds.steady.set_unit_rows`.
+    otherwise. Twin: :func:`foilbearing.reynolds.assembly.set_unit_rows`.
     """
     width = 3 * n_z
     i = k // n_z
