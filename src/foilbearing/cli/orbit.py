@@ -13,8 +13,6 @@ import sys
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from foilbearing.cli.common import add_case_arg, add_subambient_arg, apply_subambient
 from foilbearing.errors import InputError
 
@@ -126,6 +124,8 @@ def _q(text: str, kind: str, field: str) -> float:
 
 
 def _build(spec: dict[str, Any]) -> tuple[Any, ...]:
+    import numpy as np
+
     from foilbearing.case import load_case
     from foilbearing.control import (
         SubsyncController,
