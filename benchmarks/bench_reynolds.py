@@ -20,7 +20,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from foilbearing.reynolds import FilmGrid, Workspace, film_force, solve_steady
-from foilbearing.reynolds.steady import _assemble
+from foilbearing.reynolds.assembly import _assemble
 
 
 def default_like_film(grid: FilmGrid, eps_x: float = 0.15, preload: float = 0.6) -> np.ndarray:

@@ -181,3 +181,37 @@ def test_malformed_cases_always_give_input_error(edits) -> None:
         assert b.radius > 0 and b.length > 0 and b.clearance > 0
         if case.actuators is not None:
             assert all(0 <= d < b.clearance for d in case.actuators.base_preloads())
+
+
+@pytest.mark.parametrize(
+    "text", ["100", "7", "-3", "+2", "0", "-0", "0.127", "3.54e-4", "5.", "1E3"]
+)
+def test_quantities_parsed_without_pint_equal_pint_to_the_bit(text: str) -> None:
+    """The fast path of ``parse_quantity`` (plain "value unit" strings of known units) gives
+    the float that pint gives, for every unit it knows, with and without a space."""
+    from foilbearing.units import _FAST_UNITS, SI_UNITS, _fast_quantity, ureg
+
+    for unit, (kind, factor) in _FAST_UNITS.items():
+        assert ureg.Quantity(1, unit).to(SI_UNITS[kind]).magnitude == factor
+        for value in (f"{text} {unit}", f"{text}{unit}", f" {text}  {unit} "):
+            fast = _fast_quantity(value, kind)
+            want = float(ureg.Quantity(value).to(SI_UNITS[kind]).magnitude)
+            assert fast is not None
+            assert math.copysign(1.0, fast) == math.copysign(1.0, want)
+            assert fast == want, (value, fast, want)
+
+
+def test_the_default_case_loads_without_pint() -> None:
+    """``foilbearing case show`` starts quickly: the built-in case's quantities need no pint
+    (its registry takes longer to build than the whole command)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from foilbearing.case import load_case\n"
+        "load_case(None)\n"
+        "print('pint' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -76,6 +76,47 @@ def test_orbit_order_and_step_are_stored_and_resumed(coarse_case: Path, tmp_path
     assert float(abs(a.e_x - b.e_x).max()) < 0.01 * float(b.e_x.max() - b.e_x.min())
 
 
+def test_a_file_with_the_old_string_spec_resumes(write_case, tmp_path: Path) -> None:
+    """Files of earlier versions held the command line's strings as the run's specification:
+    such a file resumes, with its voltage ramp, to the same run as the file written now."""
+    import xarray as xr
+
+    case = write_case(
+        "light", n_theta=32, n_z=4, edit=lambda d: d["rotor"].update(imbalance="1 g*mm")
+    )
+    new, old = tmp_path / "new.nc", tmp_path / "old.nc"
+    argv = ["orbit", str(case), "--speed", "12000rpm", "--duration", "0.03s"]
+    argv += ["--voltage-ramp", "0.005s:0.02s:50V", "--steps-per-rev", "16"]
+    assert main([*argv, "--stop-time", "0.01s", "--out", str(new)]) == 0
+    ds = xr.load_dataset(new)
+    ds.attrs["run_spec"] = json.dumps(
+        {
+            "case": str(case),
+            "speed_ramp": "3000rpm:90000rpm:500rad/s**2",
+            "speed": "12000rpm",
+            "duration": "0.03s",
+            "voltage_ramp": "0.005s:0.02s:50V",
+            "controller": None,
+            "voltage_schedule": None,
+            "stop_time": "0.01s",
+            "steps_per_rev": 16,
+            "order": 3,
+            "sample_rate": "10000Hz",
+            "subambient": None,
+        }
+    )
+    ds.to_netcdf(old)
+    assert main(["orbit", "--resume", str(new)]) == 0
+    assert main(["orbit", "--resume", str(old)]) == 0
+    a, b = xr.load_dataset(new), xr.load_dataset(old)
+    assert a.attrs["status"] == b.attrs["status"] == "completed"
+    assert a.time.values[-1] == pytest.approx(0.03, abs=2e-4)
+    np.testing.assert_array_equal(a.e_x.values, b.e_x.values)
+    np.testing.assert_array_equal(a.voltage.values, b.voltage.values)
+    assert np.allclose(a.voltage.values[a.time.values > 0.02], 50.0)
+    assert json.loads(b.attrs["run_spec"]) == json.loads(a.attrs["run_spec"])
+
+
 @pytest.mark.parametrize(
     ("extra", "text"),
     [

@@ -11,8 +11,8 @@ import xarray as xr
 from foilbearing.case import default_case
 from foilbearing.coefficients import force_coefficients
 from foilbearing.constants import RPM
-from foilbearing.control import constant_speed
-from foilbearing.orbit import simulate
+from foilbearing.control import constant_speed, voltage_ramp
+from foilbearing.orbit import RunSpec, RunStatus, simulate
 from foilbearing.orbit.netcdf import load_orbit, to_netcdf
 from foilbearing.static import solve_equilibrium
 from foilbearing.units import ureg
@@ -34,7 +34,12 @@ def test_orbit_file_is_si_and_loads_back_to_the_same_run(stopped_run, tmp_path) 
     run = stopped_run
     assert run.status == "stopped"
     path = tmp_path / "run.nc"
-    spec = {"case": None, "note": "round trip"}
+    spec = RunSpec.of(
+        constant_speed(20e3 * RPM, 0.01),
+        voltage_ramp(0.0, 0.001, 100.0, initial=100.0),
+        settings=run.settings,
+        stop_time=0.002,
+    )
     to_netcdf(run, spec, path)
     ds = xr.load_dataset(path)
     for name in ("e_x", "e_y", "speed", "phase", "min_film", "voltage", "power_loss"):
@@ -64,6 +69,39 @@ def test_an_orbit_file_written_before_si_loads_to_the_same_run(stopped_run, tmp_
     back, _ = load_orbit(path)
     for name in ("e_x", "e_y", "min_film", "speed"):
         np.testing.assert_allclose(getattr(back, name), getattr(run, name), rtol=1e-14)
+
+
+def test_an_orbit_file_with_the_old_string_spec_loads_to_its_run_spec(
+    stopped_run, tmp_path
+) -> None:
+    """Files of earlier versions stored the command line's strings as the specification and
+    the status as a plain string: they load to the RunSpec those strings parse to (the
+    voltage ramp from the case's voltages) and to the RunStatus."""
+    old = {
+        "case": None,
+        "speed_ramp": "3000rpm:90000rpm:500rad/s**2",
+        "speed": "20000rpm",
+        "duration": "0.01s",
+        "voltage_ramp": "0s:0.001s:100V",
+        "controller": None,
+        "voltage_schedule": None,
+        "stop_time": "0.002s",
+        "steps_per_rev": 24,
+        "order": 3,
+        "sample_rate": "10000.0Hz",
+        "subambient": None,
+    }
+    ds = stopped_run.to_dataset()
+    ds.attrs["run_spec"] = json.dumps(old)
+    assert isinstance(ds.attrs["status"], str) and type(ds.attrs["status"]) is str
+    path = tmp_path / "old_spec.nc"
+    ds.to_netcdf(path)
+    back, spec = load_orbit(path)
+    assert back.status is RunStatus.STOPPED
+    assert spec == RunSpec.from_cli_strings(old)
+    assert spec.speeds == (20e3 * RPM, 20e3 * RPM) and spec.stop_time == 0.002
+    assert spec.voltage.volts == ((0.0,) * 3, (100.0,) * 3)
+    assert spec.settings == stopped_run.settings
 
 
 def test_static_and_coefficient_files_are_si(tmp_path) -> None:

@@ -221,6 +221,7 @@ def test_a_cgfb_other_than_the_papers_gets_its_own_plan(write_case, tmp_path: Pa
     import xarray as xr
 
     from foilbearing.coefficients import force_coefficients
+    from foilbearing.orbit.spec import PiecewiseVoltages, RunSpec
     from foilbearing.static import solve_equilibrium
 
     def edit(d) -> None:
@@ -280,7 +281,8 @@ def test_a_cgfb_other_than_the_papers_gets_its_own_plan(write_case, tmp_path: Pa
     orbit = xr.load_dataset(out["bearing_orbit"]["netcdf"])
     t, volts = orbit.time.values, orbit.voltage.values
     assert np.all(volts[t < 0.05] == 0.0) and np.allclose(volts[t > 0.1], 150.0)
-    assert json.loads(orbit.attrs["run_spec"])["voltage_ramp"] == "0.05s:0.1s:150.0V"
+    ramp = RunSpec.from_json(orbit.attrs["run_spec"]).voltage  # the ramp, stored as data
+    assert ramp == PiecewiseVoltages((0.05, 0.1), ((0.0,) * 3, (150.0,) * 3))
     html = (tmp_path / "report.html").read_text()
     assert '<section id="actuator_static"' in html and '<section id="identification"' in html
 

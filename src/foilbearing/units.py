@@ -4,22 +4,48 @@ Inside the package every number is SI. Input files may give a dimensional value
 either as a plain number (taken as SI) or as a quantity string, converted here
 against the dimension the field requires; the dimension is tied to the field,
 never guessed from its name.
+
+pint does the conversions. Building its unit registry takes about 0.4 s and
+importing pint 0.3 s, more than the whole ``foilbearing case show``, so the
+registry :data:`ureg` is built on first use, and a plain ``"value unit"`` string
+whose unit is one of a small known set (:data:`_FAST_UNITS`) of the dimension
+the field requires is converted without pint: by the same factor pint uses
+(``value * factor``), so with the same result to the last bit (tested). Every
+other string, and every error message, goes through pint.
 """
 
 from __future__ import annotations
 
 import math
+import re
 from functools import cache
 from typing import Any
-
-import pint
 
 from foilbearing.errors import InputError
 
 __all__ = ["SI_UNITS", "parse_quantity", "parse_speed_range", "ureg"]
 
-ureg: Any = pint.UnitRegistry()
-ureg.define("rpm = revolution / minute")
+
+@cache
+def _registry() -> Any:
+    """pint's unit registry with ``rpm`` (built once, on first use)."""
+    import pint
+
+    registry: Any = pint.UnitRegistry()
+    registry.define("rpm = revolution / minute")
+    return registry
+
+
+#: pint's unit registry (with ``rpm``), built on first access by the module ``__getattr__``.
+ureg: Any
+
+
+def __getattr__(name: str) -> Any:
+    # ``ureg``: the registry, built when first asked for (``from foilbearing.units import ureg``).
+    if name == "ureg":
+        return _registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 #: The SI unit each kind of field is converted to (the string names a pint unit).
 SI_UNITS: dict[str, str] = {
@@ -47,8 +73,77 @@ SI_UNITS: dict[str, str] = {
 }
 
 
+#: Units converted without pint: unit string -> (kind of :data:`SI_UNITS`, factor to SI),
+#: each factor the one pint's ``Quantity(1, unit).to(SI unit)`` gives (checked by the tests).
+_FAST_UNITS: dict[str, tuple[str, float]] = {
+    "m": ("length", 1),
+    "mm": ("length", 0.001),
+    "um": ("length", 1e-06),
+    "cm": ("length", 0.01),
+    "deg": ("angle", 0.017453292519943295),
+    "rad": ("angle", 1),
+    "m**2": ("area", 1),
+    "mm**2": ("area", 1e-06),
+    "Pa": ("pressure", 1),
+    "kPa": ("pressure", 1000.0),
+    "MPa": ("pressure", 1000000.0),
+    "GPa": ("pressure", 1000000000.0),
+    "bar": ("pressure", 100000.0),
+    "Pa*s": ("viscosity", 1),
+    "N": ("force", 1),
+    "kg": ("mass", 1),
+    "g": ("mass", 0.001),
+    "g*mm": ("mass_length", 1e-06),
+    "kg*m": ("mass_length", 1),
+    "rpm": ("speed", 0.10471975511965977),
+    "rad/s": ("speed", 1),
+    "Hz": ("frequency", 1),
+    "rad/s**2": ("angular_acceleration", 1),
+    "V": ("voltage", 1),
+    "V/s": ("slew_rate", 1),
+    "W": ("power", 1),
+    "s": ("time", 1),
+    "ms": ("time", 0.001),
+    "N/m": ("stiffness", 1),
+    "N*s/m": ("damping", 1),
+    "N/m**3": ("stiffness_per_area", 1),
+    "um/V": ("length_per_voltage", 1e-06),
+    "m/V": ("length_per_voltage", 1),
+    "um/V**2": ("length_per_voltage2", 1e-06),
+    "m/V**2": ("length_per_voltage2", 1),
+}
+
+# A decimal number (integer or floating-point literal) and a unit, as in "100 um" or "0.46e6N/m".
+_VALUE_UNIT = re.compile(r"\s*([+-]?)(\d+)(\.\d*)?([eE][+-]?\d+)?\s*(\S+)\s*")
+
+
+def _fast_quantity(value: str, kind: str) -> float | None:
+    """``value`` in SI without pint, or None when pint must parse it.
+
+    Only a number followed by a unit of :data:`_FAST_UNITS` of this kind: as pint
+    reads it, an integer literal as ``int`` and any other as ``float``, times the
+    unit's factor.
+    """
+    m = _VALUE_UNIT.fullmatch(value)
+    if m is None:
+        return None
+    sign, digits, fraction, exponent, unit = m.groups()
+    known = _FAST_UNITS.get(unit)
+    if known is None or known[0] != kind:
+        return None
+    number: int | float
+    if fraction is None and exponent is None:
+        number = int(digits)
+    else:
+        number = float(digits + (fraction or "") + (exponent or ""))
+    if sign == "-":
+        number = -number
+    return float(number * known[1])
+
+
 @cache
 def _unit(kind: str) -> Any:
+    ureg = _registry()
     return ureg.parse_units(SI_UNITS[kind]) if SI_UNITS[kind] else ureg.dimensionless
 
 
@@ -73,12 +168,18 @@ def parse_quantity(value: object, kind: str, *, field: str, source: str | None =
         If the value is not a number or a parsable quantity, has the wrong
         dimension, or is not finite.
     """
-    target = _unit(kind)
+    wanted = SI_UNITS[kind]  # a KeyError for an unknown kind, whatever the value
     if isinstance(value, bool):
         raise InputError(f"{field} = {value!r}: expected a number or a quantity", source=source)
     if isinstance(value, int | float):
         result = float(value)
+    elif isinstance(value, str) and (fast := _fast_quantity(value, kind)) is not None:
+        result = fast
     elif isinstance(value, str):
+        import pint
+
+        ureg = _registry()
+        target = _unit(kind)
         try:
             quantity: Any = ureg.Quantity(value)
         except Exception:
@@ -91,9 +192,8 @@ def parse_quantity(value: object, kind: str, *, field: str, source: str | None =
                 quantity = ureg.Quantity(float(quantity), "")
             result = float(quantity.to(target).magnitude)
         except pint.DimensionalityError:
-            wanted = SI_UNITS[kind] or "dimensionless"
             raise InputError(
-                f"{field} = {value!r}: wrong dimension, expected {kind} (in {wanted}, "
+                f"{field} = {value!r}: wrong dimension, expected {kind} (in {wanted or 'dimensionless'}, "
                 f"e.g. '{_example(kind)}')",
                 source=source,
             ) from None

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import json
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from foilbearing.case import Case
@@ -15,6 +16,8 @@ __all__ = [
     "add_subambient_arg",
     "apply_subambient",
     "check_dask_args",
+    "emit",
+    "parse_list",
 ]
 
 
@@ -72,3 +75,39 @@ def check_dask_args(args: argparse.Namespace) -> None:
         raise InputError(f"--workers {args.workers}: expected at least 1")
     if args.workers is not None and args.scheduler is not None:
         raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")
+
+
+def parse_list(text: str, kind: str, field: str) -> list[float]:
+    """Parse "0,50,100,150V" or "10000rpm,50000rpm" into SI floats.
+
+    A unit written on the last item applies to bare numbers before it.
+    """
+    from foilbearing.errors import InputError
+    from foilbearing.units import parse_quantity
+
+    items = [s.strip() for s in text.split(",") if s.strip()]
+    if not items:
+        raise InputError(f"{field} = {text!r}: expected one or more values")
+    last = items[-1]
+    unit = last.lstrip("+-0123456789.eE ")
+    out = []
+    for item in items:
+        bare = item.lstrip("+-").replace(".", "", 1).replace("e", "", 1).replace("E", "", 1)
+        value = (
+            f"{item} {unit}" if unit and bare.replace("-", "").replace("+", "").isdigit() else item
+        )
+        out.append(parse_quantity(value, kind, field=field))
+    return out
+
+
+def emit(obj: dict[str, Any]) -> None:
+    """Print ``obj`` as one indented JSON object on stdout (arrays as lists, paths as text)."""
+    print(json.dumps(obj, indent=2, default=_json_default))
+
+
+def _json_default(x: Any) -> Any:
+    if hasattr(x, "tolist"):
+        return x.tolist()
+    if isinstance(x, Path):
+        return str(x)
+    raise TypeError(f"not JSON serialisable: {type(x).__name__}")

@@ -8,15 +8,17 @@ file, programs, settings) is stored in the NetCDF output so that
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
-from foilbearing.cli.common import add_case_arg, add_subambient_arg, apply_subambient
+from foilbearing.cli.common import add_case_arg, add_subambient_arg
 from foilbearing.errors import InputError
+
+if TYPE_CHECKING:
+    from foilbearing.orbit.spec import RunSpec
 
 __all__ = ["register", "run_spec_from_args"]
 
@@ -85,26 +87,35 @@ def register(sub: Any) -> None:
     p.set_defaults(func=_cmd_orbit)
 
 
-def run_spec_from_args(args: argparse.Namespace) -> dict[str, Any]:
-    """The run's specification as plain strings (stored with the results for --resume)."""
-    from foilbearing.orbit import OrbitSettings
+def run_spec_from_args(args: argparse.Namespace) -> RunSpec:
+    """The run's specification from the options (stored with the results for --resume).
 
-    return {
-        "case": None if args.case is None else str(args.case),
-        "speed_ramp": args.speed_ramp,
-        "speed": args.speed,
-        "duration": args.duration,
-        "voltage_ramp": args.voltage_ramp,
-        "controller": args.controller,
-        "voltage_schedule": _schedule_spec(args.voltage_schedule),
-        "stop_time": args.stop_time,
-        "steps_per_rev": (
-            OrbitSettings.steps_per_rev if args.steps_per_rev is None else args.steps_per_rev
-        ),
-        "order": OrbitSettings.order if args.order is None else args.order,
-        "sample_rate": args.sample_rate,
-        "subambient": args.subambient,
-    }
+    Raises
+    ------
+    InputError
+        One line naming the option whose string does not parse.
+    """
+    from foilbearing.orbit.settings import OrbitSettings
+    from foilbearing.orbit.spec import RunSpec
+
+    return RunSpec.from_cli_strings(
+        {
+            "case": None if args.case is None else str(args.case),
+            "speed_ramp": args.speed_ramp,
+            "speed": args.speed,
+            "duration": args.duration,
+            "voltage_ramp": args.voltage_ramp,
+            "controller": args.controller,
+            "voltage_schedule": _schedule_spec(args.voltage_schedule),
+            "stop_time": args.stop_time,
+            "steps_per_rev": (
+                OrbitSettings.steps_per_rev if args.steps_per_rev is None else args.steps_per_rev
+            ),
+            "order": OrbitSettings.order if args.order is None else args.order,
+            "sample_rate": args.sample_rate,
+            "subambient": args.subambient,
+        }
+    )
 
 
 def _schedule_spec(path: str | None) -> dict[str, str] | None:
@@ -117,124 +128,31 @@ def _schedule_spec(path: str | None) -> dict[str, str] | None:
     return {"path": str(path), "text": Path(path).read_text(encoding="utf-8")}
 
 
-def _q(text: str, kind: str, field: str) -> float:
-    from foilbearing.units import parse_quantity
-
-    return parse_quantity(
-        text.replace("s2", "s**2") if kind == "angular_acceleration" else text, kind, field=field
-    )
-
-
-def _build(spec: dict[str, Any]) -> tuple[Any, ...]:
-    from foilbearing.case import load_case
-    from foilbearing.control import (
-        SubsyncController,
-        constant_speed,
-        linear_ramp,
-        voltage_ramp,
-    )
-    from foilbearing.orbit import OrbitSettings
-
-    case = apply_subambient(load_case(spec["case"]), spec.get("subambient"))
-    if spec["speed"] is not None:
-        profile = constant_speed(
-            _q(spec["speed"], "speed", "--speed"), _q(spec["duration"], "time", "--duration")
-        )
-    else:
-        parts = spec["speed_ramp"].split(":")
-        if len(parts) != 3:
-            raise InputError(
-                f"--speed-ramp {spec['speed_ramp']!r}: expected START:STOP:ACCELERATION"
-            )
-        profile = linear_ramp(
-            _q(parts[0], "speed", "--speed-ramp START"),
-            _q(parts[1], "speed", "--speed-ramp STOP"),
-            _q(parts[2], "angular_acceleration", "--speed-ramp ACCELERATION"),
-        )
-    program: Any = None
-    chosen = [
-        f"--{k.replace('_', '-')}"
-        for k in ("voltage_ramp", "controller", "voltage_schedule")
-        if spec.get(k) is not None
-    ]
-    if len(chosen) > 1:
-        raise InputError(f"{' and '.join(chosen)}: choose one voltage program")
-    if spec.get("voltage_schedule") is not None:
-        import tomllib
-
-        from foilbearing.schedule_file import parse_schedule
-
-        given = spec["voltage_schedule"]
-        schedule = parse_schedule(tomllib.loads(given["text"]), case, given["path"])
-        program = schedule.program(profile)
-    if spec["voltage_ramp"] is not None:
-        parts = spec["voltage_ramp"].split(":")
-        if len(parts) != 3:
-            raise InputError(
-                f"--voltage-ramp {spec['voltage_ramp']!r}: expected T0:T1:V, e.g. 6.0s:6.5s:150V"
-            )
-        if case.actuators is None:
-            raise InputError("--voltage-ramp needs a case with [actuators]")
-        program = voltage_ramp(
-            _q(parts[0], "time", "--voltage-ramp T0"),
-            _q(parts[1], "time", "--voltage-ramp T1"),
-            _q(parts[2], "voltage", "--voltage-ramp V"),
-            initial=np.asarray(case.actuators.voltages),
-        )
-    if spec["controller"] is not None:
-        kwargs: dict[str, Any] = dict(_controller_args(spec["controller"]))
-        program = SubsyncController(**kwargs)
-    settings = OrbitSettings(
-        steps_per_rev=int(spec["steps_per_rev"]),
-        order=int(spec.get("order") or 2),  # runs saved before the order was stored: BDF2
-        sample_rate=_q(spec["sample_rate"], "frequency", "--sample-rate"),
-    )
-    stop = None if spec["stop_time"] is None else _q(spec["stop_time"], "time", "--stop-time")
-    return case, profile, program, settings, stop
-
-
-def _controller_args(text: str) -> dict[str, float]:
-    kinds = {
-        "threshold": ("length", "threshold"),
-        "target": ("voltage", "target"),
-        "slew": ("slew_rate", "slew_rate"),
-        "window": ("time", "window"),
-        "period": ("time", "period"),
-        "initial": ("voltage", "initial"),
-    }
-    out: dict[str, float] = {}
-    for item in filter(None, (s.strip() for s in text.split(","))):
-        key, _, value = item.partition("=")
-        if key not in kinds or not value:
-            raise InputError(
-                f"--controller {item!r}: expected KEY=VALUE with KEY one of " + ", ".join(kinds)
-            )
-        kind, name = kinds[key]
-        out[name] = _q(value, kind, f"--controller {key}")
-    return out
-
-
 def _cmd_orbit(args: argparse.Namespace) -> int:
     from foilbearing.io import write_with
-    from foilbearing.orbit import simulate
+    from foilbearing.orbit import RunStatus, simulate
     from foilbearing.orbit.analysis import analyse_orbit, write_orbit_figures
     from foilbearing.orbit.netcdf import load_orbit, to_netcdf
+    from foilbearing.orbit.spec import cli_quantity
 
     resume = None
     if args.resume is not None:
         resume, spec = load_orbit(args.resume)
-        spec["stop_time"] = args.stop_time  # a resumed run goes on to the end unless told
+        stop_time = None  # a resumed run goes on to the end unless told
+        if args.stop_time is not None:
+            stop_time = cli_quantity(args.stop_time, "time", "--stop-time")
+        spec = dataclasses.replace(spec, stop_time=stop_time)
         out_path = args.out or args.resume
     else:
         spec = run_spec_from_args(args)
         out_path = args.out
-    case, profile, program, settings, stop = _build(spec)
+    case, profile, program, settings, stop = spec.build()
 
     def save(result: Any) -> None:
         if out_path is not None:
             write_with(out_path, lambda tmp: to_netcdf(result, spec, tmp))
 
-    every = _q(args.checkpoint_every, "time", "--checkpoint-every")
+    every = cli_quantity(args.checkpoint_every, "time", "--checkpoint-every")
     if not every > 0.0:
         raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
     result = simulate(
@@ -255,10 +173,12 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         out["netcdf"] = str(out_path)
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_orbit_figures(result, analysis, args.plot)]
+    if result.status.advice:  # what to try next, for a run that did not complete
+        out["advice"] = result.status.advice
     if args.json:
         print(json.dumps(out, indent=2))
     else:
         print(result.message, file=sys.stderr)
         for key, value in out.items():
             print(f"  {key:<28} {value}")
-    return 0 if result.status in ("completed", "stopped", "contact") else 3
+    return 0 if result.status in (RunStatus.COMPLETED, RunStatus.STOPPED, RunStatus.CONTACT) else 3

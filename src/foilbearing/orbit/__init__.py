@@ -21,13 +21,14 @@ from collections.abc import Callable
 from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError
-from foilbearing.orbit.result import OrbitResult
+from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.sampling import Samples
 from foilbearing.orbit.settings import OrbitSettings
+from foilbearing.orbit.spec import RunSpec
 from foilbearing.orbit.stepper import State, interrupt_at_step_boundary, run
 from foilbearing.orbit.system import OrbitSimulation
 
-__all__ = ["OrbitResult", "OrbitSettings", "OrbitSimulation", "simulate"]
+__all__ = ["OrbitResult", "OrbitSettings", "OrbitSimulation", "RunSpec", "RunStatus", "simulate"]
 
 
 def simulate(

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -10,14 +9,18 @@ import numpy as np
 
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
+from foilbearing.orbit.spec import RunSpec
 
 __all__ = ["load_orbit", "to_netcdf"]
 
 
-def to_netcdf(result: Any, spec: dict[str, Any], path: Path) -> None:
-    """Write a run (``OrbitResult``) and its specification to ``path`` (NetCDF)."""
+def to_netcdf(result: Any, spec: RunSpec, path: Path) -> None:
+    """Write a run (``OrbitResult``) and its specification to ``path`` (NetCDF).
+
+    The specification is the ``run_spec`` attribute, as :meth:`RunSpec.to_json`.
+    """
     ds = result.to_dataset()
-    ds.attrs["run_spec"] = json.dumps(spec)
+    ds.attrs["run_spec"] = spec.to_json()
     ds.to_netcdf(path)
 
 
@@ -30,17 +33,24 @@ def _si(ds: Any, name: str) -> np.ndarray:
     return np.asarray(ds[name].values) * _TO_SI[ds[name].attrs.get("units", "m")]
 
 
-def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
-    """Read a saved run: the ``OrbitResult`` (with its checkpoint) and the run specification.
+def load_orbit(path: Path) -> tuple[Any, RunSpec]:
+    """Read a saved run: the ``OrbitResult`` (with its checkpoint) and its :class:`RunSpec`.
 
     The file is SI (:meth:`OrbitResult.to_dataset`); files written before the
     datasets were SI (e_x, e_y, min_film in µm, speed in rpm) are read by their
-    ``units`` attributes.
+    ``units`` attributes, and the command-line strings that earlier versions
+    stored as the specification by :meth:`RunSpec.from_cli_strings`.
+
+    Raises
+    ------
+    InputError
+        Not an orbit file with a checkpoint, or a run that already ended
+        (completed or contact): nothing to resume.
     """
     import xarray as xr
 
-    from foilbearing.case import load_case
-    from foilbearing.orbit import OrbitResult, OrbitSettings
+    from foilbearing.orbit.result import OrbitResult, RunStatus
+    from foilbearing.orbit.settings import OrbitSettings
 
     try:
         ds = xr.load_dataset(path)
@@ -50,10 +60,8 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
         ) from None
     if "run_spec" not in ds.attrs or "checkpoint_y" not in ds:
         raise InputError("not a foilbearing orbit file with a checkpoint", source=str(path))
-    spec = json.loads(ds.attrs["run_spec"])
-    case = load_case(spec["case"])
-    if spec.get("subambient") is not None:
-        case = case.with_subambient(spec["subambient"])
+    spec = RunSpec.from_json(ds.attrs["run_spec"])
+    case = spec.load_case()
     a = ds.attrs
     settings = OrbitSettings(
         steps_per_rev=int(a["steps_per_rev"]),
@@ -78,7 +86,7 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
         ds.phase.values,
         _si(ds, "min_film"),
         ds.voltage.values,
-        str(a["status"]),
+        RunStatus(str(a["status"])),
         str(a["message"]),
         float(a["wall_time_s"]),
         int(a["steps"]),
@@ -87,7 +95,7 @@ def load_orbit(path: Path) -> tuple[Any, dict[str, Any]]:
         checkpoint=checkpoint,
         power_loss=ds.power_loss.values if "power_loss" in ds else None,
     )
-    if result.status in ("completed", "contact"):
+    if not result.status.resumable:
         raise InputError(
             f"the run already ended ({result.message}): nothing to resume", source=str(path)
         )

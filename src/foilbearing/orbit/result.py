@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import StrEnum
 from typing import Any
 
 import numpy as np
@@ -11,9 +12,59 @@ from numpy.typing import NDArray
 from foilbearing.case import Case
 from foilbearing.orbit.settings import OrbitSettings
 
-__all__ = ["OrbitResult"]
+__all__ = ["OrbitResult", "RunStatus"]
 
 FloatArray = NDArray[np.float64]
+
+
+class RunStatus(StrEnum):
+    """How an orbit run ended, with what to try next (:attr:`advice`).
+
+    A ``str`` (:class:`enum.StrEnum`): ``status == "contact"``, JSON and the
+    NetCDF attribute hold the plain word, and a file's plain string loads back
+    as the member (``RunStatus("stopped")``).
+    """
+
+    #: The end of the speed profile.
+    COMPLETED = "completed"
+    #: At ``stop_time``: the profile goes on.
+    STOPPED = "stopped"
+    #: The minimum film fell below ``contact_film`` × C.
+    CONTACT = "contact"
+    #: Ctrl-C at a step boundary: every sample until then is kept.
+    INTERRUPTED = "interrupted"
+    #: A numerical failure (step collapse, singular factor).
+    FAILED = "failed"
+    #: A checkpoint written while the run goes on.
+    RUNNING = "running"
+
+    @property
+    def advice(self) -> str:
+        """What to try next, one line ("" for a completed run)."""
+        return _ADVICE[self]
+
+    @property
+    def resumable(self) -> bool:
+        """Whether ``--resume FILE.nc`` can continue the run (it has not ended)."""
+        return self not in (RunStatus.COMPLETED, RunStatus.CONTACT)
+
+
+_ADVICE = {
+    RunStatus.COMPLETED: "",
+    RunStatus.STOPPED: "stopped at --stop-time: resume with --resume FILE.nc to go on",
+    RunStatus.CONTACT: (
+        "the rotor touched the bearing: this is a result (instability or overload), not an "
+        "error; for a longer run try a smaller imbalance, a lower load or a voltage program"
+    ),
+    RunStatus.INTERRUPTED: "resume with --resume FILE.nc: the run goes on from its checkpoint",
+    RunStatus.FAILED: (
+        "the integration failed: try more --steps-per-rev (smaller steps), tighter "
+        "tolerances (OrbitSettings), or check the case (load, clearance, grid)"
+    ),
+    RunStatus.RUNNING: (
+        "a checkpoint of a run that did not end (killed?): resume with --resume FILE.nc"
+    ),
+}
 
 
 @dataclass
@@ -32,8 +83,9 @@ class OrbitResult:
         accepted states every :data:`POWER_INTERVAL` s and interpolated to the
         samples (None for runs saved before it was recorded).
     status
-        "completed" (end of the speed profile), "stopped" (at ``stop_time``),
-        "contact", "interrupted" or "failed".
+        How the run ended (:class:`RunStatus`, a ``str``): "completed" (end of the
+        speed profile), "stopped" (at ``stop_time``), "contact", "interrupted",
+        "failed", or "running" in a checkpoint; a plain string is converted.
     message
         How the run ended (contact time, speed and angle; what failed).
     """
@@ -47,7 +99,7 @@ class OrbitResult:
     phase: FloatArray
     min_film: FloatArray
     voltages: FloatArray
-    status: str
+    status: RunStatus
     message: str
     wall_time: float
     steps: int
@@ -56,6 +108,9 @@ class OrbitResult:
     contact: dict[str, float] | None = None
     checkpoint: dict[str, Any] = field(default_factory=dict, repr=False)
     power_loss: FloatArray | None = None
+
+    def __post_init__(self) -> None:
+        self.status = RunStatus(self.status)
 
     def to_dataset(self) -> Any:
         """The run as an xarray Dataset in SI units (time series, settings, status, checkpoint).
@@ -89,7 +144,7 @@ class OrbitResult:
             )
         s = self.settings
         ds.attrs.update(
-            status=self.status,
+            status=self.status.value,
             message=self.message,
             wall_time_s=self.wall_time,
             steps=self.steps,

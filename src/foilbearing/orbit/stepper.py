@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.constants import RPM
-from foilbearing.orbit.result import OrbitResult
+from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.sampling import Samples, progress_bar
 from foilbearing.orbit.settings import MAX_ORDER
 from foilbearing.orbit.system import OrbitSimulation
@@ -129,11 +129,11 @@ def run(
     counters = [0, 0, 0]  # steps, factorizations, Newton iterations
     # Lift-off boundary coordinate at the last three accepted steps (None: unknown).
     lift_s: list[FloatArray | None] = [None, None, None]
-    status, message, contact = "completed", "", None
+    status, message, contact = RunStatus.COMPLETED, "", None
     # A closed-loop program reads the displacement samples as they are produced.
     observer = sim.voltage if sim.voltage is not None and sim.voltage.observes else None
 
-    def result(status: str, message: str) -> OrbitResult:
+    def result(status: RunStatus, message: str) -> OrbitResult:
         st.past = [(float(times[j] - times[j + 1]), ys[j + 1].copy()) for j in range(count - 1)]
         cp = st.as_checkpoint()
         if sim.voltage is not None:
@@ -224,7 +224,7 @@ def run(
                     "angle_deg": math.degrees(math.atan2(y_new[k + 1], y_new[k])),
                     "min_film_um": h_min * sim.case.bearing.clearance * 1e6,
                 }
-                status = "contact"
+                status = RunStatus.CONTACT
                 message = (
                     f"contact at t = {t_new:.4f} s, {w / RPM:.0f} rpm: minimum film "
                     f"{h_min:.3f} C < {s.contact_film} C, journal at "
@@ -234,18 +234,18 @@ def run(
             if bar is not None:
                 bar(t_new, sim.profile.omega(t_new))
             if checkpoint is not None and time.perf_counter() - last_checkpoint > checkpoint_every:
-                checkpoint(result("running", f"checkpoint at t = {t_new:.4f} s"))
+                checkpoint(result(RunStatus.RUNNING, f"checkpoint at t = {t_new:.4f} s"))
                 last_checkpoint = time.perf_counter()
     except KeyboardInterrupt:
-        status, message = "interrupted", f"interrupted by the user at t = {st.t:.4f} s"
+        status, message = RunStatus.INTERRUPTED, f"interrupted by the user at t = {st.t:.4f} s"
     except ArithmeticError as exc:  # a numerical failure (step collapse, singular factor)
-        status, message = "failed", f"the integration failed at t = {st.t:.4f} s: {exc}"
+        status, message = RunStatus.FAILED, f"the integration failed at t = {st.t:.4f} s: {exc}"
     finally:
         if bar is not None:
             bar(None, None)
-    if status == "completed":
+    if status == RunStatus.COMPLETED:
         if st.t < sim.profile.duration - 1e-9:
-            status = "stopped"  # at stop_time: the profile goes on, the run can be resumed
+            status = RunStatus.STOPPED  # at stop_time: the profile goes on, the run can be resumed
         message = (
             f"{status} at {st.t:.4f} s ({sim.profile.omega(st.t) / RPM:.0f} rpm) after "
             f"{counters[0]} steps"
@@ -272,7 +272,7 @@ def _step_newton(
     """Modified Newton on c0·Q(y) + hist − f(y) = 0 from the guess y0, reusing the factor.
 
     The iterations with one factor are compiled
-    (:meth:`~foilbearing.reynolds.transient.TransientFactor.newton_solve`). A
+    (:meth:`~foilbearing.reynolds.transient_factor.TransientFactor.newton_solve`). A
     factor that converges too slowly (stale, or fresh but contracting at a
     rate above 0.5) is refreshed at the current iterate and the iteration
     goes on from there, up to ``_MAX_REFRESH`` times a step; a fresh factor

@@ -30,9 +30,9 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.assembly import Workspace, held_cells, set_unit_rows
 from foilbearing.reynolds.blocksolve import factor_coupled
 from foilbearing.reynolds.grid import FilmGrid
-from foilbearing.reynolds.steady import Workspace, held_cells, set_unit_rows
 
 __all__ = ["foil_operator", "pressure_response", "reynolds_jacobians"]
 
@@ -116,7 +116,7 @@ def pressure_response(
         per perturbed coordinate (e.g. cos θ and sin θ for ε_X and ε_Y).
     lift_off
         Top-foil lift-off: the cells the steady film holds at ambient
-        (:func:`~foilbearing.reynolds.steady.held_cells`) keep ΔP = 0.
+        (:func:`~foilbearing.reynolds.assembly.held_cells`) keep ΔP = 0.
 
     Returns
     -------

@@ -42,18 +42,18 @@ The branches are the ``lift_state`` of the factor: ``d`` held, ``−d`` free,
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.assembly import Workspace
 from foilbearing.reynolds.blocksolve import BlockCyclicLU, factor_coupled
 from foilbearing.reynolds.grid import FilmGrid
-from foilbearing.reynolds.steady import Workspace, set_unit_rows
+from foilbearing.reynolds.reference import border_py, newton_residual_py
+from foilbearing.reynolds.transient_factor import TransientFactor
 
 __all__ = [
     "NEWTON_CONVERGED",
@@ -205,7 +205,7 @@ class TransientSystem:
         """G = c0·Q(y) + hist − f(y) (the BDF equations) and the minimum film, in one pass.
 
         Compiled (:func:`~foilbearing.reynolds._kernels.transient_residual`);
-        :meth:`newton_residual_py` is its NumPy twin.
+        :func:`~foilbearing.reynolds.reference.newton_residual_py` is its NumPy twin.
 
         Parameters
         ----------
@@ -281,7 +281,7 @@ class TransientSystem:
             return np.zeros(self.n)
         d = self.lift_scale(y, inputs, c0)
         free = -d
-        g_p = self.newton_residual_py(y, inputs, c0, hist, free)[0][: self.n]
+        g_p = newton_residual_py(self, y, inputs, c0, hist, free)[0][: self.n]
         P = self.split(y)[0].ravel()
         return np.where(d * (P - 1.0) < g_p, d, free)
 
@@ -304,35 +304,6 @@ class TransientSystem:
         """ω/γ of the viscoelastic bump, 1/s (0 for a purely elastic bump)."""
         return inputs.omega / self.gamma if self.dynamic_bump else 0.0
 
-    def newton_residual_py(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        lift_state: FloatArray | None = None,
-        slack: FloatArray | None = None,
-    ) -> tuple[FloatArray, float]:
-        """NumPy twin of :meth:`newton_residual` (no ``out`` buffer); fills ``slack`` if given."""
-        P, U, eps, v = self.split(y)
-        H, q = self.film(y, inputs.preload)
-        g = self.grid
-        kern.residual(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, self._res)
-        out = np.empty(self.size)
-        n, nt = self.n, self.nt
-        out[:n] = c0 * (P * H).ravel() - self._res.ravel() / (self.area * self.sigma)
-        f_u = inputs.omega / self.gamma * (self.c_bump * q - U) if self.dynamic_bump else 0.0
-        out[n : n + nt] = c0 * U - f_u
-        out[n + nt : n + nt + 2] = c0 * eps - v
-        out[-2:] = c0 * v - self.force_scale * (self.w @ (P.ravel() - 1.0)) - inputs.force
-        out += hist
-        d = self.lift_state(y, inputs, c0, hist) if lift_state is None else lift_state
-        if slack is not None:
-            safe = np.where(d > 0.0, d, 1.0)
-            slack[:] = np.where(d > 0.0, -out[:n] / safe, np.where(d < 0.0, 1.0 - P.ravel(), 0.0))
-        out[:n] = np.where(d > 0.0, d * (P.ravel() - 1.0), out[:n])
-        return out, float(H.min())
-
     def factorize(
         self,
         y: FloatArray,
@@ -349,11 +320,13 @@ class TransientSystem:
         the journal's film force. :meth:`TransientFactor.solve` equals a solve
         with :meth:`jacobian` (tested). The blocks come from one compiled call
         (:func:`~foilbearing.reynolds._kernels.transient_jacobian`, twin
-        :meth:`jacobian_blocks_py`), the border solve and the 2×2 Woodbury
-        inverse from another (:func:`~foilbearing.reynolds._kernels.transient_border`,
-        twin :meth:`border_py`, also the path of the SuperLU fallback). ``hist``
-        (the BDF history) decides which cells lift-off holds at ambient, unless
-        ``branches`` (a factor's ``lift_state``, e.g. the last step's) gives them.
+        :func:`~foilbearing.reynolds.reference.jacobian_blocks_py`), the border solve
+        and the 2×2 Woodbury inverse from another
+        (:func:`~foilbearing.reynolds._kernels.transient_border`, twin
+        :func:`~foilbearing.reynolds.reference.border_py`, also the path of the
+        SuperLU fallback). ``hist`` (the BDF history) decides which cells lift-off
+        holds at ambient, unless ``branches`` (a factor's ``lift_state``, e.g. the
+        last step's) gives them.
         """
         g = self.grid
         n = self.n
@@ -394,80 +367,19 @@ class TransientSystem:
             lift_state,
         )
         lu = factor_coupled(jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
-        if isinstance(lu, BlockCyclicLU):
+        # The compiled solves need the block cyclic factors (not the SuperLU fallback).
+        fac = lu._fac if isinstance(lu, BlockCyclicLU) else None
+        if fac is not None:
             y_border = np.empty((n, 2))
             small_inv = np.empty((2, 2))
-            kern.transient_border(lu._fac, a_pe, self.s_vp, c0, y_border, small_inv)
+            kern.transient_border(fac, a_pe, self.s_vp, c0, y_border, small_inv)
         else:
-            y_border, small_inv = self.border_py(lu, a_pe, c0)
+            y_border, small_inv = border_py(self, lu, a_pe, c0)
         factor = TransientFactor(
-            self, lu, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active, lift_state
+            self, lu, fac, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active, lift_state
         )
         factor.coupled_data = jc
         return factor
-
-    def jacobian_blocks_py(
-        self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray
-    ) -> tuple[Any, ...]:
-        """NumPy twin of :func:`~foilbearing.reynolds._kernels.transient_jacobian`.
-
-        Returns
-        -------
-        H : ndarray, shape (n_theta, n_z)
-            Film h/C.
-        jp, jh : ndarray, shape (nnz,)
-            Scaled Reynolds Jacobians ``c0·diag(H) − ∂R/∂P/(Aσ)`` and
-            ``c0·diag(P) − ∂R/∂H/(Aσ)`` (stencil data).
-        active : ndarray, shape (n_theta,)
-            1.0 on engaged θ-rows, else 0.0.
-        jc : ndarray, shape (3 n_z · n,)
-            Data of the pressure block B on the coupled pattern.
-        a_pe : ndarray, shape (n, 2)
-            ``jh ∂H/∂ε``.
-        lift_state : ndarray, shape (n,)
-            Lift-off branches (``d`` held, ``−d`` free, zeros without lift-off).
-        clamped : ndarray of bool, shape (n,)
-            Cells held at ambient (rows ``d e_k`` in B, zero rows of jh and a_pe).
-        """
-        P, _U, _eps, _v = self.split(y)
-        H, _q = self.film(y, inputs.preload)
-        g = self.grid
-        Pc = np.ascontiguousarray(P)
-        ws = self.ws
-        jp_raw = np.empty(ws.jp.size)
-        jh_raw = np.empty(ws.jh.size)
-        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, jp_raw)
-        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, jh_raw)
-        scale = 1.0 / (self.area * self.sigma)
-        # Row scaling of the Reynolds block: c0·∂(PH) − ∂R/(Aσ).
-        jp = -scale * jp_raw
-        jh = -scale * jh_raw
-        jp[self.diag_slots] += c0 * H.ravel()
-        jh[self.diag_slots] += c0 * P.ravel()
-        rate = self.rate(inputs)
-        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
-        c_eff = self.c_act + rate * self.c_bump / (c0 + rate)
-        n = self.n
-        d = self.lift_state(y, inputs, c0, hist)
-        clamped = d > 0.0
-        jh[clamped[ws.entry_rows]] = 0.0
-        jc = np.empty(self._jc.size)
-        kern.coupled_jacobian_py(jp, jh, c_eff * active / g.n_z, g.n_z, jc)
-        rows = np.flatnonzero(clamped)
-        set_unit_rows(jc, rows, d[rows], g.n_theta, g.n_z)
-        jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
-        a_pe = jh_mat @ self.dh_de
-        return H, jp, jh, active, jc, np.asarray(a_pe), d, clamped
-
-    def border_py(self, lu: Any, a_pe: FloatArray, c0: float) -> tuple[FloatArray, FloatArray]:
-        """NumPy twin of :func:`~foilbearing.reynolds._kernels.transient_border`.
-
-        ``lu`` is any LU of B with a SuperLU-like ``solve``. Returns
-        ``y_border = B⁻¹ a_pe / c0²`` (n, 2) and ``(I + s_vp y_border)⁻¹`` (2, 2).
-        """
-        y_border = np.asarray(lu.solve(np.ascontiguousarray(a_pe / c0**2)), dtype=np.float64)
-        small = np.eye(2) + self.s_vp @ y_border  # Woodbury: I + V^T B^-1 U, V^T = S_vp
-        return y_border, np.linalg.inv(small).astype(np.float64)
 
     def min_film(self, y: FloatArray, preload: FloatArray) -> float:
         """Smallest film thickness h/C."""
@@ -530,337 +442,3 @@ class TransientSystem:
             held = (d > 0.0).astype(float)
             full = sp.diags(1.0 - held) @ full + sp.diags(d)
         return sp.csc_matrix(full)
-
-
-class TransientFactor:
-    """A factorised Newton matrix (see :meth:`TransientSystem.factorize`)."""
-
-    def __init__(
-        self,
-        system: TransientSystem,
-        lu: object,
-        jh_data: FloatArray,
-        a_pe: FloatArray,
-        s_vp: FloatArray,
-        y_border: FloatArray,
-        small_inv: FloatArray,
-        c0: float,
-        rate: float,
-        active: FloatArray,
-        lift_state: FloatArray,
-    ) -> None:
-        self.sys, self.lu, self.jh_data, self.a_pe = system, lu, jh_data, a_pe
-        self.s_vp, self.y_border, self.small_inv = s_vp, y_border, small_inv
-        self.c0, self.rate, self.active = c0, rate, active
-        #: Lift-off branch of each cell (``d`` held, ``−d`` free, 0 without lift-off):
-        #: those of the factorisation, then moved by the Newton iterations that use it.
-        self.lift_state = lift_state
-        self._jh: sp.csr_matrix | None = None
-        #: CSR data of the factorised pressure block B (on the coupled pattern).
-        self.coupled_data: FloatArray | None = None
-        # The compiled solve needs the block cyclic factors (not the SuperLU fallback).
-        self._fac = lu._fac if isinstance(lu, BlockCyclicLU) else None
-        # Arguments of the compiled Newton iteration that do not change with the inputs.
-        s, g = system, system.grid
-        self._args_sys: tuple[Any, ...] = (
-            s.cos_t,
-            s.sin_t,
-            s.c_act,
-            s.c_bump,
-            lift_state,
-            s.w,
-            s.force_scale,
-            s.area * s.sigma,
-            g.d_theta,
-            g.d_z,
-            s._H,
-            s._res,
-        )
-        self._args_fac: tuple[Any, ...] = (
-            self._fac,
-            jh_data,
-            s.jh_rows,
-            s.ws.indptr,
-            a_pe,
-            s_vp,
-            y_border,
-            small_inv,
-            c0,
-            rate,
-            active,
-            s._work,
-        )
-
-    @property
-    def jh(self) -> sp.csr_matrix:
-        """The scaled film Jacobian ``c0·diag(P) − ∂R/∂H/(Aσ)`` as a CSR matrix (built lazily)."""
-        if self._jh is None:
-            s = self.sys
-            self._jh = sp.csr_matrix((self.jh_data, s.ws.indices, s.ws.indptr), shape=(s.n, s.n))
-        return self._jh
-
-    def _step_args(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        weights: FloatArray,
-        g: FloatArray,
-        dy: FloatArray,
-    ) -> tuple[Any, ...]:
-        """Arguments of the compiled Newton step (:func:`~foilbearing.reynolds._kernels.transient_newton_step`)."""
-        s = self.sys
-        return (
-            y,
-            c0,
-            hist,
-            inputs.lam,
-            s.rate(inputs),
-            inputs.preload,
-            inputs.force,
-            *self._args_sys,
-            g,
-            s._slack,
-            *self._args_fac,
-            dy,
-            weights,
-        )
-
-    def newton_step(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        weights: FloatArray,
-        g: FloatArray,
-        dy: FloatArray,
-    ) -> tuple[float, float, float]:
-        """One modified-Newton iteration on the BDF equations, y updated in place.
-
-        Compiled (:func:`~foilbearing.reynolds._kernels.transient_newton_step`) on the
-        block cyclic factors; :meth:`newton_step_py` (its NumPy twin) with the
-        SuperLU fallback.
-
-        Parameters
-        ----------
-        y : ndarray, shape (size,)
-            Iterate (C-contiguous float64), ``y −= Δy`` unless the film is closed.
-        inputs : Inputs
-            Inputs at the new time.
-        c0 : float
-            BDF leading coefficient of the step (the factor may be older), 1/s.
-        hist : ndarray, shape (size,)
-            History part of the BDF equations.
-        weights : ndarray, shape (size,)
-            Error weights of the convergence norm.
-        g, dy : ndarray, shape (size,)
-            Buffers, filled with the residual G(y) and the update Δy.
-
-        Returns
-        -------
-        h_min : float
-            Minimum film of y before the update.
-        err : float
-            Weighted max-norm of Δy (NaN when ``h_min <= 0``: y is left as it was).
-        p_min : float
-            Smallest pressure after the update (NaN when not updated).
-        """
-        if self._fac is None:
-            return self.newton_step_py(y, inputs, c0, hist, weights, g, dy)
-        args = self._step_args(y, inputs, c0, hist, weights, g, dy)
-        h_min, err, p_min = kern.transient_newton_step(*args)
-        return float(h_min), float(err), float(p_min)
-
-    def newton_solve(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        weights: FloatArray,
-        work: tuple[FloatArray, FloatArray, FloatArray],
-        controls: tuple[float, float, int],
-        fresh: bool,
-        first_change: float,
-    ) -> tuple[int, int, float, float]:
-        """Modified-Newton iterations with this factor until they converge or must stop.
-
-        Compiled (:func:`~foilbearing.reynolds._kernels.transient_newton_solve`, which
-        documents the outcomes) on the block cyclic factors; :meth:`newton_solve_py`
-        (its twin) with the SuperLU fallback.
-
-        Parameters
-        ----------
-        y : ndarray, shape (size,)
-            Iterate, updated in place.
-        inputs, c0, hist, weights
-            As in :meth:`newton_step`.
-        work : tuple of three ndarrays, shape (size,)
-            Buffers for the residual, the update and Q(y) of the converged y.
-        controls : tuple
-            ``(newton_tol, newton_fraction, max_newton)`` (see ``OrbitSettings``).
-        fresh : bool
-            Whether the factor was taken at this step.
-        first_change : float
-            The step's first update so far (``inf`` at the start of a step).
-
-        Returns
-        -------
-        tuple
-            ``(outcome, iterations, first_change, h_min)``.
-        """
-        if self._fac is None:
-            return self.newton_solve_py(
-                y, inputs, c0, hist, weights, work, controls, fresh, first_change
-            )
-        g, dy, q_out = work
-        args: tuple[Any, ...] = (
-            *self._step_args(y, inputs, c0, hist, weights, g, dy),
-            q_out,
-            *controls,
-            fresh,
-            first_change,
-        )
-        outcome, its, first, h_min = kern.transient_newton_solve(*args)
-        return int(outcome), int(its), float(first), float(h_min)
-
-    def newton_solve_py(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        weights: FloatArray,
-        work: tuple[FloatArray, FloatArray, FloatArray],
-        controls: tuple[float, float, int],
-        fresh: bool,
-        first_change: float,
-    ) -> tuple[int, int, float, float]:
-        """NumPy twin of :meth:`newton_solve` (:meth:`newton_step_py` in a loop)."""
-        g, dy, q_out = work
-        newton_tol, newton_fraction, max_newton = controls
-        prev = math.inf
-        k = since = switches = 0
-        while True:
-            k += 1
-            since += 1
-            h_min, err, p_min = self.newton_step_py(y, inputs, c0, hist, weights, g, dy)
-            if h_min <= 0.0:
-                return kern.NEWTON_FILM_CLOSED, k, first_change, math.nan
-            if not math.isfinite(err) or p_min <= 0.0:
-                return kern.NEWTON_NOT_FINITE, k, first_change, math.nan
-            if first_change == math.inf:
-                first_change = err
-            tol = max(newton_tol, newton_fraction * first_change)
-            conv = err / prev if since > 1 else math.nan
-            if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
-                flipped = kern.switch_branches_py(self.lift_state, self.sys._slack, weights)
-                if flipped == 0:
-                    _q, h_new = self.sys.storage_min_film(y, inputs.preload, q_out)
-                    if h_new > 0.0:
-                        return kern.NEWTON_CONVERGED, k, first_change, h_new
-                elif switches < kern.MAX_SWITCHES and flipped <= kern.MAX_MOVED_KEPT:
-                    switches += 1
-                    since = 0
-                    prev = math.inf
-                    continue
-                else:
-                    return kern.NEWTON_REFRESH, k, first_change, math.nan
-            if fresh:
-                if since >= max_newton or conv >= 1.0:
-                    if switches > 0:
-                        return kern.NEWTON_REFRESH, k, first_change, math.nan
-                    return kern.NEWTON_TOO_SLOW, k, first_change, math.nan
-                if conv > 0.5:
-                    return kern.NEWTON_REFRESH, k, first_change, math.nan
-            elif since >= max_newton or conv >= 1.0:
-                return kern.NEWTON_DIVERGED, k, first_change, math.nan
-            elif conv ** (max_newton - since) / (1.0 - conv) * err > tol:
-                return kern.NEWTON_REFRESH, k, first_change, math.nan
-            prev = err
-
-    def newton_step_py(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        weights: FloatArray,
-        g: FloatArray,
-        dy: FloatArray,
-    ) -> tuple[float, float, float]:
-        """NumPy twin of :meth:`newton_step`: residual, solve and update in sequence."""
-        s = self.sys
-        g[:], h_min = s.newton_residual_py(y, inputs, c0, hist, self.lift_state, s._slack)
-        if h_min <= 0.0:
-            return h_min, math.nan, math.nan
-        dy[:] = self.solve_py(g)
-        err, p_min = kern.newton_update_py(y, dy, weights, s.n)
-        return h_min, err, p_min
-
-    def solve(self, g: FloatArray, out: FloatArray | None = None) -> FloatArray:
-        """Δy with J Δy = g (J the Newton matrix at factorisation).
-
-        Compiled (:func:`~foilbearing.reynolds._kernels.transient_solve`) on the
-        block cyclic factors; :meth:`solve_py` (its NumPy twin) with the SuperLU
-        fallback.
-
-        Parameters
-        ----------
-        g : ndarray, shape (size,)
-            Right-hand side.
-        out : ndarray, shape (size,), optional
-            Buffer for Δy (a new array if None; not ``g`` itself).
-
-        Returns
-        -------
-        ndarray, shape (size,)
-            Δy.
-        """
-        if self._fac is None:
-            d = self.solve_py(g)
-            if out is None:
-                return d
-            out[:] = d
-            return out
-        if out is None:
-            out = np.empty_like(g)
-        s = self.sys
-        kern.transient_solve(
-            g,
-            self._fac,
-            self.jh_data,
-            s.jh_rows,
-            s.ws.indptr,
-            self.a_pe,
-            self.s_vp,
-            self.y_border,
-            self.small_inv,
-            self.c0,
-            self.rate,
-            self.active,
-            s.c_bump,
-            s._work,
-            out,
-        )
-        return out
-
-    def solve_py(self, g: FloatArray) -> FloatArray:
-        """NumPy twin of :meth:`solve` (any LU with a SuperLU-like ``solve``)."""
-        s = self.sys
-        n, nt, nz = s.n, s.nt, s.grid.n_z
-        c0, rate = self.c0, self.rate
-        g_p, g_u, g_e, g_v = g[:n], g[n : n + nt], g[n + nt : n + nt + 2], g[-2:]
-        # Eliminate U: (c0 + rate) dU − rate c_b q'(dP) = g_u
-        rhs = g_p - self.jh @ np.repeat(g_u / (c0 + rate), nz)
-        # Eliminate the journal: c0 de − dv = g_e, c0 dv − S_vp dP = g_v
-        rhs -= self.a_pe @ ((g_v + c0 * g_e) / c0**2)
-        z = self.lu.solve(rhs)  # type: ignore[attr-defined]
-        d_p = z - self.y_border @ (self.small_inv @ (self.s_vp @ z))
-        d_e = (self.s_vp @ d_p + g_v + c0 * g_e) / c0**2
-        d_v = c0 * d_e - g_e
-        dq = self.active * d_p.reshape(nt, nz).mean(axis=1)
-        d_u = (g_u + rate * s.c_bump * dq) / (c0 + rate)
-        return np.concatenate([d_p, d_u, d_e, d_v])

@@ -336,6 +336,7 @@ def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None])
     from foilbearing.orbit import simulate
     from foilbearing.orbit.analysis import analyse_orbit, write_orbit_figures
     from foilbearing.orbit.netcdf import to_netcdf
+    from foilbearing.orbit.spec import RunSpec
 
     lo, hi = plan.speeds[0], plan.speeds[-1]
     profile = linear_ramp(lo, hi, plan.orbit_acceleration)
@@ -346,11 +347,10 @@ def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None])
             last[0] = t
             stage(f"    orbit: t = {t:5.2f} s, {w / RPM:6.0f} rpm")
 
-    program, ramp = None, None
+    program = None
     if plan.orbit_voltage_ramp is not None and case.actuators is not None:
         t0, t1, volts = plan.orbit_voltage_ramp
         program = voltage_ramp(t0, t1, volts, initial=np.asarray(case.actuators.voltages))
-        ramp = f"{t0}s:{t1}s:{volts}V"
     try:
         result = simulate(case, profile, program, progress=progress)
     except (InputError, SolverError) as exc:  # no equilibrium to start from at the first speed
@@ -360,19 +360,12 @@ def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None])
         )
         stage(f"  orbit: {message}")
         return {"status": "failed", "message": message}
-    spec = {
-        "case": case.source,
-        "speed_ramp": f"{lo / RPM}rpm:{hi / RPM}rpm:{plan.orbit_acceleration}rad/s**2",
-        "speed": None,
-        "duration": None,
-        "voltage_ramp": ramp,
-        "controller": None,
-        "stop_time": None,
-        "steps_per_rev": result.settings.steps_per_rev,
-        "order": result.settings.order,
-        "sample_rate": f"{result.settings.sample_rate}Hz",
-        "subambient": None,
-    }
+    spec = RunSpec.of(
+        profile,
+        program,
+        case=case.source,
+        settings=result.settings,
+    )
     path = out / "orbit_speedup.nc"
     write_with(path, lambda tmp: to_netcdf(result, spec, tmp))
     analysis = analyse_orbit(result)

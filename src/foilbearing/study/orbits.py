@@ -91,6 +91,7 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
     from foilbearing.orbit import simulate
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.orbit.netcdf import to_netcdf
+    from foilbearing.orbit.spec import RunSpec, ScheduleText
 
     case = replace(case, rotor=replace(case.rotor, imbalance=run.imbalance))
     profile = linear_ramp(3000 * RPM, 90000 * RPM, 500.0)
@@ -101,7 +102,7 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
 
         program = run.schedule.program(profile)
         text = schedule_toml(run.schedule, case.title)
-        schedule_spec = {"path": str(out / "schedule.toml"), "text": text}
+        schedule_spec = ScheduleText(text, str(out / "schedule.toml"))
     last = [0.0]
 
     def progress(t: float, w: float) -> None:
@@ -111,22 +112,13 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
 
     result = simulate(case, profile, program, progress=progress, stop_time=stop_time)
     ramp = run.ramp
-    spec = {
-        "case": case.source,
-        "speed_ramp": "3000rpm:90000rpm:500rad/s**2",
-        "speed": None,
-        "duration": None,
-        "voltage_ramp": (
-            None if ramp is None or schedule_spec else f"{ramp[0]}s:{ramp[1]}s:{run.volts}V"
-        ),
-        "controller": None,
-        "voltage_schedule": schedule_spec,
-        "stop_time": None,
-        "steps_per_rev": result.settings.steps_per_rev,
-        "order": result.settings.order,
-        "sample_rate": f"{result.settings.sample_rate}Hz",
-        "subambient": None,
-    }
+    spec = RunSpec.of(  # a resumed run goes on to the end of the profile
+        profile,
+        program if schedule_spec is None else schedule_spec,
+        case=case.source,
+        imbalance=run.imbalance,
+        settings=result.settings,
+    )
     path = out / f"orbit_{run.label}.nc"
     write_with(path, lambda tmp: to_netcdf(result, spec, tmp))
     analysis = analyse_orbit(result)

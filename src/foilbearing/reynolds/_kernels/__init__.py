@@ -47,38 +47,23 @@ foil Jacobian has dense ``n_z × n_z`` blocks on three θ block-diagonals
 factorised by block cyclic elimination (:func:`block_cyclic_factor`,
 :func:`block_cyclic_solve`; wrapped by :mod:`foilbearing.reynolds.blocksolve`).
 
-Every kernel has a plain-NumPy twin (suffix ``_py``) with the same signature;
-``tests/test_kernels.py`` checks each kernel against its twin. The kernels of
-the transient Newton iteration (:func:`transient_residual`,
-:func:`transient_storage`, :func:`transient_solve`, :func:`transient_jacobian`,
-:func:`transient_border`, :func:`transient_newton_step`) have their twins in
-:mod:`foilbearing.reynolds.transient` (the methods they replace, named in
-each docstring), checked by ``tests/test_transient_kernels.py``.
+Every kernel has a plain-NumPy twin (suffix ``_py``, the same signature; the
+twins of the transient Newton iteration take the ``TransientSystem`` or
+``TransientFactor`` as first argument) in :mod:`foilbearing.reynolds.reference`;
+``tests/test_kernels.py``, ``tests/test_block_solver.py`` and
+``tests/test_transient_kernels.py`` check each kernel against its twin.
 
 Modules: :mod:`.flux` (Bernoulli function, face fluxes, patterns, residual and
-Jacobians), :mod:`.blockcyclic` (the block cyclic LU) and :mod:`.bdf` (the
-transient Newton iteration); their names are all here.
+Jacobians), :mod:`.blockcyclic` (the block cyclic LU), :mod:`.bdf` (the BDF
+equations of the transient system: residual, Jacobian blocks, solve, step
+set-up) and :mod:`.newton` (the Newton iteration on them, with the lift-off
+branch switching); their names are all here.
 """
 
 from foilbearing.reynolds._kernels.bdf import (
-    MAX_MOVED_KEPT,
-    MAX_SWITCHES,
-    NEWTON_CONVERGED,
-    NEWTON_DIVERGED,
-    NEWTON_FILM_CLOSED,
-    NEWTON_NOT_FINITE,
-    NEWTON_REFRESH,
-    NEWTON_TOO_SLOW,
     bdf_setup,
-    bdf_setup_py,
-    newton_update,
-    newton_update_py,
-    switch_branches,
-    switch_branches_py,
     transient_border,
     transient_jacobian,
-    transient_newton_solve,
-    transient_newton_step,
     transient_residual,
     transient_solve,
     transient_storage,
@@ -90,28 +75,33 @@ from foilbearing.reynolds._kernels.blockcyclic import (
     block_cyclic_alloc,
     block_cyclic_chains,
     block_cyclic_factor,
-    block_cyclic_factor_py,
     block_cyclic_solve,
-    block_cyclic_solve_py,
 )
 from foilbearing.reynolds._kernels.flux import (
     _jacobian_both,
     bernoulli,
     bernoulli_deriv,
-    bernoulli_deriv_py,
-    bernoulli_py,
     coupled_jacobian,
-    coupled_jacobian_py,
     coupled_pattern,
     jacobian_H,
-    jacobian_H_py,
     jacobian_P,
-    jacobian_P_py,
     lift_off_rows,
-    lift_off_rows_py,
     residual,
-    residual_py,
     stencil_pattern,
+)
+from foilbearing.reynolds._kernels.newton import (
+    MAX_MOVED_KEPT,
+    MAX_SWITCHES,
+    NEWTON_CONVERGED,
+    NEWTON_DIVERGED,
+    NEWTON_FILM_CLOSED,
+    NEWTON_NOT_FINITE,
+    NEWTON_REFRESH,
+    NEWTON_TOO_SLOW,
+    newton_update,
+    switch_branches,
+    transient_newton_solve,
+    transient_newton_step,
 )
 
 __all__ = [
@@ -128,33 +118,21 @@ __all__ = [
     "NEWTON_TOO_SLOW",
     "_jacobian_both",
     "bdf_setup",
-    "bdf_setup_py",
     "bernoulli",
     "bernoulli_deriv",
-    "bernoulli_deriv_py",
-    "bernoulli_py",
     "block_cyclic_alloc",
     "block_cyclic_chains",
     "block_cyclic_factor",
-    "block_cyclic_factor_py",
     "block_cyclic_solve",
-    "block_cyclic_solve_py",
     "coupled_jacobian",
-    "coupled_jacobian_py",
     "coupled_pattern",
     "jacobian_H",
-    "jacobian_H_py",
     "jacobian_P",
-    "jacobian_P_py",
     "lift_off_rows",
-    "lift_off_rows_py",
     "newton_update",
-    "newton_update_py",
     "residual",
-    "residual_py",
     "stencil_pattern",
     "switch_branches",
-    "switch_branches_py",
     "transient_border",
     "transient_jacobian",
     "transient_newton_solve",

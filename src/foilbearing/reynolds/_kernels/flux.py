@@ -1,5 +1,5 @@
 """Finite-volume Reynolds residual and Jacobians: Bernoulli function, face fluxes,
-sparsity patterns, the compiled kernels and their NumPy twins (see the package docstring)."""
+sparsity patterns and the compiled kernels (NumPy twins in :mod:`foilbearing.reynolds.reference`)."""
 
 from __future__ import annotations
 
@@ -44,8 +44,8 @@ def _bern_pos(x: float) -> tuple[float, float]:
 def bernoulli(x: float) -> float:
     """Bernoulli function ``B(x) = x/(eˣ − 1)``, robust for all real x.
 
-    Twin: :func:`bernoulli_py`. Negative arguments use ``B(x) = B(−x) − x``,
-    which is exact and free of overflow.
+    Twin: :func:`~foilbearing.reynolds.reference.bernoulli_py`. Negative arguments use
+    ``B(x) = B(−x) − x``, which is exact and free of overflow.
     """
     if x >= 0.0:
         return _bern_pos(x)[0]
@@ -54,39 +54,13 @@ def bernoulli(x: float) -> float:
 
 @njit(cache=True)
 def bernoulli_deriv(x: float) -> float:
-    """Derivative ``B'(x)``; twin :func:`bernoulli_deriv_py`.
+    """Derivative ``B'(x)``; twin :func:`~foilbearing.reynolds.reference.bernoulli_deriv_py`.
 
     Negative arguments use ``B'(x) = −B'(−x) − 1``.
     """
     if x >= 0.0:
         return _bern_pos(x)[1]
     return -_bern_pos(-x)[1] - 1.0
-
-
-def bernoulli_py(x: FloatArray | float) -> FloatArray:
-    """NumPy twin of :func:`bernoulli` (vectorised)."""
-    x = np.asarray(x, dtype=np.float64)
-    a = np.abs(x)
-    a2 = a * a
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        big = a / np.expm1(np.where(a < _SERIES_X, 1.0, a))
-    series = 1.0 - 0.5 * a + a2 / 12.0 - a2 * a2 / 720.0
-    b_pos = np.where(a < _SERIES_X, series, big)
-    return np.where(x >= 0.0, b_pos, b_pos - x)
-
-
-def bernoulli_deriv_py(x: FloatArray | float) -> FloatArray:
-    """NumPy twin of :func:`bernoulli_deriv` (vectorised)."""
-    x = np.asarray(x, dtype=np.float64)
-    a = np.abs(x)
-    a2 = a * a
-    safe = np.where(a < _SERIES_X, 1.0, a)
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        b = safe / np.expm1(safe)
-    big = b * (1.0 - b) / safe - b
-    series = -0.5 + a / 6.0 - a2 * a / 180.0 + a2 * a2 * a / 5040.0
-    d_pos = np.where(a < _SERIES_X, series, big)
-    return np.where(x >= 0.0, d_pos, -d_pos - 1.0)
 
 
 # ---------------------------------------------------------------------------
@@ -287,7 +261,9 @@ def _end_face(pa: float, ha: float, dz: float) -> tuple[float, float, float]:
 def residual(
     P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, out: FloatArray
 ) -> None:
-    """Finite-volume residual of Eq. (4), cell-integrated; twin :func:`residual_py`.
+    """Finite-volume residual of Eq. (4), cell-integrated.
+
+    Twin: :func:`~foilbearing.reynolds.reference.residual_py`.
 
     Parameters
     ----------
@@ -409,7 +385,7 @@ def jacobian_P(
     """Fill ``data`` of the CSR ``dR/dP`` (pattern :func:`stencil_pattern`).
 
     Exact derivatives, including those of ``B(Pe)`` through ``Pe(P_f, H_f)``.
-    Twin: :func:`jacobian_P_py`. Arguments as :func:`residual`;
+    Twin: :func:`~foilbearing.reynolds.reference.jacobian_P_py`. Arguments as :func:`residual`;
     ``data`` has shape ``(nnz,)`` and is overwritten.
     """
     _jacobian(P, H, lam, d_theta, d_z, data, False)
@@ -421,7 +397,7 @@ def jacobian_H(
 ) -> None:
     """Fill ``data`` of the CSR ``dR/dH`` (pattern :func:`stencil_pattern`).
 
-    Twin: :func:`jacobian_H_py`. Arguments as :func:`jacobian_P`.
+    Twin: :func:`~foilbearing.reynolds.reference.jacobian_H_py`. Arguments as :func:`jacobian_P`.
     """
     _jacobian(P, H, lam, d_theta, d_z, data, True)
 
@@ -437,7 +413,7 @@ def coupled_jacobian(
     ``s[i] = c_i/n_z`` where ``p̄_i > 0`` and ``0`` elsewhere. Row ``(i, j)``
     of the product is therefore constant over ``k`` in each column block
     ``i' ∈ {i−1, i, i+1}``: ``s[i'] · Σ_{j'} dR[i, j]/dH[i', j']``.
-    Twin: :func:`coupled_jacobian_py`.
+    Twin: :func:`~foilbearing.reynolds.reference.coupled_jacobian_py`.
 
     Parameters
     ----------
@@ -489,7 +465,7 @@ def unit_coupled_row(data: DataArray, k: int, value: Any, n_theta: int, n_z: int
 
     Row ``k = i n_z + j`` holds 3 n_z entries, θ-blocks in sorted column order:
     its own block is first for i = 0, last for i = n_theta − 1, in the middle
-    otherwise. Twin: :func:`foilbearing.reynolds.steady.set_unit_rows`.
+    otherwise. Twin: :func:`foilbearing.reynolds.assembly.set_unit_rows`.
     """
     width = 3 * n_z
     i = k // n_z
@@ -518,7 +494,7 @@ def lift_off_rows(
     :mod:`foilbearing.reynolds.steady`): a cell with ``d (P − 1) < −R`` is held
     at ambient, its residual becomes ``−d (P − 1)`` and its matrix row ``−d e_k``
     (on the coupled pattern if ``coupled``, else on the stencil pattern), and
-    its row of ∂R/∂H is zero. Twin: :func:`lift_off_rows_py`.
+    its row of ∂R/∂H is zero. Twin: :func:`~foilbearing.reynolds.reference.lift_off_rows_py`.
 
     Parameters
     ----------
@@ -563,162 +539,3 @@ def lift_off_rows(
                 jp_data[e] = 0.0
             jp_data[diag_slots[k]] = -d
     return count
-
-
-# ---------------------------------------------------------------------------
-# NumPy twins
-# ---------------------------------------------------------------------------
-
-
-def _faces_py(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float
-) -> tuple[tuple[FloatArray, ...], tuple[FloatArray, ...], tuple[FloatArray, ...]]:
-    """Vectorised face fluxes and derivatives: θ-faces (n_theta, n_z),
-    interior Z-faces (n_theta, n_z−1), end faces (n_theta,)."""
-    pa, pb = P, np.roll(P, -1, axis=0)
-    ha, hb = H, np.roll(H, -1, axis=0)
-    pf = 0.5 * (pa + pb)
-    hf = 0.5 * (ha + hb)
-    pe = lam * d_theta / (pf * hf**2)
-    b = bernoulli_py(pe)
-    db = bernoulli_deriv_py(pe)
-    dp = pb - pa
-    g = pf * hf**3 * b / d_theta
-    g_pf = hf**3 * (b - pe * db) / d_theta
-    g_hf = pf * hf**2 * (3.0 * b - 2.0 * pe * db) / d_theta
-    th = (
-        g * dp - lam * hf * pa,
-        0.5 * g_pf * dp - g - lam * hf,
-        0.5 * g_pf * dp + g,
-        0.5 * (g_hf * dp - lam * pa),
-    )
-    pa, pb = P[:, :-1], P[:, 1:]
-    ha, hb = H[:, :-1], H[:, 1:]
-    pf = 0.5 * (pa + pb)
-    hf = 0.5 * (ha + hb)
-    dp = pb - pa
-    d = pf * hf**3
-    zf = (
-        d * dp / d_z,
-        (0.5 * hf**3 * dp - d) / d_z,
-        (0.5 * hf**3 * dp + d) / d_z,
-        1.5 * pf * hf**2 * dp / d_z,
-    )
-    pl, hl = P[:, -1], H[:, -1]
-    end = (
-        hl**3 * (1.0 - pl**2) / d_z,
-        -2.0 * hl**3 * pl / d_z,
-        3.0 * hl**2 * (1.0 - pl**2) / d_z,
-    )
-    return th, zf, end
-
-
-def residual_py(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, out: FloatArray
-) -> None:
-    """NumPy twin of :func:`residual`."""
-    th, zf, end = _faces_py(P, H, lam, d_theta, d_z)
-    qt = th[0]
-    qz = np.concatenate([np.zeros((P.shape[0], 1)), zf[0], end[0][:, None]], axis=1)
-    out[:, :] = d_z * (qt - np.roll(qt, 1, axis=0)) + d_theta * (qz[:, 1:] - qz[:, :-1])
-
-
-def _jacobian_py(
-    P: FloatArray,
-    H: FloatArray,
-    lam: float,
-    d_theta: float,
-    d_z: float,
-    data: FloatArray,
-    wrt_h: bool,
-) -> None:
-    n_theta, n_z = P.shape
-    th, zf, end = _faces_py(P, H, lam, d_theta, d_z)
-    if wrt_h:
-        t_a, t_b = th[3], th[3]
-        z_a, z_b = zf[3], zf[3]
-        e_a = end[2]
-    else:
-        t_a, t_b = th[1], th[2]
-        z_a, z_b = zf[1], zf[2]
-        e_a = end[1]
-    zeros = np.zeros((n_theta, 1))
-    # derivative of R[i, j] w.r.t. each stencil neighbour
-    vals = np.zeros((n_theta, n_z, 5))
-    vals[:, :, E] = d_z * t_b
-    vals[:, :, W] = -d_z * np.roll(t_a, 1, axis=0)
-    vals[:, :, N] = d_theta * np.concatenate([z_b, zeros], axis=1)
-    vals[:, :, S] = -d_theta * np.concatenate([zeros, z_a], axis=1)
-    z_out = np.concatenate([z_a, e_a[:, None]], axis=1)
-    z_in = np.concatenate([zeros, z_b], axis=1)
-    vals[:, :, C] = d_z * (t_a - np.roll(t_b, 1, axis=0)) + d_theta * (z_out - z_in)
-    _, _, slots = stencil_pattern(n_theta, n_z)
-    mask = slots >= 0
-    data[:] = 0.0
-    data[slots[mask]] = vals[mask]
-
-
-def jacobian_P_py(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
-) -> None:
-    """NumPy twin of :func:`jacobian_P`."""
-    _jacobian_py(P, H, lam, d_theta, d_z, data, False)
-
-
-def jacobian_H_py(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
-) -> None:
-    """NumPy twin of :func:`jacobian_H`."""
-    _jacobian_py(P, H, lam, d_theta, d_z, data, True)
-
-
-def coupled_jacobian_py(
-    jp_data: FloatArray, jh_data: FloatArray, s: FloatArray, n_z: int, out: FloatArray
-) -> None:
-    """NumPy twin of :func:`coupled_jacobian` (via scipy.sparse products)."""
-    import scipy.sparse as sp
-
-    n_theta = s.shape[0]
-    n = n_theta * n_z
-    indptr, indices, _ = stencil_pattern(n_theta, n_z)
-    jp = sp.csr_matrix((jp_data, indices, indptr), shape=(n, n))
-    jh = sp.csr_matrix((jh_data, indices, indptr), shape=(n, n))
-    dhdp = sp.kron(sp.diags(s), np.ones((n_z, n_z)), format="csr")
-    full = (jp + jh @ dhdp).toarray()
-    c_indptr, c_indices = coupled_pattern(n_theta, n_z)
-    rows = np.repeat(np.arange(n), np.diff(c_indptr))
-    out[:] = full[rows, c_indices]
-
-
-def lift_off_rows_py(
-    P: FloatArray,
-    res: FloatArray,
-    jp_data: FloatArray,
-    jh_data: FloatArray,
-    coupled_data: FloatArray,
-    diag_slots: IntArray,
-    indptr: IntArray,
-    coupled: bool,
-    held: NDArray[np.bool_],
-) -> int:
-    """NumPy twin of :func:`lift_off_rows`."""
-    n_theta, n_z = P.shape
-    d = np.abs(jp_data[diag_slots])
-    d = np.where(d > 0.0, d, 1.0)
-    gauge = P.ravel() - 1.0
-    held[:] = d * gauge < -res.ravel()
-    rows = np.flatnonzero(held)
-    res.ravel()[rows] = -d[rows] * gauge[rows]
-    entry_rows = np.repeat(np.arange(n_theta * n_z), np.diff(indptr))
-    mask = held[entry_rows]
-    jh_data[mask] = 0.0
-    if coupled:
-        block = coupled_data.reshape(n_theta * n_z, 3 * n_z)
-        block[rows] = 0.0
-        i = rows // n_z
-        own = np.where(i == 0, 0, np.where(i == n_theta - 1, 2, 1))
-        block[rows, own * n_z + rows % n_z] = -d[rows]
-    else:
-        jp_data[mask] = 0.0
-        jp_data[diag_slots[rows]] = -d[rows]
-    return int(rows.size)

@@ -1,0 +1,85 @@
+"""``foilbearing stability``: linear stability, onset speed (rpm) and whirl frequency (Hz).
+
+The onset of instability per actuator voltage over a speed scan, optionally the
+stability map as a PNG file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from foilbearing.cli.common import (
+    add_case_arg,
+    add_subambient_arg,
+    apply_subambient,
+    emit,
+    parse_list,
+)
+from foilbearing.errors import InputError
+
+__all__ = ["cmd_stability", "register"]
+
+
+def register(sub: Any) -> argparse.ArgumentParser:
+    """Add the ``stability`` subcommand to the main parser's subparsers ``sub``."""
+    stab = sub.add_parser("stability", help="linear stability: onset speed and whirl frequency")
+    add_case_arg(stab)
+    stab.add_argument("--voltage", default="0,50,100,150V", help="voltages, e.g. 0,50,100,150V")
+    stab.add_argument("--shimmed", action="store_true", help="the shimmed GFB twins")
+    stab.add_argument(
+        "--speed-range",
+        default="5000rpm:150000rpm:5000rpm",
+        help="scan START:STOP:STEP (default 5000rpm:150000rpm:5000rpm)",
+    )
+    add_subambient_arg(stab)
+    stab.add_argument(
+        "--plot", metavar="DIR", type=Path, help="write the stability map (PNG) to DIR"
+    )
+    stab.add_argument("--json", action="store_true", help="print one JSON object")
+    stab.set_defaults(func=cmd_stability)
+    return stab
+
+
+def cmd_stability(args: argparse.Namespace) -> int:
+    """Run ``stability``; returns the exit code (0)."""
+    from foilbearing.case import load_case
+    from foilbearing.constants import RPM
+    from foilbearing.io import save_figure
+    from foilbearing.stability import onsets_per_voltage, stability_map
+    from foilbearing.units import parse_speed_range
+
+    case = apply_subambient(load_case(args.case), args.subambient)
+    speeds = parse_speed_range(args.speed_range, field="--speed-range")
+    voltages = parse_list(args.voltage, "voltage", "--voltage")
+    if case.actuators is None:
+        raise InputError("the stability study over voltages needs a case with [actuators]")
+    progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
+    per_volt = onsets_per_voltage(case, voltages, speeds, shimmed=args.shimmed, progress=progress)
+    bearing = "shimmed" if args.shimmed else "C-GFB"
+    entries = [{"voltage_V": v, "bearing": bearing} | r.headline() for v, r in per_volt.items()]
+    onsets = [None if r.onset_speed is None else r.onset_speed / RPM for r in per_volt.values()]
+    out: dict[str, Any] = {"rotor_mass_kg": case.rotor.mass, "voltages": entries}
+    if args.plot is not None:
+        from foilbearing.output.plots.dynamics import plot_stability_map
+
+        ds = stability_map(case, speeds, voltages, shimmed=args.shimmed, progress=progress)
+        name = "stability_map_shimmed.png" if args.shimmed else "stability_map.png"
+        out["figures"] = [str(save_figure(plot_stability_map(ds, onsets), args.plot / name))]
+    if args.json:
+        emit(out)
+    else:
+        for e in entries:
+            onset = e["onset_speed_rpm"]
+            text = (
+                "stable over the scan"
+                if onset is None
+                else (
+                    f"onset {onset:8.0f} rpm, whirl {e['whirl_frequency_Hz']:.1f} Hz "
+                    f"(ratio {e['whirl_ratio']:.3f})"
+                )
+            )
+            print(f"  {e['bearing']} {e['voltage_V']:6.1f} V: {text}")
+    return 0

@@ -1,0 +1,64 @@
+"""``foilbearing study``: the paper's analysis on a case (the main job).
+
+Static, dynamic and stability results, the speed-up orbits, the uncertainty
+envelopes and the voltage schedule, written with a report to the output folder.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from foilbearing.cli.common import add_case_arg, emit
+
+__all__ = ["cmd_study", "register"]
+
+
+def register(sub: Any) -> argparse.ArgumentParser:
+    """Add the ``study`` subcommand to the main parser's subparsers ``sub``."""
+    study = sub.add_parser("study", help="the paper's analysis on a case (the main job)")
+    add_case_arg(study)
+    study.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")
+    study.add_argument(
+        "--orbits",
+        choices=("full", "none"),
+        default="full",
+        help="run the four speed-up orbits of Figs. 13-15 (default full)",
+    )
+    study.add_argument(
+        "--uncertainty",
+        choices=("quick", "full", "none"),
+        default="quick",
+        help="envelopes of what the paper leaves open, on the paper's case: quick (56 "
+        "evaluations, ~3 min on 2 cores), full (256) or none (default quick)",
+    )
+    study.add_argument(
+        "--schedule",
+        choices=("full", "none"),
+        default="full",
+        help="the voltage schedule for a controller (C-GFB), verified in speed-ups when "
+        "--orbits full (default full)",
+    )
+    study.add_argument("--json", action="store_true", help="print one JSON object")
+    study.set_defaults(func=cmd_study)
+    return study
+
+
+def cmd_study(args: argparse.Namespace) -> int:
+    """Run ``study``; returns the exit code (0)."""
+    from foilbearing.case import load_case
+    from foilbearing.study.paper import run_study
+
+    case = load_case(args.case)
+    summary = run_study(
+        case,
+        args.out,
+        progress=not args.json,
+        orbits=args.orbits == "full",
+        uncertainty=args.uncertainty,
+        schedule=args.schedule == "full",
+    )
+    if args.json:
+        emit(summary)
+    return 0

@@ -1,0 +1,448 @@
+"""The specification of an orbit run as plain data (SI): what a file stores to be resumed.
+
+A :class:`RunSpec` holds everything :func:`foilbearing.orbit.simulate` needs
+besides the checkpoint: the case file (and the overrides applied to it), the
+speed profile's breakpoints, the voltage program as data, the integrator
+settings and the stop time. It round-trips through JSON
+(:meth:`RunSpec.to_json`, :meth:`RunSpec.from_json`) and is stored in the
+orbit's NetCDF file (:mod:`foilbearing.orbit.netcdf`); :meth:`RunSpec.build`
+makes the objects again. The command line's strings are parsed into one by
+:meth:`RunSpec.from_cli_strings`, which also reads the string dictionaries
+that earlier versions stored.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass, field, fields
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from foilbearing.errors import InputError
+from foilbearing.orbit.settings import OrbitSettings
+
+if TYPE_CHECKING:
+    from foilbearing.case import Case
+    from foilbearing.control import SpeedProfile, VoltageProgram
+
+__all__ = [
+    "BuiltRun",
+    "ControllerParams",
+    "PiecewiseVoltages",
+    "RunSpec",
+    "ScheduleText",
+    "VoltageSpec",
+    "cli_quantity",
+]
+
+#: The ``format`` key of a stored specification (the dictionaries of earlier versions
+#: held the command line's strings and no such key).
+FORMAT = "foilbearing.orbit.RunSpec/1"
+
+#: The command line's defaults, for the keys an earlier version's dictionary may lack.
+_CLI_DEFAULTS: dict[str, Any] = {
+    "case": None,
+    "speed_ramp": "3000rpm:90000rpm:500rad/s**2",
+    "speed": None,
+    "duration": "1 s",
+    "voltage_ramp": None,
+    "controller": None,
+    "voltage_schedule": None,
+    "stop_time": None,
+    "steps_per_rev": OrbitSettings.steps_per_rev,
+    "order": None,  # runs saved before the order was stored: BDF2
+    "sample_rate": "10000Hz",
+    "subambient": None,
+}
+
+
+@dataclass(frozen=True)
+class PiecewiseVoltages:
+    """An open-loop program as data: :class:`foilbearing.control.VoltageSchedule`'s rows.
+
+    Attributes
+    ----------
+    times
+        Breakpoints, s, non-decreasing.
+    volts
+        Voltages at the breakpoints, V, one row per time (one column per actuator,
+        or one for all).
+    """
+
+    times: tuple[float, ...]
+    volts: tuple[tuple[float, ...], ...]
+
+    @classmethod
+    def of(cls, program: Any) -> PiecewiseVoltages:
+        """The rows of a :class:`~foilbearing.control.VoltageSchedule` (e.g. ``voltage_ramp``)."""
+        volts = np.atleast_2d(np.asarray(program.volts, float))
+        return cls(
+            tuple(np.asarray(program.times, float).tolist()),
+            tuple(tuple(row) for row in volts.tolist()),
+        )
+
+    def program(self, case: Case, profile: SpeedProfile) -> VoltageProgram:
+        """The :class:`~foilbearing.control.VoltageSchedule` of these rows."""
+        from foilbearing.control import VoltageSchedule
+
+        return VoltageSchedule(np.array(self.times, float), np.array(self.volts, float))
+
+
+@dataclass(frozen=True)
+class ControllerParams:
+    """The closed-loop :class:`foilbearing.control.SubsyncController`'s parameters.
+
+    Attributes
+    ----------
+    threshold
+        Sub-synchronous amplitude that triggers the control, m.
+    target
+        Commanded voltage once triggered, V.
+    slew_rate
+        Amplifier slew-rate limit, V/s.
+    window
+        Length of the analysis window, s.
+    period
+        Control period, s.
+    initial
+        Voltage before triggering, V.
+    """
+
+    threshold: float = 2e-6
+    target: float = 150.0
+    slew_rate: float = 1000.0
+    window: float = 0.1
+    period: float = 0.01
+    initial: float = 0.0
+
+    @classmethod
+    def of(cls, controller: Any) -> ControllerParams:
+        """The parameters of a controller (its state, the latch, is the checkpoint's)."""
+        return cls(**{f.name: float(getattr(controller, f.name)) for f in fields(cls)})
+
+    def program(self, case: Case, profile: SpeedProfile) -> VoltageProgram:
+        """A fresh controller with these parameters."""
+        from foilbearing.control import SubsyncController
+
+        return SubsyncController(**asdict(self))
+
+
+@dataclass(frozen=True)
+class ScheduleText:
+    """A voltage-schedule file (``foilbearing schedule --out``), kept as its text.
+
+    Attributes
+    ----------
+    text
+        The file's TOML text: a resumed run follows it after the file is gone.
+    path
+        Where it was read from (for the record and error messages).
+    """
+
+    text: str
+    path: str
+
+    def program(self, case: Case, profile: SpeedProfile) -> VoltageProgram:
+        """The schedule along the speed profile (through its slew-rate limit)."""
+        import tomllib
+
+        from foilbearing.schedule_file import parse_schedule
+
+        return parse_schedule(tomllib.loads(self.text), case, self.path).program(profile)
+
+
+#: A voltage program as data (None: the case's voltages held).
+VoltageSpec = PiecewiseVoltages | ControllerParams | ScheduleText
+
+_VOLTAGE_KINDS: dict[str, type[Any]] = {
+    "piecewise": PiecewiseVoltages,
+    "controller": ControllerParams,
+    "schedule_file": ScheduleText,
+}
+
+
+class BuiltRun(NamedTuple):
+    """What :func:`foilbearing.orbit.simulate` takes, made from a :class:`RunSpec`."""
+
+    case: Case
+    profile: SpeedProfile
+    program: VoltageProgram | None
+    settings: OrbitSettings
+    stop_time: float | None
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """An orbit run as plain data in SI: stored with its results, resumed from them.
+
+    Attributes
+    ----------
+    speed_times, speeds
+        Breakpoints of the piecewise-linear speed profile: times, s (first 0),
+        and speeds, rad/s.
+    voltage
+        The voltage program as data (:class:`PiecewiseVoltages`,
+        :class:`ControllerParams`, :class:`ScheduleText`), or None: the case's
+        voltages held.
+    case
+        Case file (None: the built-in default case).
+    subambient
+        Sub-ambient film model applied to the case (None: the case's).
+    imbalance
+        Rotor imbalance applied to the case, kg·m (None: the case's).
+    settings
+        Integrator and output settings.
+    stop_time
+        End the run at this simulated time, s (None: the end of the profile).
+    """
+
+    speed_times: tuple[float, ...]
+    speeds: tuple[float, ...]
+    voltage: VoltageSpec | None = None
+    case: str | None = None
+    subambient: str | None = None
+    imbalance: float | None = None
+    settings: OrbitSettings = field(default_factory=OrbitSettings)
+    stop_time: float | None = None
+
+    @classmethod
+    def of(
+        cls,
+        profile: SpeedProfile,
+        program: Any = None,
+        *,
+        case: str | None = None,
+        subambient: str | None = None,
+        imbalance: float | None = None,
+        settings: OrbitSettings | None = None,
+        stop_time: float | None = None,
+    ) -> RunSpec:
+        """The specification of a run from its objects.
+
+        ``program`` is a :class:`~foilbearing.control.VoltageSchedule`, a
+        :class:`~foilbearing.control.SubsyncController`, one of the data forms
+        (:data:`VoltageSpec`) or None; the other arguments are the fields.
+        """
+        from foilbearing.control import SubsyncController, VoltageSchedule
+
+        voltage: VoltageSpec | None
+        if program is None or isinstance(program, VoltageSpec):
+            voltage = program
+        elif isinstance(program, VoltageSchedule):
+            voltage = PiecewiseVoltages.of(program)
+        elif isinstance(program, SubsyncController):
+            voltage = ControllerParams.of(program)
+        else:
+            raise TypeError(f"no data form for the voltage program {type(program).__name__}")
+        return cls(
+            tuple(np.asarray(profile.times, float).tolist()),
+            tuple(np.asarray(profile.speeds, float).tolist()),
+            voltage,
+            case,
+            subambient,
+            None if imbalance is None else float(imbalance),
+            OrbitSettings() if settings is None else settings,
+            None if stop_time is None else float(stop_time),
+        )
+
+    def load_case(self) -> Case:
+        """The case file with the overrides (sub-ambient model, imbalance) applied."""
+        return _load_case(self.case, self.subambient, self.imbalance)
+
+    def build(self, case: Case | None = None) -> BuiltRun:
+        """The case, speed profile, voltage program, settings and stop time of the run.
+
+        ``case``: the case :meth:`load_case` gives, when the caller has it already.
+        """
+        from foilbearing.control import SpeedProfile
+
+        case = self.load_case() if case is None else case
+        profile = SpeedProfile(np.array(self.speed_times, float), np.array(self.speeds, float))
+        program = None if self.voltage is None else self.voltage.program(case, profile)
+        return BuiltRun(case, profile, program, self.settings, self.stop_time)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (JSON types), with a ``format`` key and the voltage program's ``kind``."""
+        voltage: dict[str, Any] | None = None
+        if self.voltage is not None:
+            kind = next(k for k, c in _VOLTAGE_KINDS.items() if isinstance(self.voltage, c))
+            voltage = {"kind": kind, **asdict(self.voltage)}
+        return {
+            "format": FORMAT,
+            "case": self.case,
+            "subambient": self.subambient,
+            "imbalance": self.imbalance,
+            "speed_times": list(self.speed_times),
+            "speeds": list(self.speeds),
+            "voltage": voltage,
+            "settings": asdict(self.settings),
+            "stop_time": self.stop_time,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> RunSpec:
+        """The specification of :meth:`to_dict`'s data, or of an earlier version's
+        dictionary of command-line strings (:meth:`from_cli_strings`)."""
+        if data.get("format") != FORMAT:
+            if "format" in data:
+                raise InputError(f"run specification of an unknown format {data['format']!r}")
+            return cls.from_cli_strings(data)
+        voltage = data.get("voltage")
+        program: VoltageSpec | None = None
+        if voltage is not None:
+            kind = voltage["kind"]
+            rest = {k: v for k, v in voltage.items() if k != "kind"}
+            if kind == "piecewise":
+                program = PiecewiseVoltages(
+                    tuple(float(t) for t in rest["times"]),
+                    tuple(tuple(float(v) for v in row) for row in rest["volts"]),
+                )
+            elif kind in _VOLTAGE_KINDS:
+                program = _VOLTAGE_KINDS[kind](**rest)
+            else:
+                raise InputError(f"run specification: unknown voltage program {kind!r}")
+        return cls(
+            tuple(float(t) for t in data["speed_times"]),
+            tuple(float(w) for w in data["speeds"]),
+            program,
+            data.get("case"),
+            data.get("subambient"),
+            data.get("imbalance"),
+            OrbitSettings(**data.get("settings", {})),
+            data.get("stop_time"),
+        )
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as JSON (floats written exactly: the run reads back equal)."""
+        return json.dumps(self.to_dict())
+
+    @classmethod
+    def from_json(cls, text: str) -> RunSpec:
+        """The specification of :meth:`to_json`'s text (or of an earlier version's)."""
+        return cls.from_dict(json.loads(text))
+
+    @classmethod
+    def from_cli_strings(cls, strings: dict[str, Any]) -> RunSpec:
+        """Parse ``foilbearing orbit``'s option strings (the dictionary earlier versions
+        stored): ``speed_ramp`` or ``speed`` and ``duration``, at most one of
+        ``voltage_ramp``, ``controller`` and ``voltage_schedule`` ({"path", "text"}),
+        ``stop_time``, ``steps_per_rev``, ``order``, ``sample_rate``, ``case`` and
+        ``subambient``; missing keys take the command's defaults.
+
+        Raises
+        ------
+        InputError
+            One line naming the option, for a string that does not parse or a
+            program that cannot be built (a voltage ramp needs ``[actuators]``).
+        """
+        from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
+
+        spec = _CLI_DEFAULTS | dict(strings)
+        case_obj = _load_case(spec["case"], spec["subambient"], None)  # its errors come first
+        if spec["speed"] is not None:
+            profile = constant_speed(
+                cli_quantity(spec["speed"], "speed", "--speed"),
+                cli_quantity(spec["duration"], "time", "--duration"),
+            )
+        else:
+            parts = spec["speed_ramp"].split(":")
+            if len(parts) != 3:
+                raise InputError(
+                    f"--speed-ramp {spec['speed_ramp']!r}: expected START:STOP:ACCELERATION"
+                )
+            profile = linear_ramp(
+                cli_quantity(parts[0], "speed", "--speed-ramp START"),
+                cli_quantity(parts[1], "speed", "--speed-ramp STOP"),
+                cli_quantity(parts[2], "angular_acceleration", "--speed-ramp ACCELERATION"),
+            )
+        chosen = [
+            f"--{k.replace('_', '-')}"
+            for k in ("voltage_ramp", "controller", "voltage_schedule")
+            if spec[k] is not None
+        ]
+        if len(chosen) > 1:
+            raise InputError(f"{' and '.join(chosen)}: choose one voltage program")
+        program: VoltageSpec | None = None
+        if spec["voltage_schedule"] is not None:
+            given = spec["voltage_schedule"]
+            program = ScheduleText(given["text"], given["path"])
+        if spec["voltage_ramp"] is not None:
+            parts = spec["voltage_ramp"].split(":")
+            if len(parts) != 3:
+                raise InputError(
+                    f"--voltage-ramp {spec['voltage_ramp']!r}: expected T0:T1:V, "
+                    "e.g. 6.0s:6.5s:150V"
+                )
+            if case_obj.actuators is None:
+                raise InputError("--voltage-ramp needs a case with [actuators]")
+            program = PiecewiseVoltages.of(
+                voltage_ramp(
+                    cli_quantity(parts[0], "time", "--voltage-ramp T0"),
+                    cli_quantity(parts[1], "time", "--voltage-ramp T1"),
+                    cli_quantity(parts[2], "voltage", "--voltage-ramp V"),
+                    initial=np.asarray(case_obj.actuators.voltages),  # from the case's
+                )
+            )
+        if spec["controller"] is not None:
+            program = ControllerParams(**_controller_args(spec["controller"]))
+        settings = OrbitSettings(
+            steps_per_rev=int(spec["steps_per_rev"]),
+            order=int(spec["order"] or 2),
+            sample_rate=cli_quantity(spec["sample_rate"], "frequency", "--sample-rate"),
+        )
+        stop = spec["stop_time"]
+        return cls.of(
+            profile,
+            program,
+            case=None if spec["case"] is None else str(spec["case"]),
+            subambient=spec["subambient"],
+            settings=settings,
+            stop_time=None if stop is None else cli_quantity(stop, "time", "--stop-time"),
+        )
+
+
+def _load_case(path: str | None, subambient: str | None, imbalance: float | None) -> Case:
+    """The case file (None: the default case) with the overrides applied."""
+    from dataclasses import replace
+
+    from foilbearing.case import load_case
+
+    case = load_case(path)
+    if subambient is not None:
+        case = case.with_subambient(subambient)
+    if imbalance is not None:
+        case = replace(case, rotor=replace(case.rotor, imbalance=imbalance))
+    return case
+
+
+def cli_quantity(text: str, kind: str, option: str) -> float:
+    """A command-line quantity in SI (``rad/s2`` is read as ``rad/s**2``); ``option``
+    names it in the one-line error."""
+    from foilbearing.units import parse_quantity
+
+    return parse_quantity(
+        text.replace("s2", "s**2") if kind == "angular_acceleration" else text, kind, field=option
+    )
+
+
+def _controller_args(text: str) -> dict[str, float]:
+    """``--controller threshold=2um,target=150V,...`` as the controller's keyword arguments."""
+    kinds = {
+        "threshold": ("length", "threshold"),
+        "target": ("voltage", "target"),
+        "slew": ("slew_rate", "slew_rate"),
+        "window": ("time", "window"),
+        "period": ("time", "period"),
+        "initial": ("voltage", "initial"),
+    }
+    out: dict[str, float] = {}
+    for item in filter(None, (s.strip() for s in text.split(","))):
+        key, _, value = item.partition("=")
+        if key not in kinds or not value:
+            raise InputError(
+                f"--controller {item!r}: expected KEY=VALUE with KEY one of " + ", ".join(kinds)
+            )
+        kind, name = kinds[key]
+        out[name] = cli_quantity(value, kind, f"--controller {key}")
+    return out
