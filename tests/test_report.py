@@ -194,6 +194,68 @@ def test_no_summary_is_an_input_error(tmp_path: Path) -> None:
         write_report(tmp_path)
 
 
+# --- the study's result: one path from the stages to the page ----------------------
+
+
+def test_figure_record_gives_the_folder_s_page(fake_out: Path) -> None:
+    """An old folder (no figure record) is read as the report always read it; with
+    the record stored in summary.json the page is the same, and nothing is globbed
+    into the sections any more."""
+    from foilbearing.output.report import render_report
+    from foilbearing.output.result import StudyResult
+
+    old = StudyResult.load(fake_out)
+    assert {k: [p.name for p in v] for k, v in old.figures.items()} == {
+        "structure": ["fig07_stiffness_function.png", "fig08_preloads.png"],
+        "orbits": ["orbit_0V_transient.png"],
+    }
+    page = render_report(old)
+    assert write_report(old).read_text(encoding="utf-8") == page
+    summary = fake_summary() | {"figures": old.figure_record()}
+    (fake_out / "summary.json").write_text(json.dumps(summary), encoding="utf-8")
+    new = StudyResult.load(fake_out)
+    assert new.figures == old.figures and render_report(new) == page
+    # the record is exact: an orbit figure it does not list is not the orbit section's
+    (fake_out / "orbit_50V_transient.png").write_bytes(tiny_png(2, 2, (9, 9, 9)))
+    text = render_report(StudyResult.load(fake_out))
+    orbits = text[text.index('<section id="orbits"') : text.index('<section id="other"')]
+    assert "orbit_0V_transient.png" in orbits and "orbit_50V_transient.png" not in orbits
+    assert "orbit_50V_transient.png" in text[text.index('<section id="other"') :]
+
+
+def test_the_study_s_orbit_figures_follow_its_own(tmp_path: Path) -> None:
+    """The paper's speed-ups' figures go to the orbit section after its Fig. 15, in the
+    order the report has always given them; the page is the one an old reading of the
+    same folder gives."""
+    from foilbearing.output.report import render_report
+    from foilbearing.output.result import StudyResult
+    from foilbearing.study.paper import _finish
+
+    results = fake_summary()
+    del results["paper_comparison"]
+    results["orbits"]["figures"] = [str(tmp_path / "fig15_subsync.png")]
+    names = {
+        "0V_8.5gmm": ["transient", "waterfall", "orbits"],
+        "50V_ramp6.00s_8.5gmm": ["transient", "orbits"],
+    }
+    runs: dict[str, Any] = {}
+    for label, kinds in names.items():
+        runs[label] = {"figures": [tmp_path / f"orbit_{label}_{k}.png" for k in kinds]}
+    for p in [tmp_path / "fig15_subsync.png", *(p for r in runs.values() for p in r["figures"])]:
+        p.write_bytes(tiny_png(2, 2))
+    result = _finish(tmp_path, results, lambda line: None, runs)
+    orbit_pngs = sorted(p.name for p in tmp_path.glob("orbit_*.png"))
+    assert [p.name for p in result.figures["orbits"]] == ["fig15_subsync.png", *orbit_pngs]
+    stored = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))
+    assert stored["figures"] == result.figure_record()
+    assert stored["report"] == str(tmp_path / "report.html")
+    page = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert render_report(StudyResult.load(tmp_path)) == page
+    del stored["figures"], stored["report"]
+    assert render_report(StudyResult.from_summary(stored, tmp_path)) == page
+    assert 'id="other"' not in page and page.count("data:image/png;base64,") == 6
+
+
 # --- (c): the real study's page in headless Chromium --------------------------------
 
 
@@ -201,11 +263,16 @@ def test_no_summary_is_an_input_error(tmp_path: Path) -> None:
 def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The study without orbits (about 50 s, 35 of them the voltage schedule), once."""
     from foilbearing import default_case
-    from foilbearing.study.paper import run_study
+    from foilbearing.study.paper import run_study_result
 
     out = tmp_path_factory.mktemp("study")
-    run_study(default_case(), out, progress=False, orbits=False, uncertainty="none")
-    write_report(out)
+    result = run_study_result(default_case(), out, progress=False, orbits=False, uncertainty="none")
+    assert {p.name for ps in result.figures.values() for p in ps} == {
+        p.name for p in out.glob("*.png")
+    }  # every figure the study wrote is in its record
+    page = (out / "report.html").read_text(encoding="utf-8")
+    write_report(out)  # the folder alone gives the same page
+    assert (out / "report.html").read_text(encoding="utf-8") == page
     return out
 
 

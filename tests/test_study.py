@@ -70,6 +70,9 @@ def test_paper_speed_ups_on_a_short_plan(tmp_path: Path) -> None:
     for h in heads[1:]:
         res = runs[h["label"]]["result"]
         np.testing.assert_allclose(res.e_x, zero.e_x, rtol=0, atol=1e-12 * np.abs(zero.e_x).max())
+        written = runs[h["label"]]["figures"]  # kept with the run, for the study's report
+        assert written[0].name == f"orbit_{h['label']}_transient.png"
+        assert all(p.is_file() for p in written)
         saved, spec = load_orbit(Path(h["netcdf"]))
         np.testing.assert_allclose(saved.e_x, res.e_x, rtol=1e-12)
         # the stored run is the protocol: 3000 to 90000 rpm at 500 rad/s², the ramp at 6-6.5 s

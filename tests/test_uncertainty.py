@@ -333,6 +333,7 @@ def test_the_study_s_stage_and_its_report_section(tmp_path: Path, monkeypatch) -
     both figures are embedded."""
     import foilbearing.uncertainty.spec as uq_spec
     from foilbearing.output.report import render_report
+    from foilbearing.output.result import StudyResult
     from foilbearing.study.paper import _uncertainty_stage
 
     small = _write(
@@ -345,7 +346,7 @@ def test_the_study_s_stage_and_its_report_section(tmp_path: Path, monkeypatch) -
     section = _uncertainty_stage(tmp_path, None, lambda line: None)
     assert section["n_ok"] == 24
     film = section["outputs"]["min_film_um[90 krpm, 150 V]"]
-    html = render_report({"uncertainty": section}, tmp_path)
+    html = render_report(StudyResult.from_summary({"uncertainty": section}, tmp_path))
     assert "What the unknowns allow" in html
     assert f"{film['p95']:.4g}" in html and "min_film_um[90 krpm, 150 V]" in html
     assert html.count("data:image/png;base64,") == 2

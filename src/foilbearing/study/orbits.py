@@ -185,7 +185,7 @@ def paper_orbit_runs(
     """Run the speed-ups (see the module docstring), write their figures and Fig. 15.
 
     ``results``, if given, receives each run by its label, as :func:`run_one` returns it
-    (``"result"``, ``"analysis"``, ``"headline"``).
+    (``"result"``, ``"analysis"``, ``"headline"``), with the ``"figures"`` written of it.
     """
     from foilbearing.io import save_figure
     from foilbearing.orbit.analysis import write_orbit_figures
@@ -198,7 +198,9 @@ def paper_orbit_runs(
         done[run["label"]] = run
         h = run["headline"]
         stage(f"  orbit {h['description']}: {h['message']} ({h['wall_time_s']:.0f} s)")
-        write_orbit_figures(run["result"], run["analysis"], out, f"orbit_{run['label']}")
+        run["figures"] = write_orbit_figures(
+            run["result"], run["analysis"], out, f"orbit_{run['label']}"
+        )
 
     zero = OrbitRun(0.0, None, imb, "paper protocol")
     finish(run_one(case, zero, out, stop_time))

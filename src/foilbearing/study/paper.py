@@ -10,12 +10,15 @@ import json
 import math
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from foilbearing.case import Case, is_default_case_file
 from foilbearing.io import write_text
 
-__all__ = ["run_study"]
+if TYPE_CHECKING:
+    from foilbearing.output.result import StudyResult
+
+__all__ = ["run_study", "run_study_result"]
 
 
 #: Evaluations of the study's uncertainty stage: "quick" is the Sobol estimator's least
@@ -33,6 +36,28 @@ def run_study(
     schedule: bool = True,
 ) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
+
+    The summary of :func:`run_study_result`, which takes the same arguments.
+
+    Returns
+    -------
+    The headline numbers of every stage, unit-named keys.
+    """
+    return run_study_result(
+        case, out, progress=progress, orbits=orbits, uncertainty=uncertainty, schedule=schedule
+    ).summary
+
+
+def run_study_result(
+    case: Case,
+    out: Path,
+    *,
+    progress: bool = True,
+    orbits: bool = True,
+    uncertainty: str = "quick",
+    schedule: bool = True,
+) -> StudyResult:
+    """Run every stage available on ``case``; write ``out/summary.json`` and the report.
 
     Parameters
     ----------
@@ -54,7 +79,9 @@ def run_study(
 
     Returns
     -------
-    The headline numbers of every stage, unit-named keys.
+    StudyResult
+        The headline numbers of every stage (unit-named keys), the folder, and the
+        figures each stage wrote; ``report.html`` is rendered from it.
     """
     from foilbearing.output.figures import write_identification_figures, write_structure_figures
     from foilbearing.output.summary import case_summary, format_summary, structure_summary
@@ -121,7 +148,7 @@ def run_study(
             results["schedule"] = schedule_stage(
                 case, out, stage, verify=False, speeds=list(plan.speeds)
             )
-        return _finish(case, out, results, stage, progress)
+        return _finish(out, results, stage)
 
     sweep = _static_stage(case, out, results, stage)
     onsets = _stability_stage(case, out, results, stage)
@@ -149,7 +176,7 @@ def run_study(
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     _paper_comparison(case, out, results, sweep, onsets, progress)
-    return _finish(case, out, results, stage, progress)
+    return _finish(out, results, stage, orbit_runs)
 
 
 def _paper_comparison(
@@ -196,17 +223,27 @@ def _paper_comparison(
 
 
 def _finish(
-    case: Case, out: Path, results: dict[str, Any], stage: Any, progress: bool
-) -> dict[str, Any]:
-    """Write summary.json and report.html."""
-    from foilbearing.output.report import write_report
+    out: Path, results: dict[str, Any], stage: Any, orbit_runs: dict[str, Any] | None = None
+) -> StudyResult:
+    """The study's result: summary.json with its figure record, and report.html from it.
 
+    ``orbit_runs``: the paper's speed-ups by label, each with the ``"figures"`` it
+    wrote; they follow the orbit stage's own figures in the report's order
+    (:func:`foilbearing.output.result.orbit_figure_order`).
+    """
+    from foilbearing.output.report import write_report
+    from foilbearing.output.result import FIGURE_RECORD_KEY, StudyResult, orbit_figure_order
+
+    runs = [p for run in (orbit_runs or {}).values() for p in run.get("figures", ())]
+    extra = {"orbits": sorted(runs, key=orbit_figure_order)} if "orbits" in results else None
+    result = StudyResult.from_stages(results, out, extra)
+    results[FIGURE_RECORD_KEY] = result.figure_record()
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
-    report = write_report(out)
+    report = write_report(result)
     results["report"] = str(report)
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
     stage(f"done: results in {out}/, report {report}")
-    return results
+    return result
 
 
 def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) -> Any:

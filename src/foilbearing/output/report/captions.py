@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import base64
-import re
 import struct
 from html import escape
 from pathlib import Path
 
 from foilbearing.output.report.sections import _FIG14
+from foilbearing.output.result import _ORBIT_FIG
 
 __all__ = ["png_size"]
 
@@ -67,12 +67,6 @@ _CAPTIONS = {
 }
 
 
-_ORBIT_FIG = re.compile(r"orbit_(?P<v>[0-9.]+)V_(?P<kind>transient|waterfall3d|waterfall|orbits)")
-
-
-_ORBIT_KINDS = ("transient", "waterfall", "waterfall3d", "orbits")
-
-
 def png_size(data: bytes) -> tuple[int, int] | None:
     """Width and height from a PNG's IHDR chunk, or None if ``data`` is not a PNG."""
     if len(data) < 24 or data[:8] != PNG_SIGNATURE or data[12:16] != b"IHDR":
@@ -115,10 +109,3 @@ def _caption(name: str) -> str:
         "orbits": "Not in the paper: journal orbits at selected speeds",
     }[kind]
     return f"{what}; speed-up 3-90 krpm, {run}."
-
-
-def _orbit_order(p: Path) -> tuple[float, int, str]:
-    m = _ORBIT_FIG.fullmatch(p.stem)
-    if m is None:
-        return (float("inf"), 0, p.name)
-    return (float(m["v"]), _ORBIT_KINDS.index(m["kind"]), p.name)

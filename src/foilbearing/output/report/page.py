@@ -2,16 +2,14 @@
 
 from __future__ import annotations
 
-import json
 import re
 from html import escape
 from pathlib import Path
-from typing import Any
 
-from foilbearing.errors import InputError
 from foilbearing.io import write_text
-from foilbearing.output.report.captions import _figure, _orbit_order
+from foilbearing.output.report.captions import _figure
 from foilbearing.output.report.sections import _TABLES, STAGES, _comparison, _generic, _intro
+from foilbearing.output.result import FIGURE_RECORD_KEY, StudyResult
 
 __all__ = ["render_report", "write_report"]
 
@@ -38,13 +36,14 @@ footer{margin-top:3rem;color:#666;font-size:.85rem}
 """
 
 
-def write_report(out_dir: Path) -> Path:
-    """Write ``out_dir/report.html`` from the study results in ``out_dir``.
+def write_report(result: StudyResult | str | Path) -> Path:
+    """Write ``report.html`` into a study's folder.
 
     Parameters
     ----------
-    out_dir
-        A folder written by ``foilbearing study``: ``summary.json`` and PNG figures.
+    result
+        The study's result, or a folder written by ``foilbearing study``
+        (``summary.json`` and PNG figures), read with :meth:`StudyResult.load`.
 
     Returns
     -------
@@ -54,30 +53,21 @@ def write_report(out_dir: Path) -> Path:
     Raises
     ------
     InputError
-        If ``summary.json`` is missing or not a JSON object.
+        If a folder is given whose ``summary.json`` is missing or not a JSON object.
     """
-    out_dir = Path(out_dir)
-    path = out_dir / "summary.json"
-    if not path.is_file():
-        raise InputError("no summary.json; run `foilbearing study --out DIR`", source=str(out_dir))
-    try:
-        summary = json.loads(path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as exc:
-        raise InputError(f"not valid JSON ({exc})", source=str(path)) from exc
-    if not isinstance(summary, dict):
-        raise InputError("expected a JSON object at the top level", source=str(path))
-    return write_text(out_dir / "report.html", render_report(summary, out_dir))
+    if not isinstance(result, StudyResult):
+        result = StudyResult.load(result)
+    return write_text(result.out_dir / "report.html", render_report(result))
 
 
-def render_report(summary: dict[str, Any], out_dir: Path) -> str:
+def render_report(result: StudyResult) -> str:
     """The HTML text of the report.
 
     Parameters
     ----------
-    summary
-        The study's ``summary.json`` as a dict.
-    out_dir
-        Where the figures are; they are found by file name (the folder may have moved).
+    result
+        The study's summary, its folder and its figures by section. Figures in the
+        folder that no section lists are shown last, under "Other figures".
 
     Returns
     -------
@@ -87,6 +77,7 @@ def render_report(summary: dict[str, Any], out_dir: Path) -> str:
     from importlib.metadata import version
 
     __version__ = version("foilbearing")
+    summary, out_dir = result.summary, result.out_dir
     case = summary.get("case") or {}
     title = f"foilbearing study: {case.get('title', 'unnamed case')}"
     used: set[str] = set()
@@ -96,18 +87,17 @@ def render_report(summary: dict[str, Any], out_dir: Path) -> str:
         sections.append(("comparison", "Our numbers beside the paper's", body))
     # case_point: the readouts at the case speed that the reference table shows
     known = {key for key, _ in STAGES} | {"case", "paper_comparison", "case_point"}
+    known |= {FIGURE_RECORD_KEY}  # the figure record is the sections' figures, not one
     extra = [(k, k.replace("_", " ").capitalize()) for k in summary if k not in known]
     for key, heading in [*STAGES, *extra]:
         data = summary.get(key)
         if not isinstance(data, dict) or not data:
             continue
-        names = [Path(str(p)).name for p in data.get("figures") or []]
-        if key == "orbits":
-            names += [p.name for p in sorted(out_dir.glob("orbit_*.png"), key=_orbit_order)]
+        names = [p.name for p in result.figures.get(key, ())]
         names = [n for n in dict.fromkeys(names) if n not in used]
         used.update(names)
         body = _TABLES.get(key, _generic)(data, case) + "".join(_figure(out_dir, n) for n in names)
-        sections.append((re.sub(r"[^A-Za-z0-9_-]", "-", key), heading, body))
+        sections.append((_anchor(key), heading, body))
     rest = sorted(p.name for p in out_dir.glob("*.png") if p.name not in used)
     if rest:
         sections.append(("other", "Other figures", "".join(_figure(out_dir, n) for n in rest)))
@@ -124,3 +114,8 @@ def render_report(summary: dict[str, Any], out_dir: Path) -> str:
         f"<code>{escape(str(out_dir / 'summary.json'))}</code>; figures embedded.</footer>"
         "</main></body></html>\n"
     )
+
+
+def _anchor(key: str) -> str:
+    """An HTML id from a section key: characters other than letters, digits, _ and - as -."""
+    return re.sub(r"[^A-Za-z0-9_-]", "-", key)
