@@ -39,10 +39,13 @@ def _functions(module: str) -> dict[str, str]:
     if not path.exists():
         path = MUTANTS / module.replace(".", "/") / "__init__.py"
     text = path.read_text(encoding="utf-8")
+    lines = text.splitlines()
     out = {}
+    # Slices of the lines read once (ast.get_source_segment splits the whole text per call:
+    # minutes for a module with a thousand mutants).
     for node in ast.walk(ast.parse(text)):
-        if isinstance(node, ast.FunctionDef):
-            out[node.name] = ast.get_source_segment(text, node) or ""
+        if isinstance(node, ast.FunctionDef) and node.end_lineno is not None:
+            out[node.name] = "\n".join(lines[node.lineno - 1 : node.end_lineno])
     return out
 
 

@@ -28,11 +28,12 @@ RPM = math.pi / 30.0
 
 
 def _profile() -> SpeedProfile:
-    # Up at 200 rad/s², then down at 50 rad/s²: two slopes of opposite sign.
-    return SpeedProfile(np.array([0.0, 1.0, 3.0]), np.array([100.0, 300.0, 200.0]))
+    # Up at 200 rad/s², down at 50 rad/s², up at 50 rad/s²: three segments, so that every
+    # breakpoint's angle but the last is used inside the profile.
+    return SpeedProfile(np.array([0.0, 1.0, 3.0, 4.0]), np.array([100.0, 300.0, 200.0, 250.0]))
 
 
-@pytest.mark.parametrize("t", [0.0, 0.25, 0.999, 1.0, 1.7, 2.5, 3.0])
+@pytest.mark.parametrize("t", [0.0, 0.25, 0.999, 1.0, 1.7, 2.5, 3.0, 3.5, 4.0])
 def test_speed_profile_angle_is_the_integral_of_its_speed(t: float) -> None:
     """ω and dω/dt are the piecewise-linear profile's; φ(t) = ∫₀ᵗ ω dt (quadrature, 1e-10);
     the vectorised ``speed_and_phase`` gives the same (ω, φ) as ``state``."""
@@ -40,8 +41,8 @@ def test_speed_profile_angle_is_the_integral_of_its_speed(t: float) -> None:
     w, a, phi = prof.state(t)
     w_ref = float(np.interp(t, prof.times, prof.speeds))
     assert w == pytest.approx(w_ref, rel=1e-14)
-    assert a == (200.0 if t < 1.0 else -50.0)
-    phi_ref = quad(lambda s: np.interp(s, prof.times, prof.speeds), 0.0, t, points=[1.0])[0]
+    assert a == (200.0 if t < 1.0 else -50.0 if t < 3.0 else 50.0)
+    phi_ref = quad(lambda s: np.interp(s, prof.times, prof.speeds), 0.0, t, points=[1.0, 3.0])[0]
     assert phi == pytest.approx(phi_ref, rel=1e-10, abs=1e-12)
     assert prof.omega(t) == w and prof.phase(t) == phi
     w_v, phi_v = prof.speed_and_phase(np.array([t, 0.5]))
@@ -54,11 +55,38 @@ def test_speed_profile_holds_its_end_speeds() -> None:
     """Outside the profile ω is held at its end values; the slope is that of the nearest
     segment; the duration is the last breakpoint."""
     prof = _profile()
-    assert prof.duration == 3.0
-    assert prof.state(4.0)[0] == 200.0 and prof.state(4.0)[1] == -50.0
+    assert prof.duration == 4.0
+    assert prof.state(5.0)[0] == 250.0 and prof.state(5.0)[1] == 50.0
     assert prof.state(-0.5)[0] == 100.0 and prof.state(-0.5)[1] == 200.0
-    w_v, _ = prof.speed_and_phase(np.array([-0.5, 4.0]))
-    np.testing.assert_array_equal(w_v, [100.0, 200.0])
+    w_v, phi_v = prof.speed_and_phase(np.array([-0.5, 5.0]))
+    np.testing.assert_array_equal(w_v, [100.0, 250.0])
+    np.testing.assert_allclose(phi_v, [prof.state(-0.5)[2], prof.state(5.0)[2]], rtol=1e-14)
+
+
+def test_profiles_and_programs_store_float_arrays() -> None:
+    """Breakpoints given as lists of ints are stored as float arrays (a program of ints
+    must still interpolate in volts, not truncate)."""
+    prof = SpeedProfile([0, 2], [100, 300])  # type: ignore[arg-type]
+    assert isinstance(prof.times, np.ndarray) and isinstance(prof.speeds, np.ndarray)
+    assert prof.times.dtype == float and prof.speeds.dtype == float
+    assert prof.state(1.0) == pytest.approx((200.0, 100.0, 150.0), rel=1e-14)
+    prog = VoltageSchedule([0, 3], [[0, 10], [1, 20]])  # type: ignore[arg-type]
+    assert isinstance(prog.times, np.ndarray) and prog.times.dtype == float
+    assert prog.volts.dtype == float and prog.volts.shape == (2, 2)
+    np.testing.assert_allclose(prog(1.0), [1 / 3, 40 / 3], rtol=1e-14)
+    assert linear_ramp(10.0, 20.0, 0.5).duration == 20.0  # a slow ramp is allowed
+
+
+def test_voltage_schedule_hold_is_per_segment() -> None:
+    """A segment holds only where its two rows are equal: up, hold, down and up again."""
+    prog = VoltageSchedule(
+        np.array([0.0, 1.0, 2.0, 3.0, 4.0]), np.array([[0.0], [100.0], [100.0], [0.0], [100.0]])
+    )
+    for t, v in [(0.5, 50.0), (1.5, 100.0), (2.5, 50.0), (3.25, 25.0), (3.75, 75.0)]:
+        np.testing.assert_allclose(prog(t), [v], rtol=1e-14)
+    back = VoltageSchedule(np.array([0.0, 1.0, 2.0]), np.array([[0.0], [0.0], [100.0]]))
+    np.testing.assert_allclose(back(1.5), [50.0], rtol=1e-14)
+    np.testing.assert_array_equal(back(0.5), [0.0])
 
 
 def test_paper_ramp_and_constant_speed() -> None:
@@ -285,18 +313,20 @@ def test_controller_checkpoint_restores_latch_and_voltage() -> None:
     """A controller restored from a checkpoint applies the same voltages from then on; an
     untriggered checkpoint stores NaN and restores no latch; a checkpoint without the keys
     (an older file) changes nothing."""
-    ctrl = SubsyncController(threshold=2e-6, target=150.0, slew_rate=500.0)
+    ctrl = SubsyncController(threshold=2e-6, target=150.0, slew_rate=100.0, initial=20.0)
     ctrl.check(150.0, 2)
     ctrl(0.0)
     _feed(ctrl, 0.3, lambda t, phi: 5e-6 * np.sin(0.5 * phi))
     assert ctrl.triggered_at is not None
+    ctrl(0.2)
     ctrl(0.35)
     state = ctrl.checkpoint()
     assert state["triggered_at"] == ctrl.triggered_at and state["controller_time"] == 0.35
-    other = SubsyncController(threshold=2e-6, target=150.0, slew_rate=500.0)
+    assert 20.0 < state["controller_volts"] < 150.0  # mid-slew
+    other = SubsyncController(threshold=2e-6, target=150.0, slew_rate=100.0, initial=20.0)
     other.check(150.0, 2)
     other.restore({k: np.array([v]) for k, v in state.items()})
-    for t in (0.36, 0.4, 0.6):
+    for t in (0.36, 0.4, 0.6, 2.0):
         np.testing.assert_array_equal(other(t), ctrl(t))
     fresh = SubsyncController()
     assert math.isnan(fresh.checkpoint()["triggered_at"])
@@ -320,6 +350,7 @@ def test_bad_controller_settings(kwargs) -> None:
     with pytest.raises(InputError) as err:
         SubsyncController(**kwargs)
     assert str(err.value) == "controller: threshold, slew_rate, window and period must be > 0"
+    SubsyncController(threshold=0.5, slew_rate=0.5, window=0.5, period=0.5)  # small is fine
 
 
 @pytest.mark.parametrize(("target", "initial"), [(151.0, 0.0), (-1.0, 0.0), (100.0, 151.0)])

@@ -436,13 +436,14 @@ def test_ctrl_c_at_any_line_of_a_step_resumes_to_the_uninterrupted_run() -> None
                     signal.raise_signal(signal.SIGINT)
             return in_run
 
+        outer = sys.gettrace()  # coverage's tracer, when measured: put it back after the run
         sys.settrace(
             lambda frame, event, arg: in_run if frame.f_code is stepper_run.__code__ else None
         )
         try:
             res = simulate(case, prof, progress=progress)
         finally:
-            sys.settrace(None)
+            sys.settrace(outer)
         return seen["lines"], res
 
     before = signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal

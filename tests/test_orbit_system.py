@@ -53,6 +53,7 @@ def test_imbalance_force_is_the_imbalance_acceleration() -> None:
         np.testing.assert_allclose(inp.force, expected, rtol=1e-5, atol=1e-6 * abs(expected).max())
         assert inp.lam == pytest.approx(case.bearing_number(speed.omega(t)), rel=1e-14)
         assert inp.omega == speed.omega(t)
+        np.testing.assert_array_equal(inp.preload, sim.preload(volts))
         still = sim.inputs(t, volts, imbalance=False)
         np.testing.assert_allclose(still.force, [case.operation.load / (m * c), 0.0], rtol=1e-15)
 
@@ -73,6 +74,8 @@ def test_preload_follows_the_voltages_as_the_film_model_at_those_voltages() -> N
     sim_s = OrbitSimulation(shimmed, linear_ramp(10e3 * RPM, 20e3 * RPM, 5000.0))
     np.testing.assert_array_equal(sim_s.preload(np.zeros(0)), film_model(shimmed).preload)
     assert sim_s.volts(0.3).shape == (0,)
+    assert sim_s.n_act == 0 and sim_s.lobes.shape == (0, 32)
+    assert sim.n_act == 3 and sim.lobes.shape == (3, 32)
 
 
 def test_voltages_from_the_case_a_program_or_a_controller() -> None:
@@ -156,3 +159,16 @@ def test_bad_programs_are_one_line_errors() -> None:
     with pytest.raises(InputError) as err:
         OrbitSimulation(case, prof, voltage_ramp(0.0, 1.0, 200.0))
     assert "allowed 0 to 150 V (max_voltage)" in str(err.value)
+
+
+def test_no_start_equilibrium_is_a_solver_error_saying_what_to_try() -> None:
+    from foilbearing.errors import SolverError
+
+    rigid = replace(_coarse(), foil=None, actuators=None)
+    heavy = replace(rigid, operation=replace(rigid.operation, load=200.0))
+    sim = OrbitSimulation(heavy, linear_ramp(2e3 * RPM, 3e3 * RPM, 5000.0))
+    with pytest.raises(SolverError) as err:
+        sim.initial_state()
+    text = str(err.value)
+    assert text.startswith("no static equilibrium at the start of the run: equilibrium not found")
+    assert text.endswith("; start the run at a higher speed or a lower load")

@@ -13,6 +13,7 @@ these run in seconds, against every mutant of ``film.py``, ``static.py`` and
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -177,7 +178,21 @@ def test_equilibrium_balances_the_load_and_matches_the_film_at_its_position(equi
     assert st.speed == 40e3 * RPM
     assert st.bearing_number == pytest.approx(case.bearing_number(40e3 * RPM), rel=1e-15)
     other = film_at_position(case, st.eps_x, st.eps_y, speed=st.speed)
-    assert other.converged and not other.equilibrium and math.isnan(other.force_residual)
+    assert other.converged is True and other.equilibrium is False
+    assert math.isnan(other.force_residual) and other.message.startswith("converged")
+    assert isinstance(other.iterations, int) and other.iterations > 0
+    assert other.residual <= 1e-8 and other.speed == st.speed
+    # the reported residual is max|R|/(ΔθΔZ) of the Reynolds residual at the result
+    from foilbearing.reynolds import coupled_system
+
+    m = st.model
+    h_r = m.h_rigid(st.eps_x, st.eps_y)
+    R = coupled_system(
+        st.P.ravel(), m.grid, h_r, m.compliance, st.bearing_number, lift_off=m.lift_off
+    )[0]
+    assert st.residual == pytest.approx(
+        float(np.max(np.abs(R))) / (m.grid.d_theta * m.grid.d_z), rel=1e-6, abs=1e-14
+    )
     np.testing.assert_allclose(other.P, st.P, rtol=1e-7)
     np.testing.assert_allclose(other.H, st.H, rtol=1e-7)
     assert other.force[0] == pytest.approx(st.force[0], rel=1e-6)
@@ -284,6 +299,9 @@ def test_equilibrium_from_a_nearby_start_and_by_load_continuation() -> None:
     Newton that meets the tolerances on its last allowed step has converged."""
     case = _coarse()
     direct = solve_equilibrium(case, speed=40e3 * RPM)
+    same = solve_equilibrium(case, speed=40e3 * RPM, start=(direct.eps_x, direct.eps_y, direct.P))
+    no_p = solve_equilibrium(case, speed=40e3 * RPM, start=(direct.eps_x, direct.eps_y, None))
+    assert same.converged and same.iterations <= 1 < no_p.iterations  # the pressure is used
     near = solve_equilibrium(case, speed=42e3 * RPM, start=(direct.eps_x, direct.eps_y, direct.P))
     again = solve_equilibrium(case, speed=42e3 * RPM)
     assert near.converged and again.converged
@@ -293,7 +311,11 @@ def test_equilibrium_from_a_nearby_start_and_by_load_continuation() -> None:
     opts = EquilibriumOptions(max_iter=4)
     cont = solve_equilibrium(case, speed=40e3 * RPM, options=opts)
     assert cont.converged
-    assert "load continuation in" in cont.message and "direct Newton failed" in cont.message
+    assert cont.message.startswith("direct Newton failed (no convergence in 4 iterations); ")
+    assert cont.message.endswith(f"converged in {cont.iterations} Newton iterations")
+    assert cont.iterations > direct.iterations
+    steps = re.search(r"load continuation in (\d+) steps: ", cont.message)
+    assert steps is not None and int(steps.group(1)) >= 5  # 0.1, 0.25, 0.475, 0.81, 1 at best
     assert cont.eps_x == pytest.approx(direct.eps_x, abs=1e-7)
     assert cont.eps_y == pytest.approx(direct.eps_y, abs=1e-7)
 
@@ -303,8 +325,8 @@ def test_failed_equilibrium_says_what_to_try() -> None:
     message gives the residuals and what to try."""
     case = replace(_rigid(), operation=replace(_rigid().operation, load=200.0))
     st = solve_equilibrium(case, speed=2e3 * RPM)
-    assert not st.converged
-    assert st.message.startswith("equilibrium not found: ")
+    assert st.converged is False
+    assert st.message.startswith("equilibrium not found: direct Newton failed (")
     assert "Try: a start from a nearby converged point, a finer grid" in st.message
     assert "% of the load" in st.message
     assert np.all(np.isfinite(st.P)) and math.isfinite(st.eps_x)
@@ -317,6 +339,23 @@ def test_bad_speed_is_a_one_line_error(speed: float) -> None:
     assert str(err.value) == f"speed = {speed!r} rad/s: expected a speed > 0 (e.g. '50000 rpm')"
 
 
+def test_speed_defaults_to_the_case_and_any_positive_speed_is_allowed() -> None:
+    """Without ``speed`` the case's operating speed is used; 0.5 rad/s is a speed too."""
+    case = _coarse().with_speed(40e3 * RPM)
+    assert solve_equilibrium(case).speed == 40e3 * RPM
+    assert film_at_position(case, 0.1, 0.0).speed == 40e3 * RPM
+    assert film_at_position(_rigid(), 0.1, 0.0, speed=0.5).speed == 0.5
+
+
+def test_solver_options_reach_the_pressure_solve() -> None:
+    """A pressure Newton held to one iteration does not converge at a prescribed position."""
+    from foilbearing.reynolds import NewtonOptions
+
+    opts = EquilibriumOptions(newton=NewtonOptions(max_iter=1))
+    st = film_at_position(_coarse(), 0.3, 0.1, speed=40e3 * RPM, options=opts)
+    assert st.converged is False and "max_iter" in st.message  # (continuation steps counted)
+
+
 def test_rigid_position_that_closes_the_film_is_an_error() -> None:
     with pytest.raises(InputError) as err:
         film_at_position(_rigid(), 1.2, 0.0, speed=40e3 * RPM)
@@ -325,7 +364,7 @@ def test_rigid_position_that_closes_the_film_is_an_error() -> None:
         "choose a smaller eccentricity"
     )
     # a compliant foil opens under the pressure: allowed
-    assert film_at_position(_coarse(0.0), 1.0, 0.0, speed=40e3 * RPM).min_film > 0.0
+    assert film_at_position(_coarse(0.0), 1.2, 0.0, speed=40e3 * RPM).min_film > 0.0
 
 
 def test_static_headline_and_dataset_units(equilibrium) -> None:
@@ -465,3 +504,133 @@ def test_coefficient_bad_inputs_are_one_line_errors(equilibrium) -> None:
         dynamic_compliance(st, 100.0, loss_factor=-0.1)
     assert str(err.value) == "loss factor = -0.1: must be >= 0"
     assert Foil is not None  # the Foil type stays importable for the cases above
+
+
+# ------------------------------------------------------------- what the results write
+
+
+def test_static_dataset_layout_and_labels(equilibrium) -> None:
+    """The static NetCDF's layout, read by users and by ``load`` tools: every variable's
+    dimensions, units and long name, the coordinates', and the headline's keys as attrs."""
+    ds = equilibrium.to_dataset()
+    layout = {
+        name: (var.dims, var.attrs.get("units"), var.attrs.get("long_name"))
+        for name, var in ds.variables.items()
+    }
+    assert layout == {
+        "theta": (("theta",), "rad", "θ from −X"),
+        "z": (("z",), "m", "z from the mid-plane"),
+        "pressure": (("theta", "z"), "Pa", "p"),
+        "gauge_pressure_mean": (("theta",), "Pa", "axially averaged gauge pressure p_A"),
+        "film_thickness": (("theta", "z"), "m", "h"),
+        "preload_shape": (("theta",), "m", "r_p (base preload shape)"),
+    }
+    assert set(ds.attrs) == set(equilibrium.headline())
+
+
+def test_static_headline_keys_and_values(equilibrium) -> None:
+    """The ``--json`` headline: its unit-named keys and what each holds."""
+    st = equilibrium
+    h = st.headline()
+    assert list(h) == [
+        "speed_rpm",
+        "voltages_V",
+        "bearing",
+        "bearing_number",
+        "eccentricity",
+        "eps_X",
+        "eps_Y",
+        "attitude_deg",
+        "min_film_um",
+        "min_film_angle_deg",
+        "force_N",
+        "preload_um",
+        "actuator_pressure_kPa",
+        "drag_torque_Nm",
+        "power_loss_W",
+        "iterations",
+        "reynolds_residual",
+        "force_residual",
+        "converged",
+        "message",
+    ]
+    assert (h["bearing_number"], h["eccentricity"]) == (st.bearing_number, st.eccentricity)
+    assert (h["eps_X"], h["eps_Y"]) == (st.eps_x, st.eps_y)
+    assert (h["drag_torque_Nm"], h["power_loss_W"]) == (st.drag_torque, st.power_loss)
+    assert (h["iterations"], h["reynolds_residual"]) == (st.iterations, st.residual)
+    assert (h["force_residual"], h["message"]) == (st.force_residual, st.message)
+
+
+def test_coefficient_dataset_layout(equilibrium) -> None:
+    co = force_coefficients(equilibrium, [100.0, 200.0])
+    ds = co.to_dataset()
+    layout = {name: (var.dims, var.attrs.get("units")) for name, var in ds.variables.items()}
+    assert layout == {
+        "frequency": (("frequency",), "Hz"),
+        "i": (("i",), None),
+        "j": (("j",), None),
+        "stiffness": (("frequency", "i", "j"), "N/m"),
+        "damping": (("frequency", "i", "j"), "N s/m"),
+    }
+    assert list(ds["i"].values) == ["X", "Y"] and list(ds["j"].values) == ["X", "Y"]
+    assert set(ds.attrs) == {"speed_rpm", "eccentricity", "attitude_deg"}
+
+
+def test_equilibrium_newton_failures_say_what_failed() -> None:
+    """The inner Newton's outcomes, each with its message: the pressure solve at the start
+    failing, no convergence within the iterations allowed (with the iterations counted),
+    and the line search that cannot keep the film open. None is reported converged."""
+    from foilbearing.reynolds import NewtonOptions
+    from foilbearing.static import _Equilibrium
+
+    case = _coarse()
+    model = film_model(case)
+    lam = case.bearing_number(40e3 * RPM)
+    load = case.operation.load / (case.gas.ambient_pressure * case.bearing.radius**2)
+    start_fails = _Equilibrium(model, lam, EquilibriumOptions(newton=NewtonOptions(max_iter=1)))
+    out = start_fails.solve(load, np.zeros(2), None)
+    assert not out.converged and out.force_res == np.inf
+    assert out.message.startswith("pressure solve at the starting position failed: ")
+    assert out.P.shape == (model.grid.size,) and np.all(np.isfinite(out.P))
+    np.testing.assert_array_equal(out.eps, [0.0, 0.0])
+    two = _Equilibrium(model, lam, EquilibriumOptions(max_iter=2)).solve(load, np.zeros(2), None)
+    assert not two.converged and two.message == "no convergence in 2 iterations"
+    full = _Equilibrium(model, lam, EquilibriumOptions()).solve(load, np.zeros(2), None)
+    assert full.converged and full.message == "converged"
+    assert two.iterations == full.iterations - (full.iterations - two.iterations)
+    assert two.iterations < full.iterations
+    assert two.force_res > 1e-8 and two.residual >= 0.0
+    # The equilibrium's own Newton steps: the start's pressure solve plus one per step.
+    first = _Equilibrium(model, lam, EquilibriumOptions(max_iter=0)).solve(load, np.zeros(2), None)
+    assert two.iterations == first.iterations + 2
+    assert first.message == "no convergence in 0 iterations"
+    # A film that may not thin below h/C = 0.99: no step keeps it open.
+    closed = _Equilibrium(model, lam, EquilibriumOptions(min_film=0.99)).solve(
+        load, np.zeros(2), None
+    )
+    assert not closed.converged
+    assert closed.message == (
+        "line search failed (the film would close below h/C = 0.99, or the residual did not "
+        "decrease)"
+    )
+    assert closed.iterations == first.iterations + 1
+    np.testing.assert_array_equal(closed.eps, [0.0, 0.0])
+
+
+def test_failed_equilibrium_message_gives_where_it_stopped() -> None:
+    """The failure message names the position, Λ and how much of the load was carried; its
+    force residual is against the whole load (the film carries the part it stopped at)."""
+    case = replace(_rigid(), operation=replace(_rigid().operation, load=200.0))
+    st = solve_equilibrium(case, speed=2e3 * RPM)
+    assert not st.converged
+    assert f"at ε = ({st.eps_x:.4f}, {st.eps_y:.4f}), Λ = {st.bearing_number:.4g}" in st.message
+    found = re.search(r"stopped at ([0-9.]+) % of the load; ", st.message)
+    assert found is not None and 0.0 <= float(found.group(1)) < 100.0
+    unbalanced = math.hypot(st.force[0] + 200.0, st.force[1]) / 200.0  # the reported film's
+    assert st.force_residual == pytest.approx(unbalanced, rel=1e-6)
+    assert st.force_residual > 0.5  # a rigid journal at 2000 rpm carries a few % of 200 N
+    assert f"|F + W|/|W| = {st.force_residual:.2e}" in st.message
+    assert st.message.endswith(
+        "Try: a start from a nearby converged point, a finer grid, or check that the bearing "
+        "can carry the load at this speed (the film may be closing)."
+    )

@@ -329,7 +329,9 @@ def solve_equilibrium(
                     break
         note = f"direct Newton failed ({first_reason}); load continuation in {steps} steps: "
         if done < 1.0:
-            out = replace(out, converged=False)
+            # The last trial's residual is against its part of the load: report the whole's.
+            force = np.array([system.w_x @ (out.P - 1.0) + load, system.w_y @ (out.P - 1.0)])
+            out = replace(out, converged=False, force_res=float(np.hypot(*force)) / load)
             note += f"stopped at {100 * done:.1f} % of the load; "
     if out.converged:
         message = note + f"converged in {iterations} Newton iterations"

@@ -93,9 +93,7 @@ class OrbitSimulation:
         v = np.asarray(self.voltage(t), float)
         if v.shape == (self.n_act,):
             return v.copy()
-        if v.shape == (1,):
-            return np.full(self.n_act, v[0])
-        return np.broadcast_to(v, (self.n_act,)).copy()
+        return np.broadcast_to(v, (self.n_act,)).copy()  # one voltage for every actuator
 
     def preload(self, volts: FloatArray) -> FloatArray:
         """r_p(θ_i)/C for actuator voltages (static shims if no actuators)."""
