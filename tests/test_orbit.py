@@ -122,7 +122,14 @@ def test_settles_at_the_static_equilibrium() -> None:
     from foilbearing.orbit.sampling import Samples
     from foilbearing.orbit.stepper import State, run
 
-    res = run(sim, State(0.0, y0), Samples(1e-4), False, None, None, 30.0)
+    res = run(
+        sim.problem(),
+        State(0.0, y0),
+        Samples(1e-4),
+        sim.settings.step_rule,
+        sim.settings.newton_rule,
+        sim.settings.stop_rule(),
+    )
     st = solve_equilibrium(case, speed=10e3 * RPM)
     c = case.bearing.clearance
     assert abs(res.e_x[-1] / c - st.eps_x) < 0.005
@@ -149,7 +156,14 @@ def test_free_whirl_matches_the_linear_eigenvalue(subambient: str, loss_factor: 
     from foilbearing.orbit.sampling import Samples
     from foilbearing.orbit.stepper import State, run
 
-    res = run(sim, State(0.0, y0), Samples(1e-4), False, None, None, 30.0)
+    res = run(
+        sim.problem(),
+        State(0.0, y0),
+        Samples(1e-4),
+        sim.settings.step_rule,
+        sim.settings.newton_rule,
+        sim.settings.stop_rule(),
+    )
     x = res.e_x - res.e_x[-200:].mean()
     peaks, _ = find_peaks(x, distance=20)
     freq = 1.0 / np.median(np.diff(res.time[peaks]))
@@ -353,7 +367,14 @@ def test_the_linear_onset_is_bracketed_by_free_whirl_orbits() -> None:
         sim = OrbitSimulation(case, constant_speed(factor * onset, 0.4))
         y0 = sim.initial_state()
         y0[sim.system.n + sim.system.nt] += 0.002  # e_X kicked by 0.2 um
-        res = run(sim, State(0.0, y0), Samples(1e-4), False, None, None, 30.0)
+        res = run(
+            sim.problem(),
+            State(0.0, y0),
+            Samples(1e-4),
+            sim.settings.step_rule,
+            sim.settings.newton_rule,
+            sim.settings.stop_rule(),
+        )
         assert res.status == "completed", res.message
         x = res.e_x - res.e_x[res.time > 0.3].mean()
         early = np.abs(x[(res.time > 0.1) & (res.time < 0.2)]).max()

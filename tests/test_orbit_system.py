@@ -172,3 +172,58 @@ def test_no_start_equilibrium_is_a_solver_error_saying_what_to_try() -> None:
     text = str(err.value)
     assert text.startswith("no static equilibrium at the start of the run: equilibrium not found")
     assert text.endswith("; start the run at a higher speed or a lower load")
+
+
+def test_the_stepper_problem_is_the_simulation_seen_through_callables() -> None:
+    """``problem()`` hands the stepper the system's callables and arrays: the inputs and
+    voltages at t, the storage and factorisation of the system, the tolerances, the
+    journal's index; the closed-loop program observes e_X at the phase of the profile and
+    its checkpoint follows the run's. The settings come apart by role, field for field."""
+    from foilbearing.orbit.problem import RunStats
+    from foilbearing.orbit.result import RunStatus
+    from foilbearing.orbit.sampling import Samples
+
+    case = _coarse()
+    prof = linear_ramp(10e3 * RPM, 20e3 * RPM, 5000.0)
+    settings = OrbitSettings(rtol=1e-3, atol_position=1e-4, steps_per_rev=30, max_newton=7)
+    sim = OrbitSimulation(case, prof, voltage_ramp(0.5, 1.0, 150.0, initial=60.0), settings)
+    pb, sys_ = sim.problem(), sim.system
+    assert (pb.size, pb.t_end, pb.journal) == (sys_.size, prof.duration, sys_.n + sys_.nt)
+    assert pb.clearance == case.bearing.clearance and pb.speed(0.7) == prof.omega(0.7)
+    inp, volts = pb.inputs(0.75)
+    np.testing.assert_array_equal(volts, sim.volts(0.75))
+    ref = sim.inputs(0.75, sim.volts(0.75))
+    assert (inp.lam, inp.omega) == (ref.lam, ref.omega)
+    np.testing.assert_array_equal(inp.force, ref.force)
+    np.testing.assert_array_equal(inp.preload, ref.preload)
+    y = sim.initial_state()
+    np.testing.assert_array_equal(pb.storage(y, inp), sys_.storage(y, inp))
+    assert pb.lift_slack is sys_._slack and pb.atol is sim.atol()
+    assert pb.observe is None and pb.program_checkpoint() == {}
+    out = Samples(1e-4)
+    pb.record(out, 0.0, y, volts, inp, None)
+    pb.record(out, 2e-4, y, volts, inp, 0.5)
+    assert out.t == [0.0, 2e-4] and out.h_min[1] == 0.5 * case.bearing.clearance
+    stats = RunStats(0.0, 3, 2, 9, None, {"t": 2e-4})
+    res = pb.make_result(out, RunStatus.STOPPED, "stopped", stats)
+    assert (res.steps, res.factorizations, res.newton_iterations) == (3, 2, 9)
+    assert res.status == "stopped" and res.message == "stopped" and res.checkpoint == {"t": 2e-4}
+    assert res.settings is settings and res.case is case and res.time.size == 3
+
+    ctrl = SubsyncController(initial=12.0)
+    closed = OrbitSimulation(case, prof, ctrl).problem()
+    assert closed.observe is not None and closed.program_checkpoint() == ctrl.checkpoint()
+    closed.observe(0.25, 1e-6)
+    assert list(ctrl._samples)[-1] == (0.25, 1e-6, prof.phase(0.25))
+
+    step, newton = settings.step_rule, settings.newton_rule
+    assert (step.steps_per_rev, step.order, step.max_step) == (30, 3, 1e-3)
+    assert (newton.newton_tol, newton.newton_fraction, newton.max_newton, newton.rtol) == (
+        0.3,
+        0.001,
+        7,
+        1e-3,
+    )
+    assert settings.sampling.sample_rate == 10_000.0
+    assert settings.stop_rule() == settings.stop_rule(None)
+    assert (settings.stop_rule(0.2).contact_film, settings.stop_rule(0.2).stop_time) == (0.005, 0.2)

@@ -76,8 +76,18 @@ def simulate(
         samples = Samples.from_result(resume)
     else:
         state = State(0.0, sim.initial_state())
-        samples = Samples(1.0 / sim.settings.sample_rate)
+        samples = Samples(1.0 / sim.settings.sampling.sample_rate)
+    s = sim.settings
     with interrupt_at_step_boundary() as interrupted:
         return run(
-            sim, state, samples, progress, stop_time, checkpoint, checkpoint_every, interrupted
+            sim.problem(),
+            state,
+            samples,
+            s.step_rule,
+            s.newton_rule,
+            s.stop_rule(stop_time),
+            progress,
+            checkpoint,
+            checkpoint_every,
+            interrupted,
         )

@@ -7,10 +7,81 @@ from dataclasses import dataclass
 
 from foilbearing.errors import InputError
 
-__all__ = ["MAX_ORDER", "OrbitSettings"]
+__all__ = ["MAX_ORDER", "NewtonRule", "OrbitSettings", "Sampling", "StepRule", "StopRule"]
 
 #: Highest BDF order of the stepper.
 MAX_ORDER = 4
+
+
+@dataclass(frozen=True)
+class StepRule:
+    """The time-step rule of the stepper (see :class:`OrbitSettings`).
+
+    Attributes
+    ----------
+    steps_per_rev
+        Time steps per rotor revolution (Δt = 2π/(ω · steps_per_rev)).
+    order
+        Order of the variable-step BDF (1 to :data:`MAX_ORDER`).
+    max_step
+        Largest time step, s.
+    """
+
+    steps_per_rev: int
+    order: int
+    max_step: float
+
+
+@dataclass(frozen=True)
+class NewtonRule:
+    """The modified Newton iteration of each step (see :class:`OrbitSettings`).
+
+    Attributes
+    ----------
+    newton_tol
+        Convergence of the Newton update in the weighted max-norm (1 = tolerance met).
+    newton_fraction
+        The iteration also stops at this fraction of its first update.
+    max_newton
+        Iterations per attempt before the Jacobian is refreshed.
+    rtol
+        Relative tolerance of the error weights 1/(atol + rtol |y|) (the absolute
+        tolerances are per state: ``StepperProblem.atol``).
+    """
+
+    newton_tol: float
+    newton_fraction: float
+    max_newton: int
+    rtol: float
+
+
+@dataclass(frozen=True)
+class Sampling:
+    """The output of a run (see :class:`OrbitSettings`).
+
+    Attributes
+    ----------
+    sample_rate
+        Output sampling rate, Hz.
+    """
+
+    sample_rate: float
+
+
+@dataclass(frozen=True)
+class StopRule:
+    """When a run ends before the end of its speed profile.
+
+    Attributes
+    ----------
+    contact_film
+        Contact: the run stops when the minimum film falls below this fraction of C.
+    stop_time
+        The run stops at this simulated time, s (None: at the end of the profile).
+    """
+
+    contact_film: float
+    stop_time: float | None = None
 
 
 @dataclass(frozen=True)
@@ -87,6 +158,25 @@ class OrbitSettings:
     atol_position: float = 1e-5
     max_newton: int = 10
     newton_fraction: float = 0.001
+
+    @property
+    def step_rule(self) -> StepRule:
+        """The settings of the time-step rule."""
+        return StepRule(self.steps_per_rev, self.order, self.max_step)
+
+    @property
+    def newton_rule(self) -> NewtonRule:
+        """The settings of the Newton iteration."""
+        return NewtonRule(self.newton_tol, self.newton_fraction, self.max_newton, self.rtol)
+
+    @property
+    def sampling(self) -> Sampling:
+        """The settings of the output."""
+        return Sampling(self.sample_rate)
+
+    def stop_rule(self, stop_time: float | None = None) -> StopRule:
+        """The stop rule: contact at ``contact_film``, or ``stop_time`` (s) when given."""
+        return StopRule(self.contact_film, stop_time)
 
     def check(self, max_speed: float) -> None:
         """Errors before any work for settings that cannot resolve the synchronous frequency."""

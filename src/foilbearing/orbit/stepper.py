@@ -1,6 +1,10 @@
 """The variable-step BDF stepper of the orbit, its modified Newton iteration and its checkpoint.
 
-See :mod:`foilbearing.orbit` for the method and docs/numerics.md §8 for the details.
+The stepper sees a run as a :class:`~foilbearing.orbit.problem.StepperProblem`
+(callables and arrays: the inputs at t, the storage, the factorisation and
+its Newton solve, the output) and its settings by role (``StepRule``,
+``NewtonRule``, ``StopRule``), never the case or the programs. See
+:mod:`foilbearing.orbit` for the method and docs/numerics.md §8 for the details.
 """
 
 from __future__ import annotations
@@ -18,10 +22,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.constants import RPM
+from foilbearing.orbit.problem import Factor, RunStats, StepperProblem
 from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.sampling import Samples, progress_bar
-from foilbearing.orbit.settings import MAX_ORDER
-from foilbearing.orbit.system import OrbitSimulation
+from foilbearing.orbit.settings import MAX_ORDER, NewtonRule, StepRule, StopRule
 from foilbearing.reynolds._kernels import MAX_MOVED_KEPT
 from foilbearing.reynolds.transient import (
     NEWTON_CONVERGED,
@@ -96,93 +100,94 @@ def interrupt_at_step_boundary() -> Iterator[Callable[[], bool]]:
 
 
 def run(
-    sim: OrbitSimulation,
+    problem: StepperProblem,
     st: State,
     out: Samples,
-    progress: bool | Callable[[float, float], None],
-    stop_time: float | None,
-    checkpoint: Callable[[OrbitResult], None] | None,
-    checkpoint_every: float,
+    step: StepRule,
+    newton: NewtonRule,
+    stop: StopRule,
+    progress: bool | Callable[[float, float], None] = False,
+    checkpoint: Callable[[OrbitResult], None] | None = None,
+    checkpoint_every: float = 30.0,
     interrupted: Callable[[], bool] = lambda: False,
 ) -> OrbitResult:
-    s, sys_ = sim.settings, sim.system
-    t_end = sim.profile.duration if stop_time is None else min(stop_time, sim.profile.duration)
+    """Integrate ``problem`` from the state ``st`` to its end, a contact, a stop or Ctrl-C.
+
+    Parameters
+    ----------
+    problem
+        The system, its inputs and its output, as callables and arrays.
+    st
+        The state to start from (and its BDF history); updated as the run goes.
+    out
+        The output of the run, handed to ``problem.record``/``make_result``.
+    step, newton, stop
+        The time-step rule, the Newton iteration, and when to stop before the
+        end of the profile (:mod:`foilbearing.orbit.settings`).
+    progress
+        True for a tqdm bar, or a callable ``f(t, speed)`` (s, rad/s) after every step.
+    checkpoint
+        Called with the partial result every ``checkpoint_every`` seconds of wall time.
+    interrupted
+        Read before each step: True ends the run as interrupted (Ctrl-C held by
+        :func:`interrupt_at_step_boundary`).
+    """
+    t_end = problem.t_end if stop.stop_time is None else min(stop.stop_time, problem.t_end)
     clock = time.perf_counter()
     last_checkpoint = clock
     bar = progress_bar(progress, t_end, st.t)
-    volts = sim.volts(st.t)
-    inp = sim.inputs(st.t, volts)
+    inp, volts = problem.inputs(st.t)
     # Accepted states, newest first: times, states y and storages Q (the BDF history).
-    depth = s.order + 1
-    times, ys, qs = np.empty(depth), np.empty((depth, sys_.size)), np.empty((depth, sys_.size))
-    count = 1 + min(len(st.past), s.order)
+    size, order = problem.size, step.order
+    depth = order + 1
+    times, ys, qs = np.empty(depth), np.empty((depth, size)), np.empty((depth, size))
+    count = 1 + min(len(st.past), order)
     times[0], ys[0] = st.t, st.y
     for j, (h_j, y_j) in enumerate(st.past[: count - 1]):
         times[j + 1], ys[j + 1] = times[j] - h_j, y_j
     for j in range(count):
-        qs[j] = sys_.storage(ys[j], sim.inputs(times[j], sim.volts(float(times[j]))))
-    out.add(st.t, st.y, sim, volts, inp)
+        qs[j] = problem.storage(ys[j], problem.inputs(times[j])[0])
+    problem.record(out, st.t, st.y, volts, inp, None)
     lu, lu_c0 = None, math.nan
-    work = (np.empty(sys_.size), np.empty(sys_.size))  # Newton residual and update buffers
-    guess, hist, weights = np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size)
-    atol = sim.atol()
+    work = (np.empty(size), np.empty(size))  # Newton residual and update buffers
+    guess, hist, weights = np.empty(size), np.empty(size), np.empty(size)
+    atol = problem.atol
     counters = [0, 0, 0]  # steps, factorizations, Newton iterations
     # Lift-off boundary coordinate at the last three accepted steps (None: unknown).
     lift_s: list[FloatArray | None] = [None, None, None]
     status, message, contact = RunStatus.COMPLETED, "", None
     # A closed-loop program reads the displacement samples as they are produced.
-    observer = sim.voltage if sim.voltage is not None and sim.voltage.observes else None
+    observe = problem.observe
 
     def result(status: RunStatus, message: str) -> OrbitResult:
         st.past = [(float(times[j] - times[j + 1]), ys[j + 1].copy()) for j in range(count - 1)]
         cp = st.as_checkpoint()
-        if sim.voltage is not None:
-            cp.update(sim.voltage.checkpoint())
-        t_s, e_x, e_y, speed, phase, h_min, volts_s, power = out.arrays(sim.n_act, sim.profile)
-        return OrbitResult(
-            sim.case,
-            s,
-            t_s,
-            e_x,
-            e_y,
-            speed,
-            phase,
-            h_min,
-            volts_s,
-            power_loss=power,
-            status=status,
-            message=message,
-            wall_time=time.perf_counter() - clock,
-            steps=counters[0],
-            factorizations=counters[1],
-            newton_iterations=counters[2],
-            contact=contact,
-            checkpoint=cp,
-        )
+        cp.update(problem.program_checkpoint())
+        stats = RunStats(clock, counters[0], counters[1], counters[2], contact, cp)
+        return problem.make_result(out, status, message, stats)
 
     try:
         while st.t < t_end - 1e-12:
             if interrupted():
                 raise KeyboardInterrupt  # held by interrupt_at_step_boundary
             t = st.t
-            omega = sim.profile.state(t)[0]
-            h = h_nominal = min(s.max_step, 2 * math.pi / (omega * s.steps_per_rev))
+            omega = problem.speed(t)
+            h = h_nominal = min(step.max_step, 2 * math.pi / (omega * step.steps_per_rev))
             if t_end - t < 2.0 * h:
                 # Land on t_end in one step up to h, else in two equal ones: never longer
                 # than the cap, and no sliver of a step, whose ratio to the next (after a
                 # resume) would upset the BDF.
                 h = t_end - t if t_end - t <= h else 0.5 * (t_end - t)
-            if count <= s.order:
+            if count <= order:
                 # Start-up: the order rises with the history, and each missing past
                 # state halves the step, so that the low-order first steps stay
                 # below the error of the full-order ones.
-                h *= 2.0 ** (count - 1 - s.order)
+                h *= 2.0 ** (count - 1 - order)
             while True:
                 t_new = t + h
-                volts = sim.volts(t_new)
-                inp = sim.inputs(t_new, volts)
+                inp, volts = problem.inputs(t_new)
                 c0 = bdf_setup(
-                    t_new, times, ys, qs, count, s.order, atol, s.rtol, guess, hist, weights
+                    t_new, times, ys, qs, count, order, atol, newton.rtol, guess, hist, weights
                 )
                 branches = _predicted_branches(
                     lift_s[0], lift_s[1], lift_s[2], h,
@@ -190,7 +195,7 @@ def run(
                     times[1] - times[2] if count > 2 else None,
                 )  # fmt: skip
                 ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _step_newton(
-                    sim, guess, inp, c0, hist, weights, lu, lu_c0, work, branches
+                    problem, newton, guess, inp, c0, hist, weights, lu, lu_c0, work, branches
                 )
                 counters[2] += its
                 counters[1] += nf
@@ -205,34 +210,34 @@ def run(
                 if h < 1e-9:
                     raise FloatingPointError(f"time step collapsed at t = {t:.6f} s")
             counters[0] += 1
-            lift_s = [_lift_coordinate(lu, sys_._slack), lift_s[0], lift_s[1]]
+            lift_s = [_lift_coordinate(lu, problem.lift_slack), lift_s[0], lift_s[1]]
             # Shift the history by one (rows are reused: no allocation).
             times[1:], ys[1:], qs[1:] = times[:-1], ys[:-1], qs[:-1]
             times[0], ys[0], qs[0] = t_new, y_new, q_new
             count = min(count + 1, depth)
             st.t, st.y = t_new, ys[0].copy()
-            out.add(t_new, y_new, sim, volts, inp, min_film=h_min)
-            if observer is not None:
+            problem.record(out, t_new, y_new, volts, inp, h_min)
+            if observe is not None:
                 for t_s, ex in out.new_samples():
-                    observer.observe(t_s, ex, sim.profile.phase(t_s))
-            if h_min < s.contact_film:
-                w = sim.profile.omega(t_new)
-                k = sys_.n + sys_.nt
+                    observe(t_s, ex)
+            if h_min < stop.contact_film:
+                w = problem.speed(t_new)
+                k = problem.journal
                 contact = {
                     "time_s": t_new,
                     "speed_rpm": w / RPM,
                     "angle_deg": math.degrees(math.atan2(y_new[k + 1], y_new[k])),
-                    "min_film_um": h_min * sim.case.bearing.clearance * 1e6,
+                    "min_film_um": h_min * problem.clearance * 1e6,
                 }
                 status = RunStatus.CONTACT
                 message = (
                     f"contact at t = {t_new:.4f} s, {w / RPM:.0f} rpm: minimum film "
-                    f"{h_min:.3f} C < {s.contact_film} C, journal at "
+                    f"{h_min:.3f} C < {stop.contact_film} C, journal at "
                     f"{contact['angle_deg']:.1f} deg from +X"
                 )
                 break
             if bar is not None:
-                bar(t_new, sim.profile.omega(t_new))
+                bar(t_new, problem.speed(t_new))
             if checkpoint is not None and time.perf_counter() - last_checkpoint > checkpoint_every:
                 checkpoint(result(RunStatus.RUNNING, f"checkpoint at t = {t_new:.4f} s"))
                 last_checkpoint = time.perf_counter()
@@ -244,10 +249,10 @@ def run(
         if bar is not None:
             bar(None, None)
     if status == RunStatus.COMPLETED:
-        if st.t < sim.profile.duration - 1e-9:
+        if st.t < problem.t_end - 1e-9:
             status = RunStatus.STOPPED  # at stop_time: the profile goes on, the run can be resumed
         message = (
-            f"{status} at {st.t:.4f} s ({sim.profile.omega(st.t) / RPM:.0f} rpm) after "
+            f"{status} at {st.t:.4f} s ({problem.speed(st.t) / RPM:.0f} rpm) after "
             f"{counters[0]} steps"
         )
     return result(status, message)
@@ -258,17 +263,18 @@ _MAX_REFRESH = 3
 
 
 def _step_newton(
-    sim: OrbitSimulation,
+    problem: StepperProblem,
+    newton: NewtonRule,
     y0: FloatArray,
     inp: Inputs,
     c0: float,
     hist: FloatArray,
     weights: FloatArray,
-    lu: Any,
+    lu: Factor | None,
     lu_c0: float,
     work: tuple[FloatArray, FloatArray],
     branches: FloatArray | None = None,
-) -> tuple[bool, FloatArray, int, Any, float, int, FloatArray, float]:
+) -> tuple[bool, FloatArray, int, Factor | None, float, int, FloatArray, float]:
     """Modified Newton on c0·Q(y) + hist − f(y) = 0 from the guess y0, reusing the factor.
 
     The iterations with one factor are compiled
@@ -288,9 +294,8 @@ def _step_newton(
     iterations, factor, factor_c0, factorisations, Q(y), min film)``; on
     failure y is the guess and Q is empty.
     """
-    s, sys_ = sim.settings, sim.system
-    controls = (s.newton_tol, s.newton_fraction, s.max_newton)
-    q_new = np.empty(sys_.size)
+    controls = (newton.newton_tol, newton.newton_fraction, newton.max_newton)
+    q_new = np.empty(problem.size)
     buffers = (work[0], work[1], q_new)
     factorizations = 0
     its = 0
@@ -307,9 +312,10 @@ def _step_newton(
         if fresh:
             # Lift-off branches: those predicted for the step, or decided afresh at
             # the guess when the step starts over.
-            lu = sys_.factorize(y, inp, c0, hist, branches if attempt == 0 else None)
+            lu = problem.factorize(y, inp, c0, hist, branches if attempt == 0 else None)
             lu_c0 = c0
             factorizations += 1
+        assert lu is not None  # a step without a factor takes a fresh one
         first_change = math.inf
         while True:
             outcome, k, first_change, h_new = lu.newton_solve(
@@ -323,7 +329,7 @@ def _step_newton(
             refreshes += 1
             # A factor that will not converge in time: refresh it here (with the
             # lift-off branches the iteration has reached), go on from y.
-            lu = sys_.factorize(y, inp, c0, hist, lu.lift_state)
+            lu = problem.factorize(y, inp, c0, hist, lu.lift_state)
             lu_c0 = c0
             factorizations += 1
             fresh = True
@@ -332,7 +338,7 @@ def _step_newton(
     return False, y0, its, None, math.nan, factorizations, np.empty(0), math.nan
 
 
-def _lift_coordinate(lu: Any, slack: FloatArray) -> FloatArray | None:
+def _lift_coordinate(lu: Factor | None, slack: FloatArray) -> FloatArray | None:
     """The signed distance of each cell from the lift-off boundary at a converged step.
 
     ``P − 1 − G/d``: ``P − 1 >= 0`` on a free cell, ``−G/d <= 0`` on a held one

@@ -9,6 +9,8 @@ time, the initial static equilibrium and the error weights.
 from __future__ import annotations
 
 import math
+import time
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -17,6 +19,8 @@ from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import film_model
+from foilbearing.orbit.problem import RunStats, StepperProblem
+from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.settings import OrbitSettings
 from foilbearing.reynolds.transient import (
     Inputs,
@@ -24,6 +28,9 @@ from foilbearing.reynolds.transient import (
 )
 from foilbearing.static import solve_equilibrium
 from foilbearing.structure import base_preload, preload_shape
+
+if TYPE_CHECKING:  # sampling imports this module
+    from foilbearing.orbit.sampling import Samples
 
 __all__ = ["POWER_INTERVAL", "OrbitSimulation"]
 
@@ -162,3 +169,74 @@ class OrbitSimulation:
     def weights(self, y: FloatArray) -> FloatArray:
         """Error weights 1/(atol + rtol |y|) of the Newton convergence test."""
         return 1.0 / (self.atol() + self.settings.rtol * np.abs(y))
+
+    # ---------------------------------------------------------------- stepper
+    def problem(self) -> StepperProblem:
+        """The run as the stepper sees it: callables and arrays (:mod:`~foilbearing.orbit.problem`)."""
+        sys_, profile, voltage = self.system, self.profile, self.voltage
+
+        def inputs(t: float) -> tuple[Inputs, FloatArray]:
+            volts = self.volts(float(t))
+            return self.inputs(t, volts), volts
+
+        def record(
+            out: Samples,
+            t: float,
+            y: FloatArray,
+            volts: FloatArray,
+            inp: Inputs,
+            min_film: float | None,
+        ) -> None:
+            out.add(t, y, self, volts, inp, min_film=min_film)
+
+        observe = None
+        if voltage is not None and voltage.observes:
+            program = voltage
+
+            def observe(t: float, e_x: float) -> None:
+                program.observe(t, e_x, profile.phase(t))
+
+        def program_checkpoint() -> dict[str, Any]:
+            return {} if voltage is None else dict(voltage.checkpoint())
+
+        def make_result(
+            out: Samples, status: RunStatus, message: str, stats: RunStats
+        ) -> OrbitResult:
+            t_s, e_x, e_y, speed, phase, h_min, volts_s, power = out.arrays(self.n_act, profile)
+            return OrbitResult(
+                self.case,
+                self.settings,
+                t_s,
+                e_x,
+                e_y,
+                speed,
+                phase,
+                h_min,
+                volts_s,
+                power_loss=power,
+                status=status,
+                message=message,
+                wall_time=time.perf_counter() - stats.clock,
+                steps=stats.steps,
+                factorizations=stats.factorizations,
+                newton_iterations=stats.newton_iterations,
+                contact=stats.contact,
+                checkpoint=stats.checkpoint,
+            )
+
+        return StepperProblem(
+            size=sys_.size,
+            t_end=profile.duration,
+            speed=profile.omega,
+            inputs=inputs,
+            storage=sys_.storage,
+            factorize=sys_.factorize,
+            lift_slack=sys_._slack,
+            atol=self.atol(),
+            journal=sys_.n + sys_.nt,
+            clearance=self.case.bearing.clearance,
+            record=record,
+            observe=observe,
+            program_checkpoint=program_checkpoint,
+            make_result=make_result,
+        )
