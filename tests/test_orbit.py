@@ -1,5 +1,10 @@
 """Nonlinear orbit: the time stepper checked against a reference integrator, the static
-solver, the linear eigenvalues, and its own step refinement."""
+solver, the linear eigenvalues, and its own step refinement.
+
+The three longest tests (the paper's protocol, the Newton tolerance, the ``solve_ivp``
+reference: about 4 minutes of orbit steps on 2 cores) are marked ``no_cover``: line
+coverage would trace every step and more than double their time in CI, and the lines they
+run are run by the faster orbit tests too."""
 
 from __future__ import annotations
 
@@ -36,6 +41,7 @@ def coarse(volts: float = 100.0, **rotor):
 
 
 @pytest.mark.slow
+@pytest.mark.no_cover  # long orbit runs: see the module docstring
 @pytest.mark.parametrize("subambient", ["lift-off", "retained"])
 def test_fast_stepper_agrees_with_solve_ivp_bdf(subambient: str) -> None:
     # Same semi-discrete system, two integrators: the orbits must agree within 1 % of the
@@ -92,6 +98,7 @@ def test_newton_error_is_well_below_the_time_step_error() -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.no_cover  # long orbit runs: see the module docstring
 def test_newton_tolerance_does_not_move_the_divergence() -> None:
     # The paper's 0 V speed-up on the default case: the divergence speed must not depend on
     # the Newton tolerance beyond the stated accuracy of the readings. Under lift-off this
@@ -305,6 +312,7 @@ def test_a_resumed_run_keeps_the_controllers_latch_and_voltage() -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.no_cover  # long orbit runs: see the module docstring
 def test_paper_protocol_with_a_light_imbalance_control_delays_the_divergence() -> None:
     # The paper's protocol as published (the ramp to 150 V at 6.0-6.5 s, 32.6 krpm) with
     # the 1 g·mm imbalance of the study's second series: our 0 V run survives the control
