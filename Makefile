@@ -25,9 +25,11 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -q -n auto --dist loadfile --cov --cov-report=term
 
 # The ROSS export needs ROSS >= 3.0, hence Python >= 3.13: a second venv (scripts/setup_ross_env.sh).
+# Its coverage data goes to build/: CI runs it beside the main suite, whose data is .coverage.
 test-ross:
 	bash scripts/setup_ross_env.sh
-	$(ROSS_VENV)/bin/python -m pytest -q tests/test_ross.py --cov=foilbearing.export \
+	mkdir -p build
+	COVERAGE_FILE=build/.coverage-ross $(ROSS_VENV)/bin/python -m pytest -q -p no:cacheprovider tests/test_ross.py --cov=foilbearing.export \
 		--cov-config=scripts/coverage-ross.toml --cov-report=term-missing
 
 lint: $(STAMP)
