@@ -19,7 +19,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from foilbearing.case import Foil, Grid, default_case
+from foilbearing.case import Grid, default_case
 from foilbearing.coefficients import dynamic_compliance, force_coefficients
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import film_model
@@ -503,7 +503,6 @@ def test_coefficient_bad_inputs_are_one_line_errors(equilibrium) -> None:
     with pytest.raises(InputError) as err:
         dynamic_compliance(st, 100.0, loss_factor=-0.1)
     assert str(err.value) == "loss factor = -0.1: must be >= 0"
-    assert Foil is not None  # the Foil type stays importable for the cases above
 
 
 # ------------------------------------------------------------- what the results write
@@ -597,7 +596,6 @@ def test_equilibrium_newton_failures_say_what_failed() -> None:
     assert not two.converged and two.message == "no convergence in 2 iterations"
     full = _Equilibrium(model, lam, EquilibriumOptions()).solve(load, np.zeros(2), None)
     assert full.converged and full.message == "converged"
-    assert two.iterations == full.iterations - (full.iterations - two.iterations)
     assert two.iterations < full.iterations
     assert two.force_res > 1e-8 and two.residual >= 0.0
     # The equilibrium's own Newton steps: the start's pressure solve plus one per step.

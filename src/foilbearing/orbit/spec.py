@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
+from foilbearing.control import SubsyncController
 from foilbearing.errors import InputError
 from foilbearing.orbit.settings import OrbitSettings
 
@@ -109,12 +110,13 @@ class ControllerParams:
         Voltage before triggering, V.
     """
 
-    threshold: float = 2e-6
-    target: float = 150.0
-    slew_rate: float = 1000.0
-    window: float = 0.1
-    period: float = 0.01
-    initial: float = 0.0
+    # The controller's own defaults (one source: a parameter left out is the controller's).
+    threshold: float = SubsyncController.threshold
+    target: float = SubsyncController.target
+    slew_rate: float = SubsyncController.slew_rate
+    window: float = SubsyncController.window
+    period: float = SubsyncController.period
+    initial: float = SubsyncController.initial
 
     @classmethod
     def of(cls, controller: Any) -> ControllerParams:
@@ -123,8 +125,6 @@ class ControllerParams:
 
     def program(self, case: Case, profile: SpeedProfile) -> VoltageProgram:
         """A fresh controller with these parameters."""
-        from foilbearing.control import SubsyncController
-
         return SubsyncController(**asdict(self))
 
 
@@ -224,7 +224,7 @@ class RunSpec:
         :class:`~foilbearing.control.SubsyncController`, one of the data forms
         (:data:`VoltageSpec`) or None; the other arguments are the fields.
         """
-        from foilbearing.control import SubsyncController, VoltageSchedule
+        from foilbearing.control import VoltageSchedule
 
         voltage: VoltageSpec | None
         if program is None or isinstance(program, VoltageSpec):
