@@ -201,6 +201,28 @@ def test_quantities_parsed_without_pint_equal_pint_to_the_bit(text: str) -> None
             assert fast == want, (value, fast, want)
 
 
+def test_from_si_agrees_with_pint_and_inverts_the_parser() -> None:
+    """``from_si`` (the headlines' conversion out of SI) against pint for every unit of the fast
+    path, and the round trip through ``parse_quantity``; mixed kinds are a pint error."""
+    import numpy as np
+    import pint
+
+    from foilbearing.units import _FAST_UNITS, SI_UNITS, from_si, parse_quantity, ureg
+
+    values = np.array([3.7e-5, 0.127, 1.0, 42.0, 9.3e4])
+    for unit, (kind, _factor) in _FAST_UNITS.items():
+        si = SI_UNITS[kind]
+        want = ureg.Quantity(values, si).to(unit).magnitude
+        np.testing.assert_allclose(from_si(values, unit, si), want, rtol=4e-16, atol=0)
+        back = parse_quantity(f"{from_si(0.127, unit, si)!r} {unit}", kind, field="x")
+        assert back == pytest.approx(0.127, rel=4e-16)
+    # a unit outside the fast path goes through pint; the same unit is no conversion
+    assert from_si(2.0, "N*mm", "N*m") == pytest.approx(2000.0, rel=1e-15)
+    assert from_si(values, "m", "m") is values
+    with pytest.raises(pint.DimensionalityError):
+        from_si(1.0, "um", "rad/s")
+
+
 def test_the_default_case_loads_without_pint() -> None:
     """``foilbearing case show`` starts quickly: the built-in case's quantities need no pint
     (its registry takes longer to build than the whole command)."""

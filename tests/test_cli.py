@@ -79,7 +79,7 @@ def test_static_writes_a_film_that_carries_the_load_and_fails_with_exit_code_3(
     )
     head = json.loads(capsys.readouterr().out)
     ds = xr.load_dataset(nc)
-    assert ds.attrs["eccentricity"] == head["eccentricity"] and head["converged"]
+    assert float(ds["eccentricity"]) == head["eccentricity"] and head["converged"]
 
     def si(name: str, unit: str) -> np.ndarray:
         return np.asarray(

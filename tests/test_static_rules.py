@@ -389,9 +389,16 @@ def test_static_headline_and_dataset_units(equilibrium) -> None:
     np.testing.assert_allclose(ds["z"].values, st.model.grid.z * r, rtol=1e-15)
     assert ds["pressure"].attrs["units"] == "Pa" and ds["z"].attrs["units"] == "m"
     assert ds.attrs["converged"] == 1
-    np.testing.assert_allclose(ds.attrs["preload_um"], h["preload_um"])
-    rigid = film_at_position(_rigid(), 0.1, 0.0, speed=40e3 * RPM).to_dataset()
-    assert rigid.attrs["preload_um"].shape == (0,) and rigid.attrs["voltages_V"].shape == (0,)
+    # the dataset is in SI; the headline shows it in the units its keys name
+    np.testing.assert_array_equal(ds["stinger_preload"].values, st.preload)
+    assert ds["stinger_preload"].attrs["units"] == "m"
+    assert float(ds["speed"]) == st.speed and ds["speed"].attrs["units"] == "rad/s"
+    assert float(ds["attitude_angle"]) == st.attitude_angle
+    np.testing.assert_array_equal(ds["actuator_pressure"].values, st.actuator_pressure)
+    rigid_st = film_at_position(_rigid(), 0.1, 0.0, speed=40e3 * RPM)
+    rigid = rigid_st.to_dataset()
+    assert rigid["stinger_preload"].shape == (0,) and rigid["voltage"].shape == (0,)
+    assert rigid_st.headline()["preload_um"] == [] and rigid_st.headline()["voltages_V"] == []
 
 
 # --------------------------------------------------------------------- coefficients.py
@@ -476,9 +483,11 @@ def test_coefficient_headline_and_dataset(equilibrium) -> None:
     np.testing.assert_array_equal(ds["damping"].values, co.C)
     assert ds["stiffness"].attrs["units"] == "N/m" and ds["damping"].attrs["units"] == "N s/m"
     assert ds["frequency"].attrs["units"] == "Hz" and list(ds["i"].values) == ["X", "Y"]
-    assert ds.attrs["speed_rpm"] == pytest.approx(40e3, rel=1e-14)
-    assert ds.attrs["attitude_deg"] == h["attitude_deg"]
-    assert ds.attrs["eccentricity"] == st.eccentricity
+    assert float(ds["speed"]) == st.speed and ds["speed"].attrs["units"] == "rad/s"
+    assert float(ds["attitude_angle"]) == st.attitude_angle
+    assert ds["attitude_angle"].attrs["units"] == "rad"
+    assert float(ds["eccentricity"]) == st.eccentricity
+    np.testing.assert_allclose(ds["frequency_ratio"].values, [0.5, 1.0], rtol=1e-15)
 
 
 def test_coefficient_bad_inputs_are_one_line_errors(equilibrium) -> None:
@@ -519,12 +528,34 @@ def test_static_dataset_layout_and_labels(equilibrium) -> None:
     assert layout == {
         "theta": (("theta",), "rad", "θ from −X"),
         "z": (("z",), "m", "z from the mid-plane"),
+        "axis": (("axis",), None, "X along the load, Y 90° after it"),
+        "speed": ((), "rad/s", "rotor speed ω"),
+        "bearing_number": ((), "1", "bearing number Λ"),
+        "eccentricity": ((), "1", "ε₀ = e/C"),
+        "eps_X": ((), "1", "journal position ε_X (load direction)"),
+        "eps_Y": ((), "1", "journal position ε_Y"),
+        "attitude_angle": ((), "rad", "attitude angle φ₀ from +X"),
+        "min_film": ((), "m", "minimum film thickness"),
+        "min_film_angle": ((), "rad", "θ of the minimum film"),
+        "drag_torque": ((), "N m", "viscous drag torque of the film"),
+        "power_loss": ((), "W", "viscous power loss of the film"),
         "pressure": (("theta", "z"), "Pa", "p"),
         "gauge_pressure_mean": (("theta",), "Pa", "axially averaged gauge pressure p_A"),
         "film_thickness": (("theta", "z"), "m", "h"),
         "preload_shape": (("theta",), "m", "r_p (base preload shape)"),
+        "force": (("axis",), "N", "film force"),
+        "voltage": (("actuator",), "V", "actuator voltage"),
+        "stinger_preload": (("stinger",), "m", "preload at each stinger (Eq. 3b)"),
+        "actuator_pressure": (("stinger",), "Pa", "gauge pressure over each stinger's arc"),
     }
-    assert set(ds.attrs) == set(equilibrium.headline())
+    assert set(ds.attrs) == {
+        "bearing",
+        "iterations",
+        "reynolds_residual",
+        "force_residual",
+        "converged",
+        "message",
+    }
 
 
 def test_static_headline_keys_and_values(equilibrium) -> None:
@@ -570,9 +601,13 @@ def test_coefficient_dataset_layout(equilibrium) -> None:
         "j": (("j",), None),
         "stiffness": (("frequency", "i", "j"), "N/m"),
         "damping": (("frequency", "i", "j"), "N s/m"),
+        "frequency_ratio": (("frequency",), "1"),
+        "speed": ((), "rad/s"),
+        "eccentricity": ((), "1"),
+        "attitude_angle": ((), "rad"),
     }
     assert list(ds["i"].values) == ["X", "Y"] and list(ds["j"].values) == ["X", "Y"]
-    assert set(ds.attrs) == {"speed_rpm", "eccentricity", "attitude_deg"}
+    assert not ds.attrs  # everything is a variable with its units
 
 
 def test_equilibrium_newton_failures_say_what_failed() -> None:

@@ -148,40 +148,20 @@ def test_jacobian_blocks_match_twin(setup) -> None:
     c0 = 3000.0
     g = sys_.grid
     n = sys_.n
-    H = np.empty(g.shape)
-    jp = np.empty(sys_.ws.jp.size)
-    jh = np.empty(sys_.ws.jh.size)
-    active = np.empty(sys_.nt)
-    jc = np.empty(sys_.c_indices.size)
-    a_pe = np.empty((n, 2))
-    lift_state = np.empty(n)
+    blocks = kern.JacobianBlocks(
+        film=np.empty(g.shape),
+        jp=np.empty(sys_.ws.jp.size),
+        jh=np.empty(sys_.ws.jh.size),
+        active=np.empty(sys_.nt),
+        jc=np.empty(sys_.c_indices.size),
+        a_pe=np.empty((n, 2)),
+        lift_state=np.empty(n),
+    )
+    H, jp, jh, active, jc, a_pe, lift_state = blocks
     hist = _hist(sim, y, inp, c0)
+    step = sys_.step_inputs(inp, c0, hist)
     held = kern.transient_jacobian(
-        y,
-        c0,
-        hist,
-        inp.lam,
-        sys_.rate(inp),
-        inp.preload,
-        sys_.cos_t,
-        sys_.sin_t,
-        sys_.c_act,
-        sys_.c_bump,
-        sys_.area * sys_.sigma,
-        g.d_theta,
-        g.d_z,
-        sys_.diag_slots,
-        sys_.jh_rows,
-        sys_.ws.indptr,
-        sys_.lift_off,
-        True,
-        H,
-        jp,
-        jh,
-        active,
-        jc,
-        a_pe,
-        lift_state,
+        y, tuple(step), *sys_.kernel_groups, sys_.lift_off, True, tuple(blocks)
     )
     H_py, jp_py, jh_py, active_py, jc_py, a_pe_py, state_py, held_py = reference.jacobian_blocks_py(
         sys_, y, inp, c0, hist
@@ -363,7 +343,7 @@ def test_bdf_setup_is_exact_for_polynomials_of_its_order(order: int, count: int)
     atol = np.full(n, 1e-5)
     outs = [np.empty((3, n)) for _ in range(2)]
     c0s = [
-        setup_(t_new, times, ys, qs, count, order, atol, 1e-4, *out)
+        setup_(t_new, tuple(kern.BdfHistory(times, ys, qs, count)), order, atol, 1e-4, *out)
         for setup_, out in zip((kern.bdf_setup, reference.bdf_setup_py), outs, strict=True)
     ]
     assert c0s[0] == pytest.approx(c0s[1], rel=1e-12)

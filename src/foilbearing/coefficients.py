@@ -32,9 +32,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel
+from foilbearing.headline import Field, headline_view
 from foilbearing.reynolds import Workspace
 from foilbearing.reynolds.perturbed import pressure_response
 from foilbearing.static import StaticResult
@@ -66,23 +66,21 @@ class ForceCoefficients:
     C: FloatArray
 
     def headline(self) -> dict[str, Any]:
-        """Unit-named keys for ``--json``; one entry per frequency."""
-        return {
-            "speed_rpm": self.static.speed / RPM,
-            "frequency_Hz": (self.frequencies / (2 * math.pi)).tolist(),
-            "frequency_ratio": (self.frequencies / self.static.speed).tolist(),
-            "K_N_per_m": self.K.tolist(),
-            "C_Ns_per_m": self.C.tolist(),
-            "eccentricity": self.static.eccentricity,
-            "attitude_deg": math.degrees(self.static.attitude_angle),
-        }
+        """Unit-named keys for ``--json``, one entry per frequency: a view of
+        :meth:`to_dataset` (:data:`COEFFICIENT_HEADLINE`)."""
+        return headline_view(self.to_dataset(), COEFFICIENT_HEADLINE)
 
     def to_dataset(self) -> Any:
-        """xarray Dataset with dims (frequency, i, j)."""
+        """xarray Dataset in SI with dims (frequency, i, j), and the static point it is about."""
         import xarray as xr
 
+        st = self.static
         coords = {
-            "frequency": ("frequency", self.frequencies / (2 * math.pi), {"units": "Hz"}),
+            "frequency": (
+                "frequency",
+                self.frequencies / (2 * math.pi),
+                {"units": "Hz", "long_name": "excitation frequency ω_e/2π"},
+            ),
             "i": ["X", "Y"],
             "j": ["X", "Y"],
         }
@@ -90,15 +88,34 @@ class ForceCoefficients:
             {
                 "stiffness": (("frequency", "i", "j"), self.K, {"units": "N/m"}),
                 "damping": (("frequency", "i", "j"), self.C, {"units": "N s/m"}),
+                "frequency_ratio": (
+                    "frequency",
+                    self.frequencies / st.speed,
+                    {"units": "1", "long_name": "ω_e/ω"},
+                ),
+                "speed": ((), st.speed, {"units": "rad/s", "long_name": "rotor speed ω"}),
+                "eccentricity": ((), st.eccentricity, {"units": "1", "long_name": "ε₀ = e/C"}),
+                "attitude_angle": (
+                    (),
+                    st.attitude_angle,
+                    {"units": "rad", "long_name": "attitude angle φ₀ from +X"},
+                ),
             },
             coords=coords,
         )
-        ds.attrs.update(
-            speed_rpm=self.static.speed / RPM,
-            eccentricity=self.static.eccentricity,
-            attitude_deg=math.degrees(self.static.attitude_angle),
-        )
         return ds
+
+
+#: The coefficients' headline, read off :meth:`ForceCoefficients.to_dataset`.
+COEFFICIENT_HEADLINE: tuple[Field, ...] = (
+    ("speed_rpm", "speed", "rpm"),
+    ("frequency_Hz", "frequency", None),
+    ("frequency_ratio", "frequency_ratio", None),
+    ("K_N_per_m", "stiffness", None),
+    ("C_Ns_per_m", "damping", None),
+    ("eccentricity", "eccentricity", None),
+    ("attitude_deg", "attitude_angle", "deg"),
+)
 
 
 def dynamic_compliance(

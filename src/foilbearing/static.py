@@ -19,9 +19,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
-from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, film_model
+from foilbearing.headline import Field, headline_view
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
 from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
 
@@ -134,75 +134,114 @@ class StaticResult:
         return self.drag_torque * self.speed
 
     def headline(self) -> dict[str, Any]:
-        """Headline numbers with unit-named keys (the CLI's ``--json``)."""
-        return {
-            "speed_rpm": self.speed / RPM,
-            "voltages_V": (
-                list(self.case.actuators.voltages) if self.case.actuators is not None else []
-            ),
-            "bearing": self.case.kind,
-            "bearing_number": self.bearing_number,
-            "eccentricity": self.eccentricity,
-            "eps_X": self.eps_x,
-            "eps_Y": self.eps_y,
-            "attitude_deg": math.degrees(self.attitude_angle),
-            "min_film_um": self.min_film * 1e6,
-            "min_film_angle_deg": math.degrees(self.min_film_angle),
-            "force_N": list(self.force),
-            "preload_um": [x * 1e6 for x in self.preload],
-            "actuator_pressure_kPa": [x / 1e3 for x in self.actuator_pressure],
-            "drag_torque_Nm": self.drag_torque,
-            "power_loss_W": self.power_loss,
-            "iterations": self.iterations,
-            "reynolds_residual": self.residual,
-            "force_residual": self.force_residual,
-            "converged": self.converged,
-            "message": self.message,
-        }
+        """Headline numbers with unit-named keys (the CLI's ``--json``): a view of
+        :meth:`to_dataset` (:data:`STATIC_HEADLINE`)."""
+        return headline_view(self.to_dataset(), STATIC_HEADLINE)
 
     def to_dataset(self) -> Any:
-        """The fields as an xarray Dataset in SI (``units`` attributes), the headline as attrs."""
+        """The result as an xarray Dataset in SI, every variable with its ``units``.
+
+        The fields on the grid (pressure, film, preload shape), the journal's
+        equilibrium, film force, drag and the actuators' numbers as variables;
+        the bearing kind and the solver's diagnostics as attributes.
+        """
         import xarray as xr
 
         g = self.model.grid
         r = self.case.bearing.radius
+        c = self.case.bearing.clearance
         pa = self.case.gas.ambient_pressure
+        voltages = self.case.actuators.voltages if self.case.actuators is not None else ()
         coords = {
             "theta": ("theta", g.theta, {"units": "rad", "long_name": "θ from −X"}),
             "z": ("z", g.z * r, {"units": "m", "long_name": "z from the mid-plane"}),
+            "axis": ("axis", ["X", "Y"], {"long_name": "X along the load, Y 90° after it"}),
         }
-        ds = xr.Dataset(
-            {
-                "pressure": (("theta", "z"), self.P * pa, {"units": "Pa", "long_name": "p"}),
-                "gauge_pressure_mean": (
-                    "theta",
-                    (self.P.mean(axis=1) - 1.0) * pa,
-                    {"units": "Pa", "long_name": "axially averaged gauge pressure p_A"},
-                ),
-                "film_thickness": (
-                    ("theta", "z"),
-                    self.H * self.case.bearing.clearance,
-                    {"units": "m", "long_name": "h"},
-                ),
-                "preload_shape": (
-                    "theta",
-                    self.model.preload * self.case.bearing.clearance,
-                    {"units": "m", "long_name": "r_p (base preload shape)"},
-                ),
-            },
-            coords=coords,
+        scalars = {
+            "speed": (self.speed, "rad/s", "rotor speed ω"),
+            "bearing_number": (self.bearing_number, "1", "bearing number Λ"),
+            "eccentricity": (self.eccentricity, "1", "ε₀ = e/C"),
+            "eps_X": (self.eps_x, "1", "journal position ε_X (load direction)"),
+            "eps_Y": (self.eps_y, "1", "journal position ε_Y"),
+            "attitude_angle": (self.attitude_angle, "rad", "attitude angle φ₀ from +X"),
+            "min_film": (self.min_film, "m", "minimum film thickness"),
+            "min_film_angle": (self.min_film_angle, "rad", "θ of the minimum film"),
+            "drag_torque": (self.drag_torque, "N m", "viscous drag torque of the film"),
+            "power_loss": (self.power_loss, "W", "viscous power loss of the film"),
+        }
+        data: dict[str, Any] = {
+            name: ((), value, {"units": unit, "long_name": label})
+            for name, (value, unit, label) in scalars.items()
+        }
+        data |= {
+            "pressure": (("theta", "z"), self.P * pa, {"units": "Pa", "long_name": "p"}),
+            "gauge_pressure_mean": (
+                "theta",
+                (self.P.mean(axis=1) - 1.0) * pa,
+                {"units": "Pa", "long_name": "axially averaged gauge pressure p_A"},
+            ),
+            "film_thickness": (("theta", "z"), self.H * c, {"units": "m", "long_name": "h"}),
+            "preload_shape": (
+                "theta",
+                self.model.preload * c,
+                {"units": "m", "long_name": "r_p (base preload shape)"},
+            ),
+            "force": (
+                "axis",
+                np.asarray(self.force, float),
+                {"units": "N", "long_name": "film force"},
+            ),
+            "voltage": (
+                "actuator",
+                np.asarray(voltages, float),
+                {"units": "V", "long_name": "actuator voltage"},
+            ),
+            "stinger_preload": (
+                "stinger",
+                np.asarray(self.preload, float),
+                {"units": "m", "long_name": "preload at each stinger (Eq. 3b)"},
+            ),
+            "actuator_pressure": (
+                "stinger",
+                np.asarray(self.actuator_pressure, float),
+                {"units": "Pa", "long_name": "gauge pressure over each stinger's arc"},
+            ),
+        }
+        ds = xr.Dataset(data, coords=coords)
+        ds.attrs.update(
+            bearing=self.case.kind,
+            iterations=self.iterations,
+            reynolds_residual=self.residual,
+            force_residual=self.force_residual,
+            converged=int(self.converged),
+            message=self.message,
         )
-        for key, value in self.headline().items():
-            ds.attrs[key] = _attr(value)
         return ds
 
 
-def _attr(value: Any) -> Any:
-    if isinstance(value, bool):
-        return int(value)
-    if isinstance(value, list):
-        return np.asarray(value, dtype=float) if value else np.zeros(0)
-    return value
+#: The static headline, read off :meth:`StaticResult.to_dataset`: key, source, unit.
+STATIC_HEADLINE: tuple[Field, ...] = (
+    ("speed_rpm", "speed", "rpm"),
+    ("voltages_V", "voltage", None),
+    ("bearing", "@bearing", None),
+    ("bearing_number", "bearing_number", None),
+    ("eccentricity", "eccentricity", None),
+    ("eps_X", "eps_X", None),
+    ("eps_Y", "eps_Y", None),
+    ("attitude_deg", "attitude_angle", "deg"),
+    ("min_film_um", "min_film", "um"),
+    ("min_film_angle_deg", "min_film_angle", "deg"),
+    ("force_N", "force", None),
+    ("preload_um", "stinger_preload", "um"),
+    ("actuator_pressure_kPa", "actuator_pressure", "kPa"),
+    ("drag_torque_Nm", "drag_torque", None),
+    ("power_loss_W", "power_loss", None),
+    ("iterations", "@iterations", None),
+    ("reynolds_residual", "@reynolds_residual", None),
+    ("force_residual", "@force_residual", None),
+    ("converged", "@converged", "bool"),
+    ("message", "@message", None),
+)
 
 
 def _check_speed(case: Case, speed: float | None) -> float:

@@ -23,7 +23,7 @@ from typing import Any
 
 from foilbearing.errors import InputError
 
-__all__ = ["SI_UNITS", "parse_quantity", "parse_speed_range", "ureg"]
+__all__ = ["SI_UNITS", "from_si", "parse_quantity", "parse_speed_range", "ureg"]
 
 
 @cache
@@ -257,3 +257,24 @@ def _example(kind: str) -> str:
         "dimensionless": "0.1",
     }
     return examples.get(kind, "1.0")
+
+
+def from_si(value: Any, unit: str, si_unit: str) -> Any:
+    """``value`` (a number or array in ``si_unit``, the SI unit of its kind) in ``unit``.
+
+    By the factor of :data:`_FAST_UNITS` (``value / factor``, the inverse of
+    :func:`parse_quantity`'s fast path) when both units are there and of one
+    kind; by pint otherwise. ``unit == si_unit`` returns ``value`` itself.
+
+    Raises
+    ------
+    pint.DimensionalityError
+        If the units are of different kinds (a bug in the caller's table).
+    """
+    if unit == si_unit:
+        return value
+    known, base = _FAST_UNITS.get(unit), _FAST_UNITS.get(si_unit)
+    if known is not None and base is not None and known[0] == base[0] and base[1] == 1:
+        return value / known[1]
+    ureg = _registry()
+    return ureg.Quantity(value, si_unit).to(unit).magnitude

@@ -30,6 +30,7 @@ from foilbearing.reynolds._kernels import MAX_MOVED_KEPT
 from foilbearing.reynolds.transient import (
     NEWTON_CONVERGED,
     NEWTON_REFRESH,
+    BdfHistory,
     Inputs,
     bdf_setup,
 )
@@ -186,9 +187,8 @@ def run(
             while True:
                 t_new = t + h
                 inp, volts = problem.inputs(t_new)
-                c0 = bdf_setup(
-                    t_new, times, ys, qs, count, order, atol, newton.rtol, guess, hist, weights
-                )
+                past = tuple(BdfHistory(times, ys, qs, count))
+                c0 = bdf_setup(t_new, past, order, atol, newton.rtol, guess, hist, weights)
                 branches = _predicted_branches(
                     lift_s[0], lift_s[1], lift_s[2], h,
                     t - times[1] if count > 1 else None,

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds._kernels.flux import _SERIES_X, C, E, N, S, W
+from foilbearing.reynolds._kernels.groups import BdfHistory
 from foilbearing.reynolds._kernels.newton import FREE_SLACK
 from foilbearing.reynolds.assembly import set_unit_rows
 
@@ -559,10 +560,7 @@ def switch_branches_py(lift_state: FloatArray, slack: FloatArray, weights: Float
 
 def bdf_setup_py(
     t_new: float,
-    times: FloatArray,
-    ys: FloatArray,
-    qs: FloatArray,
-    count: int,
+    past: BdfHistory,
     order: int,
     atol: FloatArray,
     rtol: float,
@@ -571,6 +569,7 @@ def bdf_setup_py(
     weights: FloatArray,
 ) -> float:
     """Twin of :func:`~foilbearing.reynolds._kernels.bdf_setup` (np.poly derivatives)."""
+    times, ys, qs, count = past
     k = min(order, count)
     nodes = np.concatenate([[t_new], times[:k]])
     # Derivative at t_new of each Lagrange basis polynomial on the nodes.

@@ -58,6 +58,7 @@ from foilbearing.reynolds.transient_factor import TransientFactor
 __all__ = [
     "NEWTON_CONVERGED",
     "NEWTON_REFRESH",
+    "BdfHistory",
     "Inputs",
     "TransientFactor",
     "TransientSystem",
@@ -68,6 +69,8 @@ __all__ = [
 NEWTON_CONVERGED, NEWTON_REFRESH = kern.NEWTON_CONVERGED, kern.NEWTON_REFRESH
 #: Variable-step BDF coefficient, history, predictor and weights (compiled).
 bdf_setup = kern.bdf_setup
+#: The accepted states ``bdf_setup`` builds a step on.
+BdfHistory = kern.BdfHistory
 
 FloatArray = NDArray[np.float64]
 
@@ -159,6 +162,28 @@ class TransientSystem:
         self.c_indptr, self.c_indices = kern.coupled_pattern(grid.n_theta, grid.n_z)
         self._jc = np.empty(self.c_indices.size)  # sizes of the factorisation's buffers
         self._jp = np.empty(self.ws.jp.size)
+        #: The bearing on its grid and the film Jacobians' sparsity, as the kernels take them.
+        self.constants = kern.FilmConstants(
+            self.cos_t,
+            self.sin_t,
+            self.c_act,
+            self.c_bump,
+            self.w,
+            self.force_scale,
+            self.area * self.sigma,
+            grid.d_theta,
+            grid.d_z,
+            grid.n_z,
+        )
+        self.pattern = kern.StencilPattern(self.diag_slots, self.jh_rows, self.ws.indptr)
+        # ... as the plain tuples the kernels take (kernels/groups.py says why).
+        self.kernel_groups = (tuple(self.constants), tuple(self.pattern))
+
+    def step_inputs(self, inputs: Inputs, c0: float, hist: FloatArray) -> kern.StepInputs:
+        """The BDF step (c0, history) and the inputs at its new time, grouped for the kernels."""
+        return kern.StepInputs(
+            c0, hist, inputs.lam, self.rate(inputs), inputs.preload, inputs.force
+        )
 
     # ----------------------------------------------------------------- pieces
     def split(self, y: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -234,25 +259,11 @@ class TransientSystem:
             out = np.empty(self.size)
         if lift_state is None:
             lift_state = self.lift_state(y, inputs, c0, hist)
-        g = self.grid
         h_min = kern.transient_residual(
             y,
-            c0,
-            hist,
-            inputs.lam,
-            self.rate(inputs),
-            inputs.preload,
-            inputs.force,
-            self.cos_t,
-            self.sin_t,
-            self.c_act,
-            self.c_bump,
+            tuple(self.step_inputs(inputs, c0, hist)),
+            self.kernel_groups[0],
             lift_state,
-            self.w,
-            self.force_scale,
-            self.area * self.sigma,
-            g.d_theta,
-            g.d_z,
             self._H,
             self._res,
             out,
@@ -295,9 +306,7 @@ class TransientSystem:
         """
         if out is None:
             out = np.empty(self.size)
-        h_min = kern.transient_storage(
-            y, preload, self.cos_t, self.sin_t, self.c_act, self.grid.n_z, out
-        )
+        h_min = kern.transient_storage(y, preload, self.kernel_groups[0], out)
         return out, float(h_min)
 
     def rate(self, inputs: Inputs) -> float:
@@ -330,42 +339,21 @@ class TransientSystem:
         """
         g = self.grid
         n = self.n
-        rate = self.rate(inputs)
+        step = self.step_inputs(inputs, c0, hist)
         # Buffers of its own: the factor keeps jh, a_pe, active and the matrix data.
-        film = np.empty(g.shape)
-        jp = np.empty(self._jp.size)
-        jh = np.empty(self._jp.size)
-        jc = np.empty(self._jc.size)
-        active = np.empty(self.nt)
-        a_pe = np.empty((n, 2))
-        lift_state = np.zeros(n) if branches is None else branches.copy()
-        kern.transient_jacobian(
-            y,
-            c0,
-            hist,
-            inputs.lam,
-            rate,
-            inputs.preload,
-            self.cos_t,
-            self.sin_t,
-            self.c_act,
-            self.c_bump,
-            self.area * self.sigma,
-            g.d_theta,
-            g.d_z,
-            self.diag_slots,
-            self.jh_rows,
-            self.ws.indptr,
-            self.lift_off,
-            branches is None,
-            film,
-            jp,
-            jh,
-            active,
-            jc,
-            a_pe,
-            lift_state,
+        blocks = kern.JacobianBlocks(
+            film=np.empty(g.shape),
+            jp=np.empty(self._jp.size),
+            jh=np.empty(self._jp.size),
+            active=np.empty(self.nt),
+            jc=np.empty(self._jc.size),
+            a_pe=np.empty((n, 2)),
+            lift_state=np.zeros(n) if branches is None else branches.copy(),
         )
+        kern.transient_jacobian(
+            y, tuple(step), *self.kernel_groups, self.lift_off, branches is None, tuple(blocks)
+        )
+        jc, a_pe = blocks.jc, blocks.a_pe
         lu = factor_coupled(jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         # The compiled solves need the block cyclic factors (not the SuperLU fallback).
         fac = lu._fac if isinstance(lu, BlockCyclicLU) else None
@@ -375,9 +363,19 @@ class TransientSystem:
             kern.transient_border(fac, a_pe, self.s_vp, c0, y_border, small_inv)
         else:
             y_border, small_inv = border_py(self, lu, a_pe, c0)
-        factor = TransientFactor(
-            self, lu, fac, jh, a_pe, self.s_vp, y_border, small_inv, c0, rate, active, lift_state
+        arrays = kern.FactorArrays(
+            fac,  # type: ignore[arg-type]  # None for the fallback, which is not compiled
+            blocks.jh,
+            a_pe,
+            self.s_vp,
+            y_border,
+            small_inv,
+            c0,
+            step.rate,
+            blocks.active,
+            blocks.lift_state,
         )
+        factor = TransientFactor(self, lu, arrays)
         factor.coupled_data = jc
         return factor
 

@@ -13,7 +13,7 @@ fallback. Time in s, c0 and rates in 1/s; the state as in
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -29,6 +29,9 @@ __all__ = ["TransientFactor"]
 
 FloatArray = NDArray[np.float64]
 
+#: The storage buffer of a single Newton step, which does not fill it.
+_NO_STORAGE = np.empty(0)
+
 
 class TransientFactor:
     """A factorised Newton matrix (see
@@ -41,77 +44,32 @@ class TransientFactor:
     lu : object
         LU of the pressure block B: a ``BlockCyclicLU``, or any LU with a
         SuperLU-like ``solve`` (the fallback).
-    fac : ndarray or None
-        The block cyclic factors of ``lu`` (its ``_fac``) for the compiled
-        solves; None for the fallback, which uses the NumPy twins.
-    jh_data, a_pe, s_vp, y_border, small_inv
-        Scaled film Jacobian ``c0·diag(P) − ∂R/∂H/(Aσ)`` (stencil data, 1/s),
-        ``jh ∂H/∂ε`` (n, 2), film force per unit P (2, n), 1/s², and the
-        Woodbury border ``B⁻¹ a_pe/c0²`` (n, 2) with ``(I + s_vp y_border)⁻¹``.
-    c0, rate : float
-        BDF leading coefficient and ω/γ of the bump at factorisation, 1/s.
-    active : ndarray, shape (n_theta,)
-        1.0 on engaged θ-rows, else 0.0.
-    lift_state : ndarray, shape (n,)
-        Lift-off branches (``d`` held, ``−d`` free, 0 without lift-off), 1/s.
+    arrays : FactorArrays
+        The factor as the compiled kernels take it (:mod:`foilbearing.reynolds._kernels.groups`):
+        the block cyclic factors of ``lu`` (its ``_fac``; None for the
+        fallback, which uses the NumPy twins), the scaled film Jacobian
+        ``c0·diag(P) − ∂R/∂H/(Aσ)`` (stencil data, 1/s), ``jh ∂H/∂ε`` (n, 2),
+        the film force per unit P (2, n), 1/s², the Woodbury border
+        ``B⁻¹ a_pe/c0²`` (n, 2) with ``(I + s_vp y_border)⁻¹``, c0 and ω/γ of
+        the bump at factorisation (1/s), the engaged θ-rows and the lift-off
+        branches (``d`` held, ``−d`` free, 0 without lift-off), 1/s.
     """
 
-    def __init__(
-        self,
-        system: TransientSystem,
-        lu: object,
-        fac: FloatArray | None,
-        jh_data: FloatArray,
-        a_pe: FloatArray,
-        s_vp: FloatArray,
-        y_border: FloatArray,
-        small_inv: FloatArray,
-        c0: float,
-        rate: float,
-        active: FloatArray,
-        lift_state: FloatArray,
-    ) -> None:
-        self.sys, self.lu, self.jh_data, self.a_pe = system, lu, jh_data, a_pe
-        self.s_vp, self.y_border, self.small_inv = s_vp, y_border, small_inv
-        self.c0, self.rate, self.active = c0, rate, active
+    def __init__(self, system: TransientSystem, lu: object, arrays: kern.FactorArrays) -> None:
+        self.sys, self.lu, self.arrays = system, lu, arrays
+        self.jh_data, self.a_pe, self.s_vp = arrays.jh_data, arrays.a_pe, arrays.s_vp
+        self.y_border, self.small_inv = arrays.y_border, arrays.small_inv
+        self.c0, self.rate, self.active = arrays.c0, arrays.rate, arrays.active
         #: Lift-off branch of each cell (``d`` held, ``−d`` free, 0 without lift-off):
         #: those of the factorisation, then moved by the Newton iterations that use it.
-        self.lift_state = lift_state
+        self.lift_state = arrays.lift_state
         self._jh: sp.csr_matrix | None = None
         #: CSR data of the factorised pressure block B (on the coupled pattern).
         self.coupled_data: FloatArray | None = None
         # The compiled solve needs the block cyclic factors (not the SuperLU fallback).
-        self._fac = fac
-        # Arguments of the compiled Newton iteration that do not change with the inputs.
-        s, g = system, system.grid
-        self._args_sys: tuple[Any, ...] = (
-            s.cos_t,
-            s.sin_t,
-            s.c_act,
-            s.c_bump,
-            lift_state,
-            s.w,
-            s.force_scale,
-            s.area * s.sigma,
-            g.d_theta,
-            g.d_z,
-            s._H,
-            s._res,
-        )
-        self._args_fac: tuple[Any, ...] = (
-            self._fac,
-            jh_data,
-            s.jh_rows,
-            s.ws.indptr,
-            a_pe,
-            s_vp,
-            y_border,
-            small_inv,
-            c0,
-            rate,
-            active,
-            s._work,
-        )
+        self._fac = arrays.fac
+        #: The film constants, stencil pattern and this factor as the kernels take them.
+        self._groups = (*system.kernel_groups, tuple(arrays))
 
     @property
     def jh(self) -> sp.csr_matrix:
@@ -120,34 +78,6 @@ class TransientFactor:
             s = self.sys
             self._jh = sp.csr_matrix((self.jh_data, s.ws.indices, s.ws.indptr), shape=(s.n, s.n))
         return self._jh
-
-    def _step_args(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        weights: FloatArray,
-        g: FloatArray,
-        dy: FloatArray,
-    ) -> tuple[Any, ...]:
-        """Arguments of the compiled Newton step (:func:`~foilbearing.reynolds._kernels.transient_newton_step`)."""
-        s = self.sys
-        return (
-            y,
-            c0,
-            hist,
-            inputs.lam,
-            s.rate(inputs),
-            inputs.preload,
-            inputs.force,
-            *self._args_sys,
-            g,
-            s._slack,
-            *self._args_fac,
-            dy,
-            weights,
-        )
 
     def newton_step(
         self,
@@ -191,8 +121,10 @@ class TransientFactor:
         """
         if self._fac is None:
             return newton_step_py(self, y, inputs, c0, hist, weights, g, dy)
-        args = self._step_args(y, inputs, c0, hist, weights, g, dy)
-        h_min, err, p_min = kern.transient_newton_step(*args)
+        s = self.sys
+        buf = (s._H, s._res, g, s._slack, s._work, dy, _NO_STORAGE)  # a NewtonBuffers
+        step = tuple(s.step_inputs(inputs, c0, hist))
+        h_min, err, p_min = kern.transient_newton_step(y, step, *self._groups, buf, weights)
         return float(h_min), float(err), float(p_min)
 
     def newton_solve(
@@ -238,15 +170,18 @@ class TransientFactor:
             return newton_solve_py(
                 self, y, inputs, c0, hist, weights, work, controls, fresh, first_change
             )
+        s = self.sys
         g, dy, q_out = work
-        args: tuple[Any, ...] = (
-            *self._step_args(y, inputs, c0, hist, weights, g, dy),
-            q_out,
-            *controls,
+        outcome, its, first, h_min = kern.transient_newton_solve(
+            y,
+            tuple(s.step_inputs(inputs, c0, hist)),
+            *self._groups,
+            (s._H, s._res, g, s._slack, s._work, dy, q_out),  # a NewtonBuffers
+            weights,
+            tuple(controls),  # a NewtonControls
             fresh,
             first_change,
         )
-        outcome, its, first, h_min = kern.transient_newton_solve(*args)
         return int(outcome), int(its), float(first), float(h_min)
 
     def solve(self, g: FloatArray, out: FloatArray | None = None) -> FloatArray:
@@ -277,21 +212,5 @@ class TransientFactor:
         if out is None:
             out = np.empty_like(g)
         s = self.sys
-        kern.transient_solve(
-            g,
-            self._fac,
-            self.jh_data,
-            s.jh_rows,
-            s.ws.indptr,
-            self.a_pe,
-            self.s_vp,
-            self.y_border,
-            self.small_inv,
-            self.c0,
-            self.rate,
-            self.active,
-            s.c_bump,
-            s._work,
-            out,
-        )
+        kern.transient_solve(g, self._groups[2], *s.kernel_groups, s._work, out)
         return out

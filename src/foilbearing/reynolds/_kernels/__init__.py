@@ -57,7 +57,8 @@ Modules: :mod:`.flux` (Bernoulli function, face fluxes, patterns, residual and
 Jacobians), :mod:`.blockcyclic` (the block cyclic LU), :mod:`.bdf` (the BDF
 equations of the transient system: residual, Jacobian blocks, solve, step
 set-up) and :mod:`.newton` (the Newton iteration on them, with the lift-off
-branch switching); their names are all here.
+branch switching), whose arguments come in the named groups of :mod:`.groups`;
+their names are all here.
 """
 
 from foilbearing.reynolds._kernels.bdf import (
@@ -89,6 +90,16 @@ from foilbearing.reynolds._kernels.flux import (
     residual,
     stencil_pattern,
 )
+from foilbearing.reynolds._kernels.groups import (
+    BdfHistory,
+    FactorArrays,
+    FilmConstants,
+    JacobianBlocks,
+    NewtonBuffers,
+    NewtonControls,
+    StencilPattern,
+    StepInputs,
+)
 from foilbearing.reynolds._kernels.newton import (
     MAX_MOVED_KEPT,
     MAX_SWITCHES,
@@ -116,6 +127,14 @@ __all__ = [
     "NEWTON_NOT_FINITE",
     "NEWTON_REFRESH",
     "NEWTON_TOO_SLOW",
+    "BdfHistory",
+    "FactorArrays",
+    "FilmConstants",
+    "JacobianBlocks",
+    "NewtonBuffers",
+    "NewtonControls",
+    "StencilPattern",
+    "StepInputs",
     "_jacobian_both",
     "bdf_setup",
     "bernoulli",

@@ -16,6 +16,7 @@ from foilbearing.reynolds._kernels.flux import (
     residual,
     unit_coupled_row,
 )
+from foilbearing.reynolds._kernels.groups import Group
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -28,14 +29,7 @@ IntArray = NDArray[np.int64]
 
 @njit(cache=True)
 def _film_rows(
-    y: FloatArray,
-    preload: FloatArray,
-    cos_t: FloatArray,
-    sin_t: FloatArray,
-    c_act: FloatArray,
-    n_z: int,
-    q: FloatArray,
-    h_row: FloatArray,
+    y: FloatArray, preload: FloatArray, model: Group, q: FloatArray, h_row: FloatArray
 ) -> float:
     """Engaged mean gauge pressure q and film H per θ-row of a transient state.
 
@@ -44,6 +38,7 @@ def _film_rows(
     returns ``min_i h_row[i]`` (NaN if any row is NaN).
     """
     n_theta = q.shape[0]
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
     n = n_theta * n_z
     e_x = y[n + n_theta]
     e_y = y[n + n_theta + 1]
@@ -69,23 +64,10 @@ def _film_rows(
 @njit(cache=True, nogil=True)
 def transient_residual(
     y: FloatArray,
-    c0: float,
-    hist: FloatArray,
-    lam: float,
-    rate: float,
-    preload: FloatArray,
-    force: FloatArray,
-    cos_t: FloatArray,
-    sin_t: FloatArray,
-    c_act: FloatArray,
-    c_bump: FloatArray,
+    step: Group,
+    model: Group,
     lift_state: FloatArray,
-    w: FloatArray,
-    force_scale: float,
-    denom: float,
-    d_theta: float,
-    d_z: float,
-    H: FloatArray,
+    film: FloatArray,
     res: FloatArray,
     out: FloatArray,
     slack: FloatArray,
@@ -106,35 +88,16 @@ def transient_residual(
     y : ndarray, shape (n + n_theta + 4,)
         State ``[P (n), U (n_theta), ε_X, ε_Y, v_X, v_Y]``, ``n = n_theta n_z``,
         P cell ``k = i*n_z + j``.
-    c0 : float
-        BDF leading coefficient α₀/Δt, 1/s.
-    hist : ndarray, shape (n + n_theta + 4,)
-        History part of the BDF equations.
-    lam : float
-        Bearing number Λ(t).
-    rate : float
-        ω/γ of the viscoelastic bump, 1/s (0 for a purely elastic bump).
-    preload : ndarray, shape (n_theta,)
-        r_p(θ_i, t)/C.
-    force : ndarray, shape (2,)
-        External force on the journal in units of m·C, 1/s².
-    cos_t, sin_t : ndarray, shape (n_theta,)
-        cos θ_i, sin θ_i.
-    c_act, c_bump : ndarray, shape (n_theta,)
-        Actuator and bump compliances per θ-row, p_a/(C k).
+    step : StepInputs (as a plain tuple)
+        The BDF coefficient c0 and history, and Λ, ω/γ, the preload and the
+        external force at the new time.
+    model : FilmConstants (as a plain tuple)
+        The bearing on its grid.
     lift_state : ndarray, shape (n,)
         Branch of each pressure cell under lift-off: ``d > 0`` held at ambient,
         ``−d < 0`` free (d the diagonal of its Newton row, 1/s), 0 where the
         film may hold sub-ambient pressure (no lift-off).
-    w : ndarray, shape (2, n)
-        Force weights (X, Y) of the cells.
-    force_scale : float
-        p_a R²/(m C), 1/s².
-    denom : float
-        ``A σ = ΔθΔZ · 12 μ R²/(p_a C²)``, s.
-    d_theta, d_z : float
-        Cell sizes Δθ, ΔZ.
-    H, res : ndarray, shape (n_theta, n_z)
+    film, res : ndarray, shape (n_theta, n_z)
         Filled with the film h/C and the finite-volume residual :func:`residual`.
     out : ndarray, shape (n + n_theta + 4,)
         Filled with G.
@@ -147,16 +110,18 @@ def transient_residual(
     float
         Minimum film ``min H`` (NaN if the film holds a NaN).
     """
-    n_theta, n_z = H.shape
+    c0, hist, lam, rate, preload, force = step
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    n_theta, n_z = film.shape
     n = n_theta * n_z
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
-    h_min = _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    h_min = _film_rows(y, preload, model, q, h_row)
     for i in range(n_theta):
         for j in range(n_z):
-            H[i, j] = h_row[i]
+            film[i, j] = h_row[i]
     P = y[:n].reshape((n_theta, n_z))
-    residual(P, H, lam, d_theta, d_z, res)
+    residual(P, film, lam, d_theta, d_z, res)
     fx = 0.0
     fy = 0.0
     for i in range(n_theta):
@@ -187,15 +152,7 @@ def transient_residual(
 
 
 @njit(cache=True, nogil=True)
-def transient_storage(
-    y: FloatArray,
-    preload: FloatArray,
-    cos_t: FloatArray,
-    sin_t: FloatArray,
-    c_act: FloatArray,
-    n_z: int,
-    out: FloatArray,
-) -> float:
+def transient_storage(y: FloatArray, preload: FloatArray, model: Group, out: FloatArray) -> float:
     """Stored quantities ``Q(y) = [P·H, U, ε, v]`` and the minimum film, in one pass.
 
     Twin: :meth:`foilbearing.reynolds.transient.TransientSystem.storage` and
@@ -205,10 +162,10 @@ def transient_storage(
     ----------
     y : ndarray, shape (n + n_theta + 4,)
         State (see :func:`transient_residual`).
-    preload, cos_t, sin_t, c_act : ndarray, shape (n_theta,)
-        As in :func:`transient_residual`.
-    n_z : int
-        Cells per θ-row.
+    preload : ndarray, shape (n_theta,)
+        r_p(θ_i, t)/C.
+    model : FilmConstants (as a plain tuple)
+        The bearing on its grid.
     out : ndarray, shape (n + n_theta + 4,)
         Filled with Q(y).
 
@@ -218,9 +175,10 @@ def transient_storage(
         Minimum film ``min H`` (NaN if the film holds a NaN).
     """
     n_theta = preload.shape[0]
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
-    h_min = _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    h_min = _film_rows(y, preload, model, q, h_row)
     for i in range(n_theta):
         h = h_row[i]
         for j in range(n_z):
@@ -234,18 +192,9 @@ def transient_storage(
 @njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 def transient_solve(
     g: FloatArray,
-    fac: FloatArray,
-    jh_data: FloatArray,
-    jh_rows: IntArray,
-    jh_indptr: IntArray,
-    a_pe: FloatArray,
-    s_vp: FloatArray,
-    y_border: FloatArray,
-    small_inv: FloatArray,
-    c0: float,
-    rate: float,
-    active: FloatArray,
-    c_bump: FloatArray,
+    factor: Group,
+    model: Group,
+    pattern: Group,
     work: FloatArray,
     out: FloatArray,
 ) -> None:
@@ -261,33 +210,24 @@ def transient_solve(
     ----------
     g : ndarray, shape (n + n_theta + 4,)
         Right-hand side (the BDF residual), ``n = n_theta n_z``.
-    fac : ndarray, shape (n_theta, n_z, 5 n_z)
-        Block cyclic factors of the pressure block B (:func:`block_cyclic_factor`).
-    jh_data, jh_rows, jh_indptr : ndarray
-        CSR arrays of the scaled film Jacobian ``c0·diag(P) − ∂R/∂H/(Aσ)``, (n, n),
-        with the θ-row ``indices // n_z`` of each column in place of its index
-        (the mat-vec is with ``repeat(x, n_z)``).
-    a_pe : ndarray, shape (n, 2)
-        Its product with ``∂H/∂ε`` (columns cos θ, sin θ per cell).
-    s_vp : ndarray, shape (2, n)
-        Film force per unit P as an acceleration, 1/s².
-    y_border : ndarray, shape (n, 2)
-        ``B⁻¹ a_pe / c0²``.
-    small_inv : ndarray, shape (2, 2)
-        Inverse of the Woodbury matrix ``I + s_vp y_border``.
-    c0 : float
-        BDF leading coefficient at factorisation, 1/s.
-    rate : float
-        ω/γ of the bump (0 for an elastic bump), 1/s.
-    active : ndarray, shape (n_theta,)
-        1.0 on θ-rows where the mean gauge pressure is engaged, else 0.0.
-    c_bump : ndarray, shape (n_theta,)
-        Bump compliance per θ-row.
+    factor : FactorArrays (as a plain tuple)
+        The factorised Newton matrix: block cyclic factors of the pressure
+        block B (:func:`block_cyclic_factor`), the scaled film Jacobian in CSR
+        with the θ-row of each column in place of its index (the mat-vec is with
+        ``repeat(x, n_z)``), the border, the Woodbury inverse, c0 and ω/γ at
+        factorisation and the engaged rows.
+    model : FilmConstants (as a plain tuple)
+        The bearing on its grid (its bump compliance per θ-row).
+    pattern : StencilPattern (as a plain tuple)
+        The film Jacobian's θ-rows and row pointers.
     work : ndarray, shape (n, 1)
         Scratch (the pressure right-hand side).
     out : ndarray, shape (n + n_theta + 4,)
         Filled with Δy.
     """
+    fac, jh_data, a_pe, s_vp, y_border, small_inv, c0, rate, active, lift_state = factor
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    diag_slots, jh_rows, jh_indptr = pattern
     n_theta = active.shape[0]
     n = work.shape[0]
     n_z = n // n_theta
@@ -334,30 +274,12 @@ def transient_solve(
 @njit(cache=True, nogil=True)
 def transient_jacobian(
     y: FloatArray,
-    c0: float,
-    hist: FloatArray,
-    lam: float,
-    rate: float,
-    preload: FloatArray,
-    cos_t: FloatArray,
-    sin_t: FloatArray,
-    c_act: FloatArray,
-    c_bump: FloatArray,
-    denom: float,
-    d_theta: float,
-    d_z: float,
-    diag_slots: IntArray,
-    jh_rows: IntArray,
-    jh_indptr: IntArray,
+    step: Group,
+    model: Group,
+    pattern: Group,
     lift_off: bool,
     decide: bool,
-    H: FloatArray,
-    jp: FloatArray,
-    jh: FloatArray,
-    active: FloatArray,
-    jc: FloatArray,
-    a_pe: FloatArray,
-    lift_state: FloatArray,
+    blocks: Group,
 ) -> int:
     """Blocks of the transient Newton matrix at y, all but the factorisation, in one pass.
 
@@ -373,55 +295,41 @@ def transient_jacobian(
     ----------
     y : ndarray, shape (n + n_theta + 4,)
         State (see :func:`transient_residual`), ``n = n_theta n_z``.
-    c0 : float
-        BDF leading coefficient α₀/Δt, 1/s.
-    hist : ndarray, shape (n + n_theta + 4,)
-        History part of the BDF equations (for the lift-off test).
-    lam, rate : float
-        Bearing number Λ(t) and ω/γ of the bump (0 for an elastic bump), 1/s.
-    preload, cos_t, sin_t, c_act, c_bump : ndarray, shape (n_theta,)
-        As in :func:`transient_residual`.
-    denom : float
-        ``A σ``, s.
-    d_theta, d_z : float
-        Cell sizes Δθ, ΔZ.
-    diag_slots : ndarray, shape (n,)
-        Position of the diagonal entry of each row in the stencil data.
-    jh_rows, jh_indptr : ndarray
-        θ-row of each stencil column and the stencil row pointers.
+    step : StepInputs (as a plain tuple)
+        The BDF step (its history serves the lift-off test) and the inputs at
+        its new time (the force is not used).
+    model : FilmConstants (as a plain tuple)
+        The bearing on its grid.
+    pattern : StencilPattern (as a plain tuple)
+        Sparsity of the film Jacobians.
     lift_off : bool
         Top-foil lift-off: the cells with ``d (P − 1) < G`` (d the diagonal of
         their Newton row), the ambient branch of ``min(d (P − 1), G)``, are
         held at ambient: row ``d e_k``, zero film Jacobian row and border.
     decide : bool
         Decide the branches by that test at y; otherwise keep the branches
-        ``lift_state`` holds (their signs; the scales d are renewed).
-    H : ndarray, shape (n_theta, n_z)
-        Filled with the film h/C.
-    jp, jh : ndarray, shape (nnz,)
-        Filled with the scaled pressure and film Jacobians (stencil data; the
-        film rows of clamped cells zero).
-    active : ndarray, shape (n_theta,)
-        Filled with 1.0 where the mean gauge pressure is engaged, else 0.0.
-    jc : ndarray, shape (3 n_z · n,)
-        Filled with the data of B.
-    a_pe : ndarray, shape (n, 2)
-        Filled with the border.
-    lift_state : ndarray, shape (n,)
-        Filled with the branch of each cell (``d`` held, ``−d`` free, 0 without
-        lift-off), as :func:`transient_residual` takes it; read first when not
-        ``decide``.
+        ``blocks.lift_state`` holds (their signs; the scales d are renewed).
+    blocks : JacobianBlocks (as a plain tuple)
+        Filled: the film h/C, the scaled pressure and film Jacobians (stencil
+        data; the film rows of clamped cells zero), the engaged rows, the data
+        of B, the border and the branch of each cell (``d`` held, ``−d`` free,
+        0 without lift-off), as :func:`transient_residual` takes it; read first
+        when not ``decide``.
 
     Returns
     -------
     int
         Number of cells held at ambient (0 without lift-off).
     """
+    H, jp, jh, active, jc, a_pe, lift_state = blocks
+    c0, hist, lam, rate, preload, force = step
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    diag_slots, jh_rows, jh_indptr = pattern
     n_theta, n_z = H.shape
     n = n_theta * n_z
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
-    _film_rows(y, preload, cos_t, sin_t, c_act, n_z, q, h_row)
+    _film_rows(y, preload, model, q, h_row)
     for i in range(n_theta):
         for j in range(n_z):
             H[i, j] = h_row[i]
@@ -539,10 +447,7 @@ def transient_border(
 @njit(cache=True, nogil=True)
 def bdf_setup(
     t_new: float,
-    times: FloatArray,
-    ys: FloatArray,
-    qs: FloatArray,
-    count: int,
+    past: Group,
     order: int,
     atol: FloatArray,
     rtol: float,
@@ -552,8 +457,8 @@ def bdf_setup(
 ) -> float:
     """Variable-step BDF coefficient, history, predictor and error weights of one step.
 
-    The last ``count`` accepted states are ``ys[j]`` at ``times[j]`` (newest
-    first) with storages ``qs[j]``. With k = min(order, count), the BDF
+    The last ``count = past.accepted`` accepted states are ``ys[j]`` at
+    ``times[j]`` (newest first) with storages ``qs[j]``. With k = min(order, count), the BDF
     equation ``c0 Q(y) + hist − f(y) = 0`` states that the derivative at
     t_new of the polynomial through (t_new, Q(y)) and the last k storages is f:
     ``c0 = Σ_{i=1..k} 1/(t_new − t_i)`` and ``hist = Σ_j l'_j(t_new) Q_j``.
@@ -567,6 +472,7 @@ def bdf_setup(
     float
         c0, 1/s.
     """
+    times, ys, qs, count = past
     n = guess.shape[0]
     k = min(order, count)
     c0 = 0.0

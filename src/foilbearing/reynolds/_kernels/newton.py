@@ -16,6 +16,7 @@ from foilbearing.reynolds._kernels.bdf import (
     transient_solve,
     transient_storage,
 )
+from foilbearing.reynolds._kernels.groups import Group
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -24,48 +25,21 @@ IntArray = NDArray[np.int64]
 @njit(cache=True, nogil=True)
 def transient_newton_step(
     y: FloatArray,
-    c0: float,
-    hist: FloatArray,
-    lam: float,
-    rate: float,
-    preload: FloatArray,
-    force: FloatArray,
-    cos_t: FloatArray,
-    sin_t: FloatArray,
-    c_act: FloatArray,
-    c_bump: FloatArray,
-    lift_state: FloatArray,
-    w: FloatArray,
-    force_scale: float,
-    denom: float,
-    d_theta: float,
-    d_z: float,
-    H: FloatArray,
-    res: FloatArray,
-    g: FloatArray,
-    slack: FloatArray,
-    fac: FloatArray,
-    jh_data: FloatArray,
-    jh_rows: IntArray,
-    jh_indptr: IntArray,
-    a_pe: FloatArray,
-    s_vp: FloatArray,
-    y_border: FloatArray,
-    small_inv: FloatArray,
-    fac_c0: float,
-    fac_rate: float,
-    active: FloatArray,
-    work: FloatArray,
-    dy: FloatArray,
+    step: Group,
+    model: Group,
+    pattern: Group,
+    factor: Group,
+    buf: Group,
     weights: FloatArray,
 ) -> tuple[float, float, float]:
     """One modified-Newton iteration: residual, solve and update of y, in one call.
 
-    :func:`~.bdf.transient_residual` into ``g``; if the film stays open (minimum
-    > 0), :func:`~.bdf.transient_solve` into ``dy`` with the factor (taken at
-    ``fac_c0``, ``fac_rate``) and :func:`newton_update` of y. Twin:
+    :func:`~.bdf.transient_residual` into ``buf.g`` on the factor's lift-off
+    branches; if the film stays open (minimum > 0), :func:`~.bdf.transient_solve`
+    into ``buf.dy`` with the factor and :func:`newton_update` of y. Twin:
     :func:`foilbearing.reynolds.reference.newton_step_py`
-    (those three in sequence). Arguments as in those kernels.
+    (those three in sequence). Arguments as in those kernels; ``weights`` are
+    the error weights of the convergence norm.
 
     Returns
     -------
@@ -76,17 +50,13 @@ def transient_newton_step(
     p_min : float
         Smallest pressure after the update (NaN if not updated).
     """
-    h_min = transient_residual(
-        y, c0, hist, lam, rate, preload, force, cos_t, sin_t, c_act, c_bump, lift_state, w,
-        force_scale, denom, d_theta, d_z, H, res, g, slack,
-    )  # fmt: skip
+    film, res, g, slack, work, dy, _q_out = buf
+    fac, jh_data, a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, lift_state = factor
+    h_min = transient_residual(y, step, model, lift_state, film, res, g, slack)
     if h_min <= 0.0:
         return h_min, np.nan, np.nan
-    transient_solve(
-        g, fac, jh_data, jh_rows, jh_indptr, a_pe, s_vp, y_border, small_inv, fac_c0,
-        fac_rate, active, c_bump, work, dy,
-    )  # fmt: skip
-    err, p_min = newton_update(y, dy, weights, H.shape[0] * H.shape[1])
+    transient_solve(g, factor, model, pattern, work, dy)
+    err, p_min = newton_update(y, dy, weights, film.shape[0] * film.shape[1])
     return h_min, err, p_min
 
 
@@ -131,44 +101,13 @@ NEWTON_DIVERGED, NEWTON_REFRESH = 4, 5
 @njit(cache=True, nogil=True)
 def transient_newton_solve(
     y: FloatArray,
-    c0: float,
-    hist: FloatArray,
-    lam: float,
-    rate: float,
-    preload: FloatArray,
-    force: FloatArray,
-    cos_t: FloatArray,
-    sin_t: FloatArray,
-    c_act: FloatArray,
-    c_bump: FloatArray,
-    lift_state: FloatArray,
-    w: FloatArray,
-    force_scale: float,
-    denom: float,
-    d_theta: float,
-    d_z: float,
-    H: FloatArray,
-    res: FloatArray,
-    g: FloatArray,
-    slack: FloatArray,
-    fac: FloatArray,
-    jh_data: FloatArray,
-    jh_rows: IntArray,
-    jh_indptr: IntArray,
-    a_pe: FloatArray,
-    s_vp: FloatArray,
-    y_border: FloatArray,
-    small_inv: FloatArray,
-    fac_c0: float,
-    fac_rate: float,
-    active: FloatArray,
-    work: FloatArray,
-    dy: FloatArray,
+    step: Group,
+    model: Group,
+    pattern: Group,
+    factor: Group,
+    buf: Group,
     weights: FloatArray,
-    q_out: FloatArray,
-    newton_tol: float,
-    newton_fraction: float,
-    max_newton: int,
+    controls: Group,
     fresh: bool,
     first_change: float,
 ) -> tuple[int, int, float, float]:
@@ -177,7 +116,7 @@ def transient_newton_solve(
     Repeats :func:`transient_newton_step`. Converged when the weighted update
     ``err <= tol = max(newton_tol, newton_fraction · first update)`` or when the
     error left, ``rate/(1 − rate)·err`` with the measured contraction rate, is
-    below tol; the storage ``Q(y)`` then goes to ``q_out``
+    below tol; the storage ``Q(y)`` then goes to ``buf.q_out``
     (:func:`~.bdf.transient_storage`). A fresh factor (``fresh``) stops after
     ``max_newton`` iterations or when it diverges (rate >= 1), and asks for a
     refresh at its iterate when it contracts slowly (rate above 0.5: the
@@ -191,6 +130,17 @@ def transient_newton_solve(
     refresh, and so does a fresh factor that diverges after such a switch
     (its rows no longer fit the switched cells). Twin:
     :func:`foilbearing.reynolds.reference.newton_solve_py`.
+
+    Parameters
+    ----------
+    y, step, model, pattern, factor, buf, weights
+        As in :func:`transient_newton_step`; y is updated in place.
+    controls : NewtonControls (as a plain tuple)
+        ``(newton_tol, newton_fraction, max_newton)``.
+    fresh : bool
+        Whether the factor was taken at this step.
+    first_change : float
+        The step's first update so far (``inf`` at the start of a step).
 
     Returns
     -------
@@ -206,6 +156,10 @@ def transient_newton_solve(
     h_min : float
         Minimum film of the converged y (NaN otherwise).
     """
+    newton_tol, newton_fraction, max_newton = controls
+    fac, jh_data, a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, lift_state = factor
+    film, res, g, slack, work, dy, q_out = buf
+    c0, hist, lam, rate, preload, force = step
     prev = np.inf
     k = 0
     since = 0  # iterations since the last change of branches
@@ -213,11 +167,7 @@ def transient_newton_solve(
     while True:
         k += 1
         since += 1
-        h_min, err, p_min = transient_newton_step(
-            y, c0, hist, lam, rate, preload, force, cos_t, sin_t, c_act, c_bump, lift_state, w,
-            force_scale, denom, d_theta, d_z, H, res, g, slack, fac, jh_data, jh_rows, jh_indptr,
-            a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, work, dy, weights,
-        )  # fmt: skip
+        h_min, err, p_min = transient_newton_step(y, step, model, pattern, factor, buf, weights)
         if h_min <= 0.0:
             return NEWTON_FILM_CLOSED, k, first_change, np.nan
         if not np.isfinite(err) or p_min <= 0.0:
@@ -233,7 +183,7 @@ def transient_newton_solve(
             # the iteration goes on with the same factor.
             flipped = switch_branches(lift_state, slack, weights)
             if flipped == 0:
-                h_new = transient_storage(y, preload, cos_t, sin_t, c_act, H.shape[1], q_out)
+                h_new = transient_storage(y, preload, model, q_out)
                 if h_new > 0.0:
                     return NEWTON_CONVERGED, k, first_change, h_new
             elif switches < MAX_SWITCHES and flipped <= MAX_MOVED_KEPT:
