@@ -22,10 +22,9 @@ import pytest
 from foilbearing.case import Grid, default_case
 from foilbearing.coefficients import dynamic_compliance, force_coefficients
 from foilbearing.errors import InputError, SolverError
-from foilbearing.film import film_model
+from foilbearing.film import drag_torque, film_model
 from foilbearing.static import (
     EquilibriumOptions,
-    drag_torque,
     film_at_position,
     solve_equilibrium,
 )

@@ -31,7 +31,7 @@ from foilbearing.case import Case
 from foilbearing.reynolds import FilmGrid
 from foilbearing.structure import preload_shape, stiffness_function
 
-__all__ = ["FilmModel", "film_model"]
+__all__ = ["FilmModel", "drag_torque", "film_model"]
 
 FloatArray = NDArray[np.float64]
 
@@ -139,3 +139,18 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         c_bump = np.full(grid.n_theta, pa / (c * k_b))
     lift_off = case.foil is not None and case.foil.lift_off
     return FilmModel(grid, preload, c_bump, c_act, stiffness, angles, deltas, k_act, lift_off)
+
+
+def drag_torque(case: Case, g: FilmGrid, P: FloatArray, H: FloatArray, omega: float) -> float:
+    """Viscous torque on the journal, N·m (beyond the paper).
+
+    Shear on the journal surface from the Couette-Poiseuille profile,
+    τ = μ ω R/h + (h/(2R)) ∂p/∂θ, integrated over the full surface:
+    T = R³ ∫∫ [μ ω R/(C H) + (C H p_a/(2R)) ∂P/∂θ] dθ dZ. For a concentric rigid
+    journal this is Petroff's 2π μ ω R³ L / C.
+    """
+    mu, pa = case.gas.viscosity, case.gas.ambient_pressure
+    r, c = case.bearing.radius, case.bearing.clearance
+    dp = (np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)) / (2.0 * g.d_theta)
+    integrand = mu * omega * r / (c * H) + c * H * pa / (2.0 * r) * dp
+    return float(2.0 * r**3 * integrand.sum() * g.d_theta * g.d_z)

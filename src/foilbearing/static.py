@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 
 from foilbearing.case import Case
 from foilbearing.errors import InputError
-from foilbearing.film import FilmModel, film_model
+from foilbearing.film import FilmModel, drag_torque, film_model
 from foilbearing.headline import Field, headline_view
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
 from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
@@ -592,18 +592,3 @@ def _result(
         message=message,
         equilibrium=equilibrium,
     )
-
-
-def drag_torque(case: Case, g: Any, P: FloatArray, H: FloatArray, omega: float) -> float:
-    """Viscous torque on the journal, N·m (beyond the paper).
-
-    Shear on the journal surface from the Couette-Poiseuille profile,
-    τ = μ ω R/h + (h/(2R)) ∂p/∂θ, integrated over the full surface:
-    T = R³ ∫∫ [μ ω R/(C H) + (C H p_a/(2R)) ∂P/∂θ] dθ dZ. For a concentric rigid
-    journal this is Petroff's 2π μ ω R³ L / C.
-    """
-    mu, pa = case.gas.viscosity, case.gas.ambient_pressure
-    r, c = case.bearing.radius, case.bearing.clearance
-    dp = (np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)) / (2.0 * g.d_theta)
-    integrand = mu * omega * r / (c * H) + c * H * pa / (2.0 * r) * dp
-    return float(2.0 * r**3 * integrand.sum() * g.d_theta * g.d_z)

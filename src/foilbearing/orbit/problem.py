@@ -13,16 +13,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.orbit.result import OrbitResult, RunStatus
+from foilbearing.orbit.sampling import Samples
 from foilbearing.reynolds.transient import Inputs
-
-if TYPE_CHECKING:  # sampling imports the system, which builds this problem
-    from foilbearing.orbit.sampling import Samples
 
 __all__ = ["Factor", "RunStats", "StepperProblem"]
 

@@ -80,7 +80,7 @@ class OrbitResult:
     power_loss
         Viscous power loss of the film, W: the drag law of the static analysis
         (:func:`foilbearing.static.drag_torque`) × speed, evaluated on the
-        accepted states every :data:`POWER_INTERVAL` s and interpolated to the
+        accepted states every :data:`~foilbearing.orbit.sampling.POWER_INTERVAL` s and interpolated to the
         samples (None for runs saved before it was recorded).
     status
         How the run ended (:class:`RunStatus`, a ``str``): "completed" (end of the

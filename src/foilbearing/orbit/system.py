@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,6 +21,7 @@ from foilbearing.errors import InputError, SolverError
 from foilbearing.film import film_model
 from foilbearing.orbit.problem import RunStats, StepperProblem
 from foilbearing.orbit.result import OrbitResult, RunStatus
+from foilbearing.orbit.sampling import Samples
 from foilbearing.orbit.settings import OrbitSettings
 from foilbearing.reynolds.transient import (
     Inputs,
@@ -29,17 +30,9 @@ from foilbearing.reynolds.transient import (
 from foilbearing.static import solve_equilibrium
 from foilbearing.structure import base_preload, preload_shape
 
-if TYPE_CHECKING:  # sampling imports this module
-    from foilbearing.orbit.sampling import Samples
-
-__all__ = ["POWER_INTERVAL", "OrbitSimulation"]
+__all__ = ["OrbitSimulation"]
 
 FloatArray = NDArray[np.float64]
-
-
-#: Simulated time between two evaluations of the film's power loss, s (it is
-#: averaged over runs of seconds; 1 ms keeps its cost below 1 % of a step's).
-POWER_INTERVAL = 1e-3
 
 
 class OrbitSimulation:
@@ -187,7 +180,7 @@ class OrbitSimulation:
             inp: Inputs,
             min_film: float | None,
         ) -> None:
-            out.add(t, y, self, volts, inp, min_film=min_film)
+            out.add(t, y, sys_, self.case, volts, inp, min_film=min_film)
 
         observe = None
         if voltage is not None and voltage.observes:
