@@ -1,7 +1,7 @@
 """Benchmark of the orbit simulation: accuracy at the default settings, and speed. Prints its
 figures.
 
-Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid]
+Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -15,6 +15,8 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid]
 - ``--grid``: the grid the orbit needs: cost per step of the full speed-up's orbit (shimmed GFB,
   150 V, 8.5 g·mm, 0.1 s at 50 krpm) and the linear onset at 0 and 150 V, against the axial
   cell count n_z at n_theta = 96, and against n_theta at n_z = 12 (about 1 minute).
+- ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
+  0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
 
 The cost model behind these figures and every route tried towards the 60 s target:
 docs/orbit-performance.md.
@@ -234,9 +236,51 @@ def grid_study() -> None:
         )
 
 
+def step_profile() -> None:
+    """Where a step's time goes: cProfile of the full speed-up's orbit at 50 krpm, per kernel."""
+    import cProfile
+    import pstats
+
+    case = default_case().with_voltages(150.0).shimmed()
+    simulate(case, constant_speed(50e3 * RPM, 2e-3), progress=False)  # compile, warm up
+    plain = simulate(case, constant_speed(50e3 * RPM, 0.05), progress=False)
+    prof = cProfile.Profile()
+    prof.enable()
+    res = simulate(case, constant_speed(50e3 * RPM, 0.05), progress=False)
+    prof.disable()
+    stats = pstats.Stats(prof).stats  # type: ignore[attr-defined]
+    parts = {
+        "transient_newton_solve": "compiled Newton iterations",
+        "block_cyclic_factor": "block-cyclic LU",
+        "transient_jacobian": "Newton-matrix blocks (with lift-off)",
+        "transient_border": "Woodbury border",
+        "bdf_setup": "BDF set-up",
+    }
+    total = sum(tottime for (_cc, _calls, tottime, _cum, _callers) in stats.values())
+    print(
+        f"profile: shimmed GFB, 150 V, 8.5 g·mm, 0.05 s at 50 krpm, default settings: "
+        f"{res.steps} steps, {1e3 * plain.wall_time / plain.steps:.3f} ms per step unprofiled, "
+        f"{res.newton_iterations / res.steps:.2f} iterations and "
+        f"{res.factorizations / res.steps:.3f} factorisations per step"
+    )
+    compiled = 0.0
+    for (_file, _line, name), (_cc, calls, tottime, _cum, _callers) in sorted(stats.items()):
+        if name in parts:
+            compiled += tottime
+            print(
+                f"  {parts[name]:<38} {1e3 * tottime / res.steps:.3f} ms per step "
+                f"({calls / res.steps:.2f} calls)"
+            )
+    python = 1e3 * (total - compiled) / res.steps
+    print(f"  {'Python around them':<38} {python:.3f} ms per step (cProfile's own cost included)")
+
+
 if __name__ == "__main__":
     if "--grid" in sys.argv:
         grid_study()
+        sys.exit(0)
+    if "--profile" in sys.argv:
+        step_profile()
         sys.exit(0)
     segment_accuracy()
     if "--readouts" in sys.argv:
