@@ -115,6 +115,9 @@ def fake_summary() -> dict[str, Any]:
         "orbits": {
             "runs": [
                 {
+                    "label": "0V_8.5gmm",
+                    "series": "paper protocol",
+                    "description": "0 V, control none, imbalance 8.5 g·mm",
                     "voltage_V": 0.0,
                     "onset_speed_rpm": 15000.0,
                     "whip_frequency_Hz": 130.0,
@@ -149,7 +152,7 @@ def fake_out(tmp_path: Path) -> Path:
     """A study folder with three tiny PNGs (one listed, one orbit figure, one stray)."""
     (tmp_path / "summary.json").write_text(json.dumps(fake_summary()), encoding="utf-8")
     (tmp_path / "fig07_stiffness_function.png").write_bytes(tiny_png(4, 3))
-    (tmp_path / "orbit_0V_transient.png").write_bytes(tiny_png(2, 5, (0, 90, 200)))
+    (tmp_path / "orbit_0V_8.5gmm_transient.png").write_bytes(tiny_png(2, 5, (0, 90, 200)))
     (tmp_path / "extra_plot.png").write_bytes(tiny_png(3, 3, (0, 0, 0)))
     return tmp_path
 
@@ -180,7 +183,7 @@ def test_missing_stage_is_omitted(fake_out: Path) -> None:
     summary = fake_summary()
     del summary["orbits"], summary["paper_comparison"]
     (fake_out / "summary.json").write_text(json.dumps(summary), encoding="utf-8")
-    (fake_out / "orbit_0V_transient.png").unlink()
+    (fake_out / "orbit_0V_8.5gmm_transient.png").unlink()
     text, page = parse(write_report(fake_out))
     assert "orbits" not in page.ids() and "comparison" not in page.ids()
     assert "structure" in page.ids() and "#orbits" not in text
@@ -207,7 +210,7 @@ def test_figure_record_gives_the_folder_s_page(fake_out: Path) -> None:
     old = StudyResult.load(fake_out)
     assert {k: [p.name for p in v] for k, v in old.figures.items()} == {
         "structure": ["fig07_stiffness_function.png", "fig08_preloads.png"],
-        "orbits": ["orbit_0V_transient.png"],
+        "orbits": ["orbit_0V_8.5gmm_transient.png"],
     }
     page = render_report(old)
     assert write_report(old).read_text(encoding="utf-8") == page
@@ -219,7 +222,7 @@ def test_figure_record_gives_the_folder_s_page(fake_out: Path) -> None:
     (fake_out / "orbit_50V_transient.png").write_bytes(tiny_png(2, 2, (9, 9, 9)))
     text = render_report(StudyResult.load(fake_out))
     orbits = text[text.index('<section id="orbits"') : text.index('<section id="other"')]
-    assert "orbit_0V_transient.png" in orbits and "orbit_50V_transient.png" not in orbits
+    assert "orbit_0V_8.5gmm_transient.png" in orbits and "orbit_50V_transient.png" not in orbits
     assert "orbit_50V_transient.png" in text[text.index('<section id="other"') :]
 
 
@@ -238,13 +241,17 @@ def test_the_study_s_orbit_figures_follow_its_own(tmp_path: Path) -> None:
         "0V_8.5gmm": ["transient", "waterfall", "orbits"],
         "50V_ramp6.00s_8.5gmm": ["transient", "orbits"],
     }
+    results["orbits"]["runs"].append(
+        {"label": "50V_ramp6.00s_8.5gmm", "series": "paper protocol", "voltage_V": 50.0}
+    )
     runs: dict[str, Any] = {}
     for label, kinds in names.items():
         runs[label] = {"figures": [tmp_path / f"orbit_{label}_{k}.png" for k in kinds]}
     for p in [tmp_path / "fig15_subsync.png", *(p for r in runs.values() for p in r["figures"])]:
         p.write_bytes(tiny_png(2, 2))
     result = _finish(tmp_path, results, lambda line: None, runs)
-    orbit_pngs = sorted(p.name for p in tmp_path.glob("orbit_*.png"))
+    # the runs in the protocol's order, each run's figures in the order they are written
+    orbit_pngs = [f"orbit_{label}_{k}.png" for label, kinds in names.items() for k in kinds]
     assert [p.name for p in result.figures["orbits"]] == ["fig15_subsync.png", *orbit_pngs]
     stored = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))
     assert stored["figures"] == result.figure_record()
@@ -254,6 +261,44 @@ def test_the_study_s_orbit_figures_follow_its_own(tmp_path: Path) -> None:
     del stored["figures"], stored["report"]
     assert render_report(StudyResult.from_summary(stored, tmp_path)) == page
     assert 'id="other"' not in page and page.count("data:image/png;base64,") == 6
+
+
+def test_orbit_figures_are_captioned_by_their_run() -> None:
+    """A speed-up's figure gets the caption of the paper's figure it reproduces, told by its
+    run's label in the summary (labels carry the imbalance and the ramp); the study's other
+    runs are "like" the paper's, with the run said in full; a figure of no run keeps its name."""
+    from foilbearing.output.report.captions import _caption
+
+    runs = [
+        {"label": "0V_8.5gmm", "series": "paper protocol", "voltage_V": 0.0,
+         "description": "0 V, control none, imbalance 8.5 g·mm"},
+        {"label": "150V_ramp6.00s_8.5gmm", "series": "paper protocol", "voltage_V": 150.0,
+         "description": "150 V, control ramp at 6.00-6.50 s, imbalance 8.5 g·mm"},
+        {"label": "100V_ramp0.08s_8.5gmm", "series": "control before our divergence",
+         "voltage_V": 100.0, "description": "100 V, control ramp at 0.08-0.58 s"},
+        {"label": "0V_1gmm", "series": "1 g·mm", "voltage_V": 0.0, "description": "0 V, 1 g·mm"},
+    ]  # fmt: skip
+    assert _caption("orbit_0V_8.5gmm_transient.png", runs) == (
+        "Fig. 13(a): journal motion e_X, e_Y and speed; speed-up 3-90 krpm, "
+        "0 V, control none, imbalance 8.5 g·mm."
+    )
+    assert _caption("orbit_0V_8.5gmm_waterfall3d.png", runs).startswith(
+        "Fig. 13(b): waterfall of e_X in 3-D;"
+    )
+    assert _caption("orbit_150V_ramp6.00s_8.5gmm_transient.png", runs).startswith("Fig. 14(c):")
+    assert _caption("orbit_150V_ramp6.00s_8.5gmm_waterfall.png", runs).startswith(
+        "Like Fig. 13(b):"
+    )
+    assert _caption("orbit_100V_ramp0.08s_8.5gmm_transient.png", runs) == (
+        "Like Fig. 14(b): journal motion e_X, e_Y and speed; speed-up 3-90 krpm, "
+        "100 V, control ramp at 0.08-0.58 s."
+    )
+    assert _caption("orbit_0V_1gmm_transient.png", runs).startswith("Like Fig. 13(a):")
+    assert _caption("orbit_0V_1gmm_orbits.png", runs).startswith("Not in the paper: journal")
+    # not a run's figure: a label that is only a prefix, an unknown kind, no runs at all
+    for name in ("orbit_0V_transient.png", "orbit_0V_8.5gmm_phase.png", "orbit_x.png"):
+        assert _caption(name, runs) == name
+    assert _caption("orbit_0V_8.5gmm_transient.png") == "orbit_0V_8.5gmm_transient.png"
 
 
 # --- (c): the real study's page in headless Chromium --------------------------------

@@ -7,55 +7,87 @@ under ``"figures"`` (file names by section, in the order written), so
 :meth:`StudyResult.load` gives back the same result from the folder. Folders
 written before the record existed are read as the report always read them: each
 section's own ``"figures"`` list, and for the orbit section the ``orbit_*.png``
-files of the folder.
+files of the folder. An orbit figure is told by its run's label
+(``orbit_<label>_<kind>.png``), which the orbit stage's runs carry.
 """
 
 from __future__ import annotations
 
 import json
-import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from foilbearing.errors import InputError
 
-__all__ = ["FIGURE_RECORD_KEY", "StudyResult", "orbit_figure_order"]
+__all__ = [
+    "FIGURE_RECORD_KEY",
+    "ORBIT_KINDS",
+    "StudyResult",
+    "orbit_figure_order",
+    "orbit_figure_run",
+]
 
 
 #: Top-level key of ``summary.json`` that holds the figure record.
 FIGURE_RECORD_KEY = "figures"
 
 
-#: File stem of a speed-up's figure, ``orbit_<volts>V_<kind>``, as
-#: :func:`foilbearing.orbit.analysis.write_orbit_figures` names it for a label ``<volts>V``.
-#: The study's labels now carry the imbalance too (``orbit_0V_8.5gmm_transient``), which
-#: this does not match: those figures sort, and are captioned, by file name.
-_ORBIT_FIG = re.compile(r"orbit_(?P<v>[0-9.]+)V_(?P<kind>transient|waterfall3d|waterfall|orbits)")
+#: The figures :func:`foilbearing.orbit.analysis.write_orbit_figures` writes of a run, in order.
+ORBIT_KINDS = ("transient", "waterfall", "waterfall3d", "orbits")
 
 
-_ORBIT_KINDS = ("transient", "waterfall", "waterfall3d", "orbits")
-
-
-def orbit_figure_order(path: Path) -> tuple[float, int, str]:
-    """Sort key of the speed-ups' figures in the report: voltage, kind, then file name.
+def orbit_figure_run(
+    name: str, runs: Sequence[Mapping[str, Any]]
+) -> tuple[int, Mapping[str, Any], str] | None:
+    """The speed-up that an orbit figure ``orbit_<label>_<kind>.png`` shows.
 
     Parameters
     ----------
-    path
-        A figure file; only its name counts.
+    name
+        The figure's file name.
+    runs
+        The orbit stage's runs, as ``summary["orbits"]["runs"]`` holds them (each
+        with its ``label``).
 
     Returns
     -------
-    tuple
-        Final voltage (V; infinite for a name without one), the figure's kind in
-        the order they are written, the file name.
+    tuple or None
+        The run's index in ``runs``, the run, and the figure's kind (one of
+        :data:`ORBIT_KINDS`); None if no run's figure has that name.
     """
-    m = _ORBIT_FIG.fullmatch(path.stem)
-    if m is None:
-        return (float("inf"), 0, path.name)
-    return (float(m["v"]), _ORBIT_KINDS.index(m["kind"]), path.name)
+    stem = Path(name).stem
+    for index, run in enumerate(runs):
+        label = run.get("label") if isinstance(run, Mapping) else None
+        for kind in ORBIT_KINDS:
+            if isinstance(label, str) and stem == f"orbit_{label}_{kind}":
+                return index, run, kind
+    return None
+
+
+def orbit_figure_order(runs: Sequence[Mapping[str, Any]]) -> Callable[[Path], tuple[int, int, str]]:
+    """Sort key of the speed-ups' figures in the report: the runs' order, kind, file name.
+
+    Parameters
+    ----------
+    runs
+        The orbit stage's runs in the protocol's order (see :func:`orbit_figure_run`).
+
+    Returns
+    -------
+    callable
+        Key of a figure path: the index of its run (after all runs for a figure
+        of none), its kind in :data:`ORBIT_KINDS`, its file name.
+    """
+
+    def key(path: Path) -> tuple[int, int, str]:
+        found = orbit_figure_run(path.name, runs)
+        if found is None:
+            return (len(runs), 0, path.name)
+        return (found[0], ORBIT_KINDS.index(found[2]), path.name)
+
+    return key
 
 
 @dataclass(frozen=True)
@@ -144,8 +176,10 @@ class StudyResult:
         record = summary.get(FIGURE_RECORD_KEY)
         if not isinstance(record, dict):
             orbits = summary.get("orbits")
-            runs = sorted(out_dir.glob("orbit_*.png"), key=orbit_figure_order)
-            extra = {"orbits": runs} if isinstance(orbits, dict) and orbits else None
+            runs = orbits.get("runs") if isinstance(orbits, dict) else None
+            order = orbit_figure_order(runs if isinstance(runs, list) else [])
+            found = sorted(out_dir.glob("orbit_*.png"), key=order)
+            extra = {"orbits": found} if isinstance(orbits, dict) and orbits else None
             record = cls.from_stages(summary, out_dir, extra).figure_record()
         figures = {
             str(key): tuple(out_dir / Path(str(name)).name for name in names)

@@ -228,14 +228,16 @@ def _finish(
     """The study's result: summary.json with its figure record, and report.html from it.
 
     ``orbit_runs``: the paper's speed-ups by label, each with the ``"figures"`` it
-    wrote; they follow the orbit stage's own figures in the report's order
-    (:func:`foilbearing.output.result.orbit_figure_order`).
+    wrote; they follow the orbit stage's own figures in the protocol's order of
+    the runs (:func:`foilbearing.output.result.orbit_figure_order`).
     """
     from foilbearing.output.report import write_report
     from foilbearing.output.result import FIGURE_RECORD_KEY, StudyResult, orbit_figure_order
 
     runs = [p for run in (orbit_runs or {}).values() for p in run.get("figures", ())]
-    extra = {"orbits": sorted(runs, key=orbit_figure_order)} if "orbits" in results else None
+    protocol = results["orbits"]["runs"] if "orbits" in results else []
+    order = orbit_figure_order(protocol)
+    extra = {"orbits": sorted(runs, key=order)} if "orbits" in results else None
     result = StudyResult.from_stages(results, out, extra)
     results[FIGURE_RECORD_KEY] = result.figure_record()
     write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))

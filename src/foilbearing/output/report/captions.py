@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import base64
 import struct
+from collections.abc import Mapping, Sequence
 from html import escape
 from pathlib import Path
+from typing import Any
 
 from foilbearing.output.report.sections import _FIG14
-from foilbearing.output.result import _ORBIT_FIG
+from foilbearing.output.result import orbit_figure_run
 
 __all__ = ["png_size"]
 
@@ -75,9 +77,12 @@ def png_size(data: bytes) -> tuple[int, int] | None:
     return (width, height) if width > 0 and height > 0 else None
 
 
-def _figure(out_dir: Path, name: str) -> str:
-    """A <figure> with the PNG embedded, or a note where the file is missing or not a PNG."""
-    caption = _caption(name)
+def _figure(out_dir: Path, name: str, runs: Sequence[Mapping[str, Any]] = ()) -> str:
+    """A <figure> with the PNG embedded, or a note where the file is missing or not a PNG.
+
+    ``runs``: the orbit stage's runs, which caption the speed-ups' figures.
+    """
+    caption = _caption(name, runs)
     path = out_dir / name
     data = path.read_bytes() if path.is_file() else b""
     size = png_size(data)
@@ -92,20 +97,28 @@ def _figure(out_dir: Path, name: str) -> str:
     )
 
 
-def _caption(name: str) -> str:
+def _caption(name: str, runs: Sequence[Mapping[str, Any]] = ()) -> str:
+    """The paper's caption of a figure, or for a speed-up's figure its run's; else the name.
+
+    A run of the paper's protocol (series "paper protocol": the case's imbalance,
+    0 V or the ramps at 6.0-6.5 s) shows Fig. 13 or 14 itself; the study's other
+    runs are "like" them, with the run said in full.
+    """
     if name in _CAPTIONS:
         return _CAPTIONS[name]
-    m = _ORBIT_FIG.fullmatch(Path(name).stem)
-    if m is None:
+    found = orbit_figure_run(name, runs)
+    if found is None:
         return name
-    v, kind = float(m["v"]), m["kind"]
-    run = f"{v:g} V throughout" if v == 0 else f"ramp to {v:g} V at 6.0-6.5 s"
-    fig13b = "Fig. 13(b)" if v == 0 else "Like Fig. 13(b)"
-    fig14 = f"Fig. 14({_FIG14[v]})" if v in _FIG14 else "Like Fig. 14"
+    _, run, kind = found
+    v = float(run.get("voltage_V") or 0.0)
+    like = "" if run.get("series") == "paper protocol" else "Like "
+    fig13 = "Fig. 13" if not like and v == 0 else "Like Fig. 13"
+    fig14 = f"{like}Fig. 14({_FIG14[v]})" if v in _FIG14 else "Like Fig. 14"
     what = {
-        "transient": ("Fig. 13(a)" if v == 0 else fig14) + ": journal motion e_X, e_Y and speed",
-        "waterfall": fig13b + ": waterfall of e_X",
-        "waterfall3d": fig13b + ": waterfall of e_X in 3-D",
+        "transient": (f"{fig13}(a)" if v == 0 else fig14) + ": journal motion e_X, e_Y and speed",
+        "waterfall": f"{fig13}(b): waterfall of e_X",
+        "waterfall3d": f"{fig13}(b): waterfall of e_X in 3-D",
         "orbits": "Not in the paper: journal orbits at selected speeds",
     }[kind]
-    return f"{what}; speed-up 3-90 krpm, {run}."
+    run_text = run.get("description") or run.get("label")
+    return f"{what}; speed-up 3-90 krpm, {run_text}."

@@ -89,6 +89,9 @@ def render_report(result: StudyResult) -> str:
     known = {key for key, _ in STAGES} | {"case", "paper_comparison", "case_point"}
     known |= {FIGURE_RECORD_KEY}  # the figure record is the sections' figures, not one
     extra = [(k, k.replace("_", " ").capitalize()) for k in summary if k not in known]
+    orbits = summary.get("orbits")
+    runs = orbits.get("runs") if isinstance(orbits, dict) else None  # captions of speed-ups
+    runs = runs if isinstance(runs, list) else []
     for key, heading in [*STAGES, *extra]:
         data = summary.get(key)
         if not isinstance(data, dict) or not data:
@@ -96,11 +99,13 @@ def render_report(result: StudyResult) -> str:
         names = [p.name for p in result.figures.get(key, ())]
         names = [n for n in dict.fromkeys(names) if n not in used]
         used.update(names)
-        body = _TABLES.get(key, _generic)(data, case) + "".join(_figure(out_dir, n) for n in names)
+        figures = "".join(_figure(out_dir, n, runs) for n in names)
+        body = _TABLES.get(key, _generic)(data, case) + figures
         sections.append((_anchor(key), heading, body))
     rest = sorted(p.name for p in out_dir.glob("*.png") if p.name not in used)
     if rest:
-        sections.append(("other", "Other figures", "".join(_figure(out_dir, n) for n in rest)))
+        others = "".join(_figure(out_dir, n, runs) for n in rest)
+        sections.append(("other", "Other figures", others))
 
     toc = "".join(f'<li><a href="#{a}">{escape(t)}</a></li>' for a, t, _ in sections)
     body = "".join(f'<section id="{a}"><h2>{escape(t)}</h2>{h}</section>' for a, t, h in sections)
