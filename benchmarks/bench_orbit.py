@@ -2,19 +2,23 @@
 figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
+     [--divergence]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
   BDF orders and steps per revolution, against a converged run (BDF3, 256 steps per
   revolution, Newton tolerances 30x tighter). Target: ≤ 1 % at the defaults (issue 13).
 - ``--readouts``: the paper's speed-ups (3-90 krpm at 500 rad/s²) at the default settings
-  against a converged run (BDF3, 48 steps per revolution, tight Newton): sub-synchronous
-  onset, whip frequency and divergence speed (about 10 minutes).
+  against a finer run (BDF3, 48 steps per revolution, tight Newton): sub-synchronous
+  onset, whip frequency and divergence speed (about 10 minutes). A divergence that grows out
+  of the noise floor has no converged value at any affordable setting (``--divergence``).
 - ``--full [--repeats N]``: the paper's full 18.2 s speed-up end to end, on the shimmed GFB at
   150 V, the default case's bearing that reaches 90 krpm (about 6-15 min a run).
 - ``--grid``: the grid the orbit needs: cost per step of the full speed-up's orbit (shimmed GFB,
   150 V, 8.5 g·mm, 0.1 s at 50 krpm) and the linear onset at 0 and 150 V, against the axial
   cell count n_z at n_theta = 96, and against n_theta at n_z = 12 (about 1 minute).
+- ``--divergence``: the divergence speed of the 0 V, 1 g·mm paper speed-up against the steps
+  per revolution and the Newton tolerances (ten runs, two at a time; about 11 minutes).
 - ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
   0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
 
@@ -236,6 +240,50 @@ def grid_study() -> None:
         )
 
 
+#: Settings of the divergence study: (steps per revolution, newton_tol, newton_fraction).
+DIVERGENCE_SETTINGS = (
+    (24, 0.3, 1e-3),
+    (48, 0.3, 1e-3),
+    (96, 0.3, 1e-3),
+    (24, 0.03, 1e-4),
+    (24, 0.01, 1e-5),
+    (32, 0.01, 1e-5),
+    (48, 0.01, 1e-5),
+    (64, 0.01, 1e-5),
+    (96, 0.01, 1e-5),
+    (48, 0.001, 1e-6),
+)
+
+
+def _divergence_run(setting: tuple[int, float, float]) -> tuple[tuple[int, float, float], float]:
+    from foilbearing.orbit.analysis import analyse_orbit
+
+    n, tol, fraction = setting
+    base = default_case()
+    case = replace(base, rotor=replace(base.rotor, imbalance=1e-6))
+    settings = OrbitSettings(steps_per_rev=n, newton_tol=tol, newton_fraction=fraction)
+    res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), settings=settings)
+    speed = analyse_orbit(res).headline(res)["divergence_speed_rpm"]
+    return setting, float("nan") if speed is None else speed
+
+
+def divergence_study() -> None:
+    """The 0 V, 1 g·mm speed-up's divergence speed against the step and the Newton tolerance."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    print(
+        "divergence of the 0 V, 1 g·mm paper speed-up (default case, BDF3) against steps per "
+        "revolution and the Newton tolerances (newton_tol, newton_fraction); two runs at a time"
+    )
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        for (n, tol, fraction), speed in pool.map(_divergence_run, DIVERGENCE_SETTINGS):
+            print(
+                f"  {n:3d} steps/rev, newton_tol {tol:g}, newton_fraction {fraction:g}: "
+                f"divergence {speed / 1e3:.2f} krpm",
+                flush=True,
+            )
+
+
 def step_profile() -> None:
     """Where a step's time goes: cProfile of the full speed-up's orbit at 50 krpm, per kernel."""
     import cProfile
@@ -281,6 +329,9 @@ if __name__ == "__main__":
         sys.exit(0)
     if "--profile" in sys.argv:
         step_profile()
+        sys.exit(0)
+    if "--divergence" in sys.argv:
+        divergence_study()
         sys.exit(0)
     segment_accuracy()
     if "--readouts" in sys.argv:
