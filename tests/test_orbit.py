@@ -40,6 +40,20 @@ def coarse(volts: float = 100.0, **rotor):
     return case
 
 
+def kicked_run(sim: OrbitSimulation, kick: float):
+    """The run of ``sim`` from its static equilibrium with ε_X moved by ``kick`` (units of C),
+    sampled at 10 kHz."""
+    from foilbearing.orbit.sampling import Samples
+    from foilbearing.orbit.stepper import State, run
+
+    y0 = sim.initial_state()
+    y0[sim.system.n + sim.system.nt] += kick
+    s = sim.settings
+    return run(
+        sim.problem(), State(0.0, y0), Samples(1e-4), s.step_rule, s.newton_rule, s.stop_rule()
+    )
+
+
 @pytest.mark.slow
 @pytest.mark.no_cover  # long orbit runs: see the module docstring
 @pytest.mark.parametrize("subambient", ["lift-off", "retained"])
@@ -122,21 +136,7 @@ def test_newton_tolerance_does_not_move_the_divergence() -> None:
 def test_settles_at_the_static_equilibrium() -> None:
     case = coarse(50.0, imbalance=0.0)
     prof = constant_speed(10e3 * RPM, 0.25)
-    sim = OrbitSimulation(case, prof)
-    y0 = sim.initial_state()
-    k = sim.system.n + sim.system.nt
-    y0[k] += 0.05  # a kick of 5 % of C along the load
-    from foilbearing.orbit.sampling import Samples
-    from foilbearing.orbit.stepper import State, run
-
-    res = run(
-        sim.problem(),
-        State(0.0, y0),
-        Samples(1e-4),
-        sim.settings.step_rule,
-        sim.settings.newton_rule,
-        sim.settings.stop_rule(),
-    )
+    res = kicked_run(OrbitSimulation(case, prof), 0.05)  # a kick of 5 % of C along the load
     st = solve_equilibrium(case, speed=10e3 * RPM)
     c = case.bearing.clearance
     assert abs(res.e_x[-1] / c - st.eps_x) < 0.005
@@ -157,20 +157,7 @@ def test_free_whirl_matches_the_linear_eigenvalue(subambient: str, loss_factor: 
     sim = OrbitSimulation(
         case, constant_speed(speed, 0.12), settings=OrbitSettings(steps_per_rev=32)
     )
-    y0 = sim.initial_state()
-    k = sim.system.n + sim.system.nt
-    y0[k] += 0.002
-    from foilbearing.orbit.sampling import Samples
-    from foilbearing.orbit.stepper import State, run
-
-    res = run(
-        sim.problem(),
-        State(0.0, y0),
-        Samples(1e-4),
-        sim.settings.step_rule,
-        sim.settings.newton_rule,
-        sim.settings.stop_rule(),
-    )
+    res = kicked_run(sim, 0.002)
     x = res.e_x - res.e_x[-200:].mean()
     peaks, _ = find_peaks(x, distance=20)
     freq = 1.0 / np.median(np.diff(res.time[peaks]))
@@ -363,8 +350,6 @@ def test_the_linear_onset_is_bracketed_by_free_whirl_orbits() -> None:
     """The nonlinear orbit and the linear analysis share the film, the foil and its damping
     law: 10 % below the linear onset (0 V, 32 x 4 grid: 45.5 krpm) a small free whirl
     decays, 10 % above it grows (linear log decrements +0.019 and -0.104)."""
-    from foilbearing.orbit.sampling import Samples
-    from foilbearing.orbit.stepper import State, run
     from foilbearing.stability import onset_speed
 
     case = coarse(0.0, imbalance=0.0)
@@ -373,16 +358,7 @@ def test_the_linear_onset_is_bracketed_by_free_whirl_orbits() -> None:
     growth = {}
     for factor in (0.9, 1.1):
         sim = OrbitSimulation(case, constant_speed(factor * onset, 0.4))
-        y0 = sim.initial_state()
-        y0[sim.system.n + sim.system.nt] += 0.002  # e_X kicked by 0.2 um
-        res = run(
-            sim.problem(),
-            State(0.0, y0),
-            Samples(1e-4),
-            sim.settings.step_rule,
-            sim.settings.newton_rule,
-            sim.settings.stop_rule(),
-        )
+        res = kicked_run(sim, 0.002)  # e_X kicked by 0.2 um
         assert res.status == "completed", res.message
         x = res.e_x - res.e_x[res.time > 0.3].mean()
         early = np.abs(x[(res.time > 0.1) & (res.time < 0.2)]).max()

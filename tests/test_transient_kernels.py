@@ -180,9 +180,9 @@ def test_border_matches_twin(setup) -> None:
     sys_ = sim.system
     c0 = 3000.0
     factor = sys_.factorize(y, inp, c0, _hist(sim, y, inp, c0))
-    y_border, small_inv = reference.border_py(sys_, factor.lu, factor.a_pe, c0)
-    assert _rel(factor.y_border, y_border) < 1e-12
-    assert _rel(factor.small_inv, small_inv) < 1e-12
+    y_border, small_inv = reference.border_py(sys_, factor.lu, factor.arrays.a_pe, c0)
+    assert _rel(factor.arrays.y_border, y_border) < 1e-12
+    assert _rel(factor.arrays.small_inv, small_inv) < 1e-12
 
 
 @pytest.mark.parametrize("stale", [False, True], ids=["fresh", "stale"])

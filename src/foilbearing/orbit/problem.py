@@ -33,8 +33,10 @@ class Factor(Protocol):
     :class:`~foilbearing.reynolds.transient_factor.TransientFactor` is one.
     """
 
-    #: Lift-off branch of each pressure cell held by the factor: > 0 held, < 0 free, 0 none.
-    lift_state: FloatArray
+    @property
+    def lift_state(self) -> FloatArray:
+        """Lift-off branch of each pressure cell held by the factor: > 0 held, < 0 free, 0
+        none (an array the stepper may change in place)."""
 
     def newton_solve(
         self,

@@ -456,17 +456,18 @@ def solve_py(factor: TransientFactor, g: FloatArray) -> FloatArray:
     ``TransientFactor.solve``): Δy with J Δy = g (any LU with a SuperLU-like ``solve``)."""
     s = factor.sys
     n, nt, nz = s.n, s.nt, s.grid.n_z
-    c0, rate = factor.c0, factor.rate
+    arrays = factor.arrays
+    c0, rate = arrays.c0, arrays.rate
     g_p, g_u, g_e, g_v = g[:n], g[n : n + nt], g[n + nt : n + nt + 2], g[-2:]
     # Eliminate U: (c0 + rate) dU − rate c_b q'(dP) = g_u
     rhs = g_p - factor.jh @ np.repeat(g_u / (c0 + rate), nz)
     # Eliminate the journal: c0 de − dv = g_e, c0 dv − S_vp dP = g_v
-    rhs -= factor.a_pe @ ((g_v + c0 * g_e) / c0**2)
+    rhs -= arrays.a_pe @ ((g_v + c0 * g_e) / c0**2)
     z = factor.lu.solve(rhs)  # type: ignore[attr-defined]
-    d_p = z - factor.y_border @ (factor.small_inv @ (factor.s_vp @ z))
-    d_e = (factor.s_vp @ d_p + g_v + c0 * g_e) / c0**2
+    d_p = z - arrays.y_border @ (arrays.small_inv @ (arrays.s_vp @ z))
+    d_e = (arrays.s_vp @ d_p + g_v + c0 * g_e) / c0**2
     d_v = c0 * d_e - g_e
-    dq = factor.active * d_p.reshape(nt, nz).mean(axis=1)
+    dq = arrays.active * d_p.reshape(nt, nz).mean(axis=1)
     d_u = (g_u + rate * s.c_bump * dq) / (c0 + rate)
     return np.concatenate([d_p, d_u, d_e, d_v])
 

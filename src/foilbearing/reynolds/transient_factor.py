@@ -57,12 +57,6 @@ class TransientFactor:
 
     def __init__(self, system: TransientSystem, lu: object, arrays: kern.FactorArrays) -> None:
         self.sys, self.lu, self.arrays = system, lu, arrays
-        self.jh_data, self.a_pe, self.s_vp = arrays.jh_data, arrays.a_pe, arrays.s_vp
-        self.y_border, self.small_inv = arrays.y_border, arrays.small_inv
-        self.c0, self.rate, self.active = arrays.c0, arrays.rate, arrays.active
-        #: Lift-off branch of each cell (``d`` held, ``−d`` free, 0 without lift-off):
-        #: those of the factorisation, then moved by the Newton iterations that use it.
-        self.lift_state = arrays.lift_state
         self._jh: sp.csr_matrix | None = None
         #: CSR data of the factorised pressure block B (on the coupled pattern).
         self.coupled_data: FloatArray | None = None
@@ -72,11 +66,19 @@ class TransientFactor:
         self._groups = (*system.kernel_groups, tuple(arrays))
 
     @property
+    def lift_state(self) -> FloatArray:
+        """Lift-off branch of each cell (``d`` held, ``−d`` free, 0 without lift-off): those of
+        the factorisation, then moved in place by the Newton iterations that use it."""
+        return self.arrays.lift_state
+
+    @property
     def jh(self) -> sp.csr_matrix:
         """The scaled film Jacobian ``c0·diag(P) − ∂R/∂H/(Aσ)`` as a CSR matrix (built lazily)."""
         if self._jh is None:
             s = self.sys
-            self._jh = sp.csr_matrix((self.jh_data, s.ws.indices, s.ws.indptr), shape=(s.n, s.n))
+            self._jh = sp.csr_matrix(
+                (self.arrays.jh_data, s.ws.indices, s.ws.indptr), shape=(s.n, s.n)
+            )
         return self._jh
 
     def newton_step(
