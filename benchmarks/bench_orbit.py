@@ -2,7 +2,7 @@
 figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
-     [--divergence]
+     [--divergence] [--disturbance]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -10,15 +10,18 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   revolution, Newton tolerances 30x tighter). Target: ≤ 1 % at the defaults (issue 13).
 - ``--readouts``: the paper's speed-ups (3-90 krpm at 500 rad/s²) at the default settings
   against a finer run (BDF3, 48 steps per revolution, tight Newton): sub-synchronous
-  onset, whip frequency and divergence speed (about 10 minutes). A divergence that grows out
-  of the noise floor has no converged value at any affordable setting (``--divergence``).
+  onset, whip frequency and divergence speed, with the case's disturbance (two runs at a
+  time, about 6 minutes).
 - ``--full [--repeats N]``: the paper's full 18.2 s speed-up end to end, on the shimmed GFB at
   150 V, the default case's bearing that reaches 90 krpm (about 6-15 min a run).
 - ``--grid``: the grid the orbit needs: cost per step of the full speed-up's orbit (shimmed GFB,
   150 V, 8.5 g·mm, 0.1 s at 50 krpm) and the linear onset at 0 and 150 V, against the axial
   cell count n_z at n_theta = 96, and against n_theta at n_z = 12 (about 1 minute).
 - ``--divergence``: the divergence speed of the 0 V, 1 g·mm paper speed-up against the steps
-  per revolution and the Newton tolerances (ten runs, two at a time; about 11 minutes).
+  per revolution and the Newton tolerances, without a disturbance: no converged value at any
+  affordable setting (ten runs, two at a time; about 11 minutes).
+- ``--disturbance``: the same with a disturbance of 0.001, 0.01 (the case's) and 0.1 N RMS:
+  converged to 0.2 % (eight runs, two at a time; about 8 minutes).
 - ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
   0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
 
@@ -72,39 +75,58 @@ def segment_accuracy() -> None:
         )
 
 
-def readouts() -> None:
-    """The paper's speed-ups at the default settings against a converged run."""
+#: The paper's speed-ups of ``--readouts``: (label, imbalance kg·m, voltage ramp or None).
+READOUT_RUNS = (
+    ("0 V, 8.5 g·mm", 8.5e-6, None),
+    ("0 V, 1 g·mm", 1e-6, None),
+    ("150 V ramp at 6.0-6.5 s, 1 g·mm", 1e-6, (6.0, 6.5, 150.0)),
+)
+
+
+def _readout_run(job: tuple[int, str]) -> tuple[tuple[int, str], dict, float]:
     from foilbearing.orbit.analysis import analyse_orbit
 
+    k, name = job
+    _label, imbalance, ramp = READOUT_RUNS[k]
     base = default_case()
-    runs = [
-        ("0 V, 8.5 g·mm", 8.5e-6, None),
-        ("0 V, 1 g·mm", 1e-6, None),
-        ("150 V ramp at 6.0-6.5 s, 1 g·mm", 1e-6, (6.0, 6.5, 150.0)),
-    ]
-    prof = linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0)
-    print("paper speed-ups (3-90 krpm, 500 rad/s²): default settings against converged")
-    for label, imbalance, ramp in runs:
-        case = replace(base, rotor=replace(base.rotor, imbalance=imbalance))
-        program = None if ramp is None else voltage_ramp(*ramp)
-        out = {}
-        for name, settings in (
-            ("default", OrbitSettings()),
-            ("converged", OrbitSettings(order=3, steps_per_rev=48, **TIGHT)),
-        ):
-            res = simulate(case, prof, program, settings=settings)
-            head = analyse_orbit(res).headline(res)
-            out[name] = head
+    case = replace(base, rotor=replace(base.rotor, imbalance=imbalance))
+    program = None if ramp is None else voltage_ramp(*ramp)
+    settings = OrbitSettings() if name == "default" else OrbitSettings(steps_per_rev=48, **TIGHT)
+    res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), program, settings=settings)
+    return job, analyse_orbit(res).headline(res), res.wall_time
+
+
+def readouts() -> None:
+    """The paper's speed-ups at the default settings against a converged run."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    d = default_case().disturbance
+    seed = (
+        "none"
+        if d is None
+        else f"{d.force_rms:g} N RMS, {d.min_frequency:g}-{d.max_frequency:g} Hz"
+    )
+    print(
+        "paper speed-ups (3-90 krpm, 500 rad/s²): default settings against converged (BDF3, "
+        f"48 steps per revolution, tight Newton); the case's disturbance: {seed}; two at a time"
+    )
+    jobs = [(k, name) for k in range(len(READOUT_RUNS)) for name in ("default", "converged")]
+    out: dict[tuple[int, str], dict] = {}
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        for (k, name), head, wall in pool.map(_readout_run, jobs):
+            out[k, name] = head
             print(
-                f"  {label}, {name}: onset {_krpm(head['onset_speed_rpm'])}, whip "
+                f"  {READOUT_RUNS[k][0]}, {name}: onset {_krpm(head['onset_speed_rpm'])}, whip "
                 f"{_num(head['whip_frequency_Hz'], 'Hz')}, divergence "
-                f"{_krpm(head['divergence_speed_rpm'])} ({res.wall_time:.0f} s)",
+                f"{_krpm(head['divergence_speed_rpm'])} ({wall:.0f} s)",
                 flush=True,
             )
-        for key in ("onset_speed_rpm", "whip_frequency_Hz", "divergence_speed_rpm"):
-            a, b = out["default"][key], out["converged"][key]
-            if a is not None and b is not None:
-                print(f"    {key}: default {100 * (a - b) / b:+.2f} % from converged")
+            if name != "converged":
+                continue
+            for key in ("onset_speed_rpm", "whip_frequency_Hz", "divergence_speed_rpm"):
+                a, b = out[k, "default"][key], head[key]
+                if a is not None and b is not None:
+                    print(f"    {key}: default {100 * (a - b) / b:+.2f} % from converged")
 
 
 def _krpm(rpm: float | None) -> str:
@@ -255,30 +277,54 @@ DIVERGENCE_SETTINGS = (
 )
 
 
-def _divergence_run(setting: tuple[int, float, float]) -> tuple[tuple[int, float, float], float]:
+def _divergence_run(
+    setting: tuple[int, float, float, float | None],
+) -> tuple[tuple[int, float, float, float | None], float]:
     from foilbearing.orbit.analysis import analyse_orbit
 
-    n, tol, fraction = setting
+    n, tol, fraction, force = setting
     base = default_case()
     case = replace(base, rotor=replace(base.rotor, imbalance=1e-6))
+    assert case.disturbance is not None
+    disturbance = None if force is None else replace(case.disturbance, force_rms=force)
+    case = replace(case, disturbance=disturbance)
     settings = OrbitSettings(steps_per_rev=n, newton_tol=tol, newton_fraction=fraction)
     res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), settings=settings)
     speed = analyse_orbit(res).headline(res)["divergence_speed_rpm"]
     return setting, float("nan") if speed is None else speed
 
 
-def divergence_study() -> None:
-    """The 0 V, 1 g·mm speed-up's divergence speed against the step and the Newton tolerance."""
+#: Settings of the disturbance study: (steps per revolution, newton_tol, newton_fraction,
+#: disturbance N RMS), the case's band and seed.
+DISTURBANCE_SETTINGS = (
+    (24, 0.3, 1e-3, 0.01),
+    (24, 0.01, 1e-5, 0.01),
+    (48, 0.3, 1e-3, 0.01),
+    (24, 0.3, 1e-3, 0.1),
+    (24, 0.01, 1e-5, 0.1),
+    (48, 0.3, 1e-3, 0.1),
+    (24, 0.3, 1e-3, 0.001),
+    (24, 0.01, 1e-5, 0.001),
+)
+
+
+def divergence_study(disturbed: bool) -> None:
+    """The 0 V, 1 g·mm speed-up's divergence speed against the step and the Newton tolerance,
+    without a disturbance (``--divergence``) or with one of three sizes (``--disturbance``)."""
     from concurrent.futures import ProcessPoolExecutor
 
     print(
         "divergence of the 0 V, 1 g·mm paper speed-up (default case, BDF3) against steps per "
-        "revolution and the Newton tolerances (newton_tol, newton_fraction); two runs at a time"
+        "revolution and the Newton tolerances (newton_tol, newton_fraction), "
+        + ("with a disturbance of the case's band" if disturbed else "without a disturbance")
+        + "; two runs at a time"
     )
+    settings = DISTURBANCE_SETTINGS if disturbed else tuple((*s, None) for s in DIVERGENCE_SETTINGS)
     with ProcessPoolExecutor(max_workers=2) as pool:
-        for (n, tol, fraction), speed in pool.map(_divergence_run, DIVERGENCE_SETTINGS):
+        for (n, tol, fraction, force), speed in pool.map(_divergence_run, settings):
+            what = "" if force is None else f"disturbance {force:g} N RMS, "
             print(
-                f"  {n:3d} steps/rev, newton_tol {tol:g}, newton_fraction {fraction:g}: "
+                f"  {what}{n:3d} steps/rev, newton_tol {tol:g}, newton_fraction {fraction:g}: "
                 f"divergence {speed / 1e3:.2f} krpm",
                 flush=True,
             )
@@ -330,8 +376,8 @@ if __name__ == "__main__":
     if "--profile" in sys.argv:
         step_profile()
         sys.exit(0)
-    if "--divergence" in sys.argv:
-        divergence_study()
+    if "--divergence" in sys.argv or "--disturbance" in sys.argv:
+        divergence_study(disturbed="--disturbance" in sys.argv)
         sys.exit(0)
     segment_accuracy()
     if "--readouts" in sys.argv:

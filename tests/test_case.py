@@ -98,6 +98,20 @@ BAD = [
     ("grid", "n_theta", 3, r"grid\.n_theta = 3: expected an integer from 24"),
     ("operation", "speed", "0 rpm", r"operation\.speed = '0 rpm': expected a value > 0"),
     (
+        "disturbance",
+        "force_rms",
+        "-0.1 N",
+        r"disturbance\.force_rms = '-0\.1 N': expected a value >= 0",
+    ),
+    (
+        "disturbance",
+        "max_frequency",
+        "2 Hz",
+        r"disturbance\.max_frequency = '2 Hz': expected above min_frequency \(5 Hz\)",
+    ),
+    ("disturbance", "tones", 0, r"disturbance\.tones = 0: expected an integer from 1 to 4096"),
+    ("disturbance", "force", "1 N", r"unknown field 'force' in \[disturbance\]"),
+    (
         "bearing",
         "clearance",
         "50 um",

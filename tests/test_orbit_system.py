@@ -26,7 +26,9 @@ RPM = math.pi / 30.0
 
 
 def _coarse(volts: float = 100.0):
-    return replace(default_case().with_voltages(volts), grid=Grid(n_theta=32, n_z=4))
+    return replace(
+        default_case().with_voltages(volts), grid=Grid(n_theta=32, n_z=4), disturbance=None
+    )
 
 
 def test_imbalance_force_is_the_imbalance_acceleration() -> None:

@@ -257,13 +257,16 @@ def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
 
 
 def orbit_comparison(
-    runs: list[dict[str, Any]], linear_onsets_rpm: dict[float, float | None] | None = None
+    runs: list[dict[str, Any]],
+    linear_onsets_rpm: dict[float, float | None] | None = None,
+    disturbance_rms: float = 0.0,
 ) -> list[Row]:
     """The speed-up runs beside the paper's Figs. 13-15 (docs/model.md §6).
 
     ``linear_onsets_rpm`` (final voltage → linear onset, rpm) adds each run's lag of
     its divergence behind the linear onset at its final voltage: an onset read from
-    a ramped nonlinear run is not a linear onset (like with like).
+    a ramped nonlinear run is not a linear onset (like with like). ``disturbance_rms``
+    (N) is the case's random force on the rotor, the seed of the whirls (0: none).
     """
     paper = {
         0.0: "whirl from ~15 krpm at 123-147 Hz, gone by ~19 krpm; whip diverges at ~33 krpm",
@@ -274,10 +277,18 @@ def orbit_comparison(
     note = (
         "μ, rotor mass and imbalance are assumed (docs/model.md §1); onset = sustained "
         "sub-synchronous amplitude > 1 µm (0.25 s windows, 1X removed by order tracking); "
-        "divergence speeds are good to about 2 %: a run ends when a whirl that grew "
-        "over many revolutions reaches the clearance, from a seed that is partly "
-        "numerical (runs converged in the time step and the Newton tolerance diverge "
-        "1-2 % later; docs/orbit-performance.md)"
+        + (
+            f"a run ends when a whirl reaches the clearance, grown from the case's random "
+            f"disturbance ({disturbance_rms * 1e3:.3g} mN RMS, docs/model.md §5): such "
+            "divergence speeds are converged to 0.1 % in the time step and the Newton "
+            "tolerance (a contact forced by the imbalance response, as with 8.5 g·mm, to about "
+            "1 %), and depend on the disturbance's size only logarithmically "
+            "(docs/orbit-performance.md)"
+            if disturbance_rms > 0
+            else "divergence speeds are good to about 2-7 %: a run ends when a whirl that grew "
+            "over many revolutions reaches the clearance, from a seed that is numerical (the "
+            "case has no [disturbance]; docs/orbit-performance.md)"
+        )
     )
     rows = []
     for run in runs:

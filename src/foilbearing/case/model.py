@@ -29,6 +29,7 @@ __all__ = [
     "Bearing",
     "BumpGeometry",
     "Case",
+    "Disturbance",
     "Foil",
     "Gas",
     "Grid",
@@ -191,6 +192,25 @@ class Rotor:
 
 
 @dataclass(frozen=True)
+class Disturbance:
+    """Random force on the rotor besides the imbalance: rig vibration, flow noise (orbits only).
+
+    A sum of ``tones`` sinusoids per direction (X and Y), of equal amplitude, at
+    frequencies drawn uniformly in [min_frequency, max_frequency] and random phases,
+    from the generator seeded by ``seed`` (:mod:`foilbearing.orbit.disturbance`). It
+    seeds the growth of a whirl past its onset: without it the seed is whatever the
+    numerics leave, and a speed-up's divergence speed depends on the solver's
+    tolerances (docs/orbit-performance.md).
+    """
+
+    force_rms: float  # N, RMS of the force along each of X and Y
+    min_frequency: float  # Hz
+    max_frequency: float  # Hz
+    seed: int = 1
+    tones: int = 256
+
+
+@dataclass(frozen=True)
 class Operation:
     """Operating point: static load along +X and rotor speed, and the speeds analyses may use."""
 
@@ -224,6 +244,8 @@ class Case:
     #: The optional ``[study]`` table as JSON text, read and checked by
     #: :func:`foilbearing.study.plan.study_plan` (it belongs to the study, not the bearing).
     study_table: str | None = None
+    #: Random force on the rotor in the orbits (``[disturbance]``); None: none.
+    disturbance: Disturbance | None = None
 
     @property
     def kind(self) -> str:

@@ -3,7 +3,7 @@
 A case file has the tables ``[bearing]``, ``[gas]``, ``[foil]`` (optional:
 without it the bearing is a rigid-surface gas journal bearing),
 ``[actuators]`` (optional), ``[shims]`` (optional), ``[rotor]``,
-``[operation]`` and ``[grid]``; ``docs/case-format.md`` documents every field.
+``[operation]``, ``[grid]`` and ``[disturbance]`` (optional); ``docs/case-format.md`` documents every field.
 Dimensional values are plain SI numbers or quantity strings ("100 um"),
 converted once, here. Loading validates everything and raises
 :class:`~foilbearing.errors.InputError` with the file, the field, the value and
@@ -28,6 +28,7 @@ from foilbearing.case.model import (
     Bearing,
     BumpGeometry,
     Case,
+    Disturbance,
     Foil,
     Gas,
     Grid,
@@ -146,6 +147,7 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
             n_z=grid_t.integer("n_z", 2, 256, default=Grid.n_z),
         )
         grid_t.done()
+    disturbance = _read_disturbance(root.table("disturbance")) if "disturbance" in data else None
     study = root.raw("study", default=None)
     if study is not None and not isinstance(study, dict):
         raise InputError(f"[study] must be a table, got {study!r}", source=source)
@@ -162,7 +164,28 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         title,
         source,
         study_table=None if study is None else json.dumps(study, default=str),
+        disturbance=disturbance,
     )
+
+
+def _read_disturbance(t: TableReader) -> Disturbance:
+    f_min = t.positive("min_frequency", "frequency", default=5.0)
+    f_max = t.positive("max_frequency", "frequency", default=500.0)
+    if f_max <= f_min:
+        raise t.error(
+            "max_frequency",
+            t.data.get("max_frequency", f_max),
+            f"above min_frequency ({f_min:g} Hz)",
+        )
+    d = Disturbance(
+        force_rms=t.nonnegative("force_rms", "force"),
+        min_frequency=f_min,
+        max_frequency=f_max,
+        seed=t.integer("seed", 0, 2**31 - 1, default=1),
+        tones=t.integer("tones", 1, 4096, default=256),
+    )
+    t.done()
+    return d
 
 
 def _read_foil(t: TableReader) -> Foil:

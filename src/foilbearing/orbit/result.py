@@ -160,6 +160,14 @@ class OrbitResult:
             imbalance_kg_m=self.case.rotor.imbalance,
             rotor_mass_kg=self.case.rotor.mass,
         )
+        d = self.case.disturbance
+        if d is not None:
+            ds.attrs.update(
+                disturbance_N_rms=d.force_rms,
+                disturbance_band_Hz=[d.min_frequency, d.max_frequency],
+                disturbance_seed=d.seed,
+                disturbance_tones=d.tones,
+            )
         if self.contact:
             for k, v in self.contact.items():
                 ds.attrs[f"contact_{k}"] = v

@@ -139,10 +139,13 @@ class OrbitSettings:
 
     The controlled runs do not depend on the iteration (0.3 %). The
     uncontrolled ones end when a whirl that grows through the whole run
-    reaches the clearance, and that whirl starts from a seed that is partly
-    numerical, so their divergence speed moves by up to 2 % with the
-    tolerance (4 % with the old defaults, 5 % with 3/0.1: 23.25)
+    reaches the clearance, and without a disturbance that whirl starts from a
+    seed that is partly numerical, so their divergence speed moves by up to 2 %
+    with the tolerance (4 % with the old defaults, 5 % with 3/0.1: 23.25)
     (``tests/test_orbit.py::test_newton_tolerance_does_not_move_the_divergence``).
+    A case's ``[disturbance]`` (the default case has one) is a defined seed: with
+    it the 0 V, 1 g·mm speed-up diverges at 52.7 krpm within 0.15 % of the step
+    and the tolerance (docs/orbit-performance.md).
     The orbit error left at constant speed is below 1 % of the time-step error
     (``test_newton_error_is_well_below_the_time_step_error``).
     """

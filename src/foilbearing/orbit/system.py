@@ -19,6 +19,7 @@ from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import film_model
+from foilbearing.orbit.disturbance import DisturbanceForce
 from foilbearing.orbit.problem import RunStats, StepperProblem
 from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.sampling import Samples
@@ -81,6 +82,8 @@ class OrbitSimulation:
         self.static_preload = self.model.preload if act is None else None
         self._preload_cache: tuple[bytes, FloatArray] | None = None
         self._lambda_per_speed = case.bearing_number(1.0)  # Λ ∝ ω
+        d = case.disturbance
+        self.disturbance = None if d is None or d.force_rms == 0.0 else DisturbanceForce(d)
         self._atol: FloatArray | None = None
 
     # ------------------------------------------------------------------ inputs
@@ -119,7 +122,8 @@ class OrbitSimulation:
         return r_p
 
     def inputs(self, t: float, volts: FloatArray, imbalance: bool = True) -> Inputs:
-        """Inputs of the system at time t."""
+        """Inputs of the system at time t: the load, and the imbalance and disturbance forces
+        (``imbalance=False``: the load only)."""
         w, wd, phi = self.profile.state(t)
         case = self.case
         c, m = case.bearing.clearance, case.rotor.mass
@@ -128,6 +132,8 @@ class OrbitSimulation:
         fx = case.operation.load / m + u * (w * w * cos_phi + wd * sin_phi)
         fy = u * (w * w * sin_phi - wd * cos_phi)
         force = np.array([fx / c, fy / c])
+        if imbalance and self.disturbance is not None:
+            force += self.disturbance(t) / (m * c)
         return Inputs(self._lambda_per_speed * w, w, self.preload(volts), force)
 
     # ------------------------------------------------------------ start state

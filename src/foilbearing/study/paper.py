@@ -207,7 +207,8 @@ def _paper_comparison(
             if onsets is not None
             else None
         )
-        rows += orbit_comparison(results["orbits"]["runs"], linear)
+        force = 0.0 if case.disturbance is None else case.disturbance.force_rms
+        rows += orbit_comparison(results["orbits"]["runs"], linear, force)
     table = markdown_table(rows)
     results["paper_comparison"] = [r.__dict__ for r in rows]
     write_text(
