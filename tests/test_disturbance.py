@@ -42,7 +42,7 @@ def test_force_has_its_rms_in_each_direction_and_a_flat_band() -> None:
         assert psd[:, sel].mean(axis=1) == pytest.approx([level, level], rel=0.4)
 
 
-def test_the_seed_sets_the_force_and_nothing_else_does() -> None:
+def test_the_seed_sets_the_force() -> None:
     d = Disturbance(force_rms=0.05, min_frequency=10.0, max_frequency=200.0, seed=7)
     again = DisturbanceForce(d)
     other = DisturbanceForce(Disturbance(0.05, 10.0, 200.0, seed=8))

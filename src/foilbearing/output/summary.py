@@ -18,7 +18,7 @@ __all__ = ["BEARING_TYPES", "case_summary", "format_summary", "structure_summary
 
 def case_summary(case: Case) -> dict[str, Any]:
     """Inputs and derived quantities of a case, in engineering units with unit-named keys."""
-    b, g, op = case.bearing, case.gas, case.operation
+    b, g, op, d = case.bearing, case.gas, case.operation, case.disturbance
     out: dict[str, Any] = {
         "title": case.title,
         "source": case.source,
@@ -33,14 +33,18 @@ def case_summary(case: Case) -> dict[str, Any]:
         "rotor_mass_kg": case.rotor.mass,
         "imbalance_g_mm": case.rotor.imbalance * 1e6,
         "imbalance_radius_um": case.rotor.imbalance_radius * 1e6,
-        "disturbance_N_rms": 0.0 if case.disturbance is None else case.disturbance.force_rms,
+        "disturbance_N_rms": 0.0 if d is None else d.force_rms,
+        **(
+            {}
+            if d is None
+            else {
+                "disturbance_band_Hz": [d.min_frequency, d.max_frequency],
+                "disturbance_seed": d.seed,
+            }
+        ),
         "grid": {"n_theta": case.grid.n_theta, "n_z": case.grid.n_z},
         "bearing_type": BEARING_TYPES[case.kind],
     }
-    d = case.disturbance
-    if d is not None:
-        out["disturbance_band_Hz"] = [d.min_frequency, d.max_frequency]
-        out["disturbance_seed"] = d.seed
     if case.foil is not None:
         out["k_b_N_per_m3"] = case.foil.bump_stiffness
         out["loss_factor"] = case.foil.loss_factor
