@@ -5,13 +5,16 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 ROSS_VENV := .venv-ross
+# The versions CI passed: every install takes its packages from these lock files (`make lock`).
+LOCK := constraints.txt
+LOCK_VENV := build/lock-venv
 
-.PHONY: run test test-ross lint api bench mutation clean
+.PHONY: run test test-ross lint api bench mutation lock clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(LOCK)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[dev]'
 	touch $(STAMP)
 
 run: $(STAMP)
@@ -22,7 +25,7 @@ run: $(STAMP)
 # measured and printed ([tool.coverage] in pyproject.toml); under 90 % the target fails.
 test: $(STAMP)
 	bash scripts/setup_chromium.sh
-	$(BIN)/python -m pytest -q -n auto --dist loadfile --cov --cov-report=term
+	$(BIN)/python -m pytest -q -n auto --dist loadfile --durations=15 --cov --cov-report=term
 
 # The ROSS export needs ROSS >= 3.0, hence Python >= 3.13: a second venv (scripts/setup_ross_env.sh).
 # Its coverage data goes to build/: CI runs it beside the main suite, whose data is .coverage.
@@ -55,6 +58,19 @@ mutation: $(STAMP)
 	$(BIN)/mutmut run --max-children 2
 	$(BIN)/mutmut export-cicd-stats
 	$(BIN)/python scripts/mutation_report.py
+
+# Refresh the lock files from pyproject's ranges: the newest versions the registry offers, in a
+# fresh venv for each (the ROSS one on Python 3.13). Then run .ci/run before committing them.
+lock:
+	rm -rf $(LOCK_VENV)
+	$(PYTHON) -m venv $(LOCK_VENV)
+	$(LOCK_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(LOCK_VENV)/bin/python -m pip install --quiet -e '.[dev]'
+	{ echo "# The versions CI passed, for $$($(LOCK_VENV)/bin/python -V). Refresh: make lock, then .ci/run."; \
+	  $(LOCK_VENV)/bin/python -m pip freeze --exclude-editable; } > $(LOCK)
+	rm -rf $(LOCK_VENV)
+	bash scripts/setup_ross_env.sh --lock
+	touch $(STAMP) 2>/dev/null || true
 
 clean:
 	rm -rf $(VENV) $(ROSS_VENV) out build mutants .pytest_cache .mypy_cache

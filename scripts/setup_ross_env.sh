@@ -6,12 +6,18 @@
 # Python 3.13 is looked for, in order, in: $PYTHON313, `pyenv prefix 3.13*`,
 # /root/.pyenv/versions/3.13.*/bin/python3.13, and python3.13 on PATH.
 #
-# Usage: bash scripts/setup_ross_env.sh        (from anywhere; works in the repository root)
+# The versions come from constraints-ross.txt (the ones CI passed); `--lock` resolves them
+# afresh from pyproject's ranges in a new venv and rewrites that file (`make lock`).
+#
+# Usage: bash scripts/setup_ross_env.sh [--lock]   (from anywhere; works in the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 VENV=.venv-ross
 STAMP="$VENV/.installed"
+LOCK=constraints-ross.txt
+relock=0
+[ "${1:-}" = "--lock" ] && relock=1
 
 say() { printf 'setup_ross_env: %s\n' "$*"; }
 
@@ -54,7 +60,9 @@ find_python() {
     return 1
 }
 
-if [ -f "$STAMP" ] && [ "$STAMP" -nt pyproject.toml ] && is_py313 "$VENV/bin/python"; then
+if [ "$relock" = 1 ]; then
+    rm -rf "$VENV"
+elif [ -f "$STAMP" ] && [ "$STAMP" -nt pyproject.toml ] && [ "$STAMP" -nt "$LOCK" ] && is_py313 "$VENV/bin/python"; then
     say "$VENV is up to date ($(ross_version))"
     exit 0
 fi
@@ -73,6 +81,13 @@ fi
 
 say "installing -e '.[ross,dev]' into $VENV (first time: a few minutes)"
 "$VENV/bin/python" -m pip install --quiet --upgrade pip
-"$VENV/bin/python" -m pip install --quiet -e '.[ross,dev]'
+if [ "$relock" = 1 ]; then
+    "$VENV/bin/python" -m pip install --quiet -e '.[ross,dev]'
+    { echo "# The versions CI passed for the ROSS venv, $("$VENV/bin/python" -V). Refresh: make lock, then .ci/run."
+      "$VENV/bin/python" -m pip freeze --exclude-editable; } > "$LOCK"
+    say "wrote $LOCK"
+else
+    "$VENV/bin/python" -m pip install --quiet -c "$LOCK" -e '.[ross,dev]'
+fi
 touch "$STAMP"
 say "done: $(ross_version) in $VENV"

@@ -10,12 +10,17 @@ exists to check the fast stepper (tests and ``benchmarks/bench_orbit.py``).
 
 Under top-foil lift-off the film holds no sub-ambient pressure: here as the
 projected dynamics of that constraint, independent of the fast stepper's
-complementarity rows. A cell at (or below) ambient whose pressure would fall
-is held: its rate is a relaxation ``(1 − P)/τ`` back to ambient, and the rows'
-rank-one systems are solved with those rates given. The reference converges
-to the fast stepper as τ → 0 (measured on the test segment, max |Δe_X| over
-the orbit's extent: 2.2 % with τ = ∞, i.e. a held cell frozen wherever it
-crossed ambient, 0.4 % at 1e-7 s, 0.15 % at 1e-9 s, the default).
+complementarity rows. No cell's pressure may fall faster than a relaxation
+towards ambient, ``dP/dt = max(dP/dt|free, (1 − P)/τ)``: a cell at ambient
+whose pressure would fall is held there, and one below it returns. The law is
+continuous in P (it has no threshold at P = 1), so which cells are held does
+not jump with the round-off of a state; a law that held a cell only once it
+was at or below ambient did, and solve_ivp's cost swung with it, from 14 s to
+over 15 minutes on the lift-off test (docs/orbit-performance.md, "The
+lift-off reference"). The rows' rank-one systems are solved with the held
+cells' rates given. The reference converges to the fast stepper as τ → 0
+(measured on the test segment, max |Δe| over the orbit's extent: 0.02 % at
+τ = 1e-7 and 1e-8 s, the default, 0.1 % at 1e-9 s).
 """
 
 from __future__ import annotations
@@ -36,7 +41,7 @@ FloatArray = NDArray[np.float64]
 
 
 #: Relaxation time of a held cell back to ambient pressure, s (lift-off).
-HOLD_TIME = 1e-9
+HOLD_TIME = 1e-8
 
 
 def _row_rates(
@@ -76,10 +81,11 @@ def _derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArray:
     no_hold = np.zeros_like(P)
     dp = _row_rates(b, a, P, h_row, no_hold, no_hold)
     if sys_.lift_off:
-        held = ((P <= 1.0) & (dp < 0.0)).astype(float)
-        for _ in range(4):  # holding cells changes the others' rates through the foil
-            dp = _row_rates(b, a, P, h_row, held, (1.0 - P) / HOLD_TIME)
-            more = ((P <= 1.0) & (dp < 0.0) & (held == 0.0)).astype(float)
+        relax = (1.0 - P) / HOLD_TIME
+        held = (relax > dp).astype(float)
+        for _ in range(8):  # holding cells changes the others' rates through the foil
+            dp = _row_rates(b, a, P, h_row, held, relax)
+            more = ((relax > dp) & (held == 0.0)).astype(float)
             if not more.any():
                 break
             held = np.maximum(held, more)
