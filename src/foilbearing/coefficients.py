@@ -21,6 +21,16 @@ at a sub-synchronous whirl is γν, a fraction of γ: the structural
 (hysteretic) ``k_b(1 + jγ)`` would give γ at every frequency, but it has no
 causal time-domain counterpart the orbit could integrate with the same
 states; ``docs/lift-off.md`` gives the onsets measured with each.
+
+The actuator's share follows the case's reading (docs/model.md §3.8):
+
+- ``dynamics = "compliant"``: the stack's compliance acts at ω_e, as above under
+  ``preload_response = "local"``; under ``"lobe"`` its compression lowers the
+  lobes, ``ΔD_n = p_a Δq(θ_n)/(C (k_p + 4k_sp))`` where the stack is loaded,
+  taken as n_act further film columns ∂H/∂D_n (the unit lobes) and eliminated
+  (:func:`_with_lobes`);
+- ``dynamics = "held"``: the stinger keeps its quasi-static position, so φ = 0
+  and ΔD = 0: the bump alone responds.
 """
 
 from __future__ import annotations
@@ -140,9 +150,11 @@ def dynamic_compliance(
     gamma = case.foil.loss_factor if loss_factor is None else loss_factor
     if gamma < 0:
         raise InputError(f"loss factor = {gamma!r}: must be >= 0")
-    # The bump's spring with its damper γ k_b/ω, in series with the actuator's springs.
+    # The bump's spring with its damper γ k_b/ω, in series with the actuator's springs
+    # unless the stinger is held.
     compliance = model.bump_compliance / (1.0 + 1j * gamma * frequency / static.speed)
-    compliance = compliance + model.actuator_compliance
+    if model.actuator_dynamics == "compliant":
+        compliance = compliance + model.actuator_compliance
     engaged = static.P.mean(axis=1) - 1.0 > 0.0
     return np.where(engaged, compliance, 0.0).astype(complex)
 
@@ -185,6 +197,9 @@ def force_coefficients(
     w_x, w_y = (w.ravel() for w in model.grid.force_weights())
     scale = -case.gas.ambient_pressure * case.bearing.radius**2 / case.bearing.clearance
     ws = workspace if workspace is not None else Workspace(model.grid)
+    lobes = model.lobe and model.actuator_dynamics == "compliant"
+    if lobes:
+        dh = np.column_stack([dh, _lobe_columns(model)])
     K = np.empty((omega_e.size, 2, 2))
     C = np.empty((omega_e.size, 2, 2))
     for n, w_e in enumerate(omega_e):
@@ -199,10 +214,35 @@ def force_coefficients(
             ws,
             lift_off=model.lift_off,
         )
+        if lobes:
+            dp = _with_lobes(model, static.P, dp)
         z = scale * np.array([[w_x @ dp[:, 0], w_x @ dp[:, 1]], [w_y @ dp[:, 0], w_y @ dp[:, 1]]])
         K[n] = z.real
         C[n] = z.imag / w_e
     return ForceCoefficients(static, omega_e, K, C)
+
+
+def _lobe_columns(model: FilmModel) -> FloatArray:
+    """∂H/∂D_n: the unit lobe of each actuator on every cell, shape (n, n_act)."""
+    assert model.lobe_shapes is not None
+    return np.repeat(model.lobe_shapes, model.grid.n_z, axis=1).T
+
+
+def _with_lobes(model: FilmModel, P: FloatArray, dp: NDArray) -> NDArray:
+    """ΔP per unit ε with the lobes following the stacks' compression (``"lobe"``, compliant).
+
+    ``dp`` holds the responses to the journal's two columns and to the n_act lobe
+    columns. With ΔP = X_ε + X_D ΔD and ΔD = M ΔP, where M = c_s ∂q(θ_n)/∂P on the
+    loaded stacks: ΔD = (I − M X_D)⁻¹ M X_ε.
+    """
+    g = model.grid
+    assert model.actuator_rows is not None
+    rows = np.repeat(model.actuator_rows, g.n_z, axis=1) / g.n_z
+    loaded = rows @ (np.ravel(P) - 1.0) > 0.0
+    M = model.stack_compliance * loaded[:, None] * rows
+    x_e, x_d = dp[:, :2], dp[:, 2:]
+    d_d = np.linalg.solve(np.eye(x_d.shape[1]) - M @ x_d, M @ x_e)
+    return x_e + x_d @ d_d
 
 
 def _journal_columns(model: FilmModel) -> FloatArray:

@@ -11,12 +11,24 @@ holds no sub-ambient pressure by default (top-foil lift-off: ``lift_off``,
 docs/model.md §3); a rigid bearing, or a case with ``[foil] subambient =
 "retained"``, keeps it.
 
-The reading of the paper used throughout (docs/model.md §3): the film uses
-r_p(θ) from the *base* preload, and the foil deflects by ``p_A/k(θ)`` with
-``k = k_assy`` under the stingers, so the actuator's compliance is counted
-exactly once; the reported piezoelectric preload is
-``δ_PZT,n = δ_base,n − p_A(θ_n)/(k_p + 4k_sp)`` (Eq. 3b). The shimmed GFB has
-the same r_p and ``k = k_b`` everywhere (rigid shims).
+How the stack's compliance enters the film is a stated choice of the case,
+``[actuators] preload_response`` (docs/model.md §3.8), with the compliance
+counted exactly once in either:
+
+- ``"local"`` (the default): the film uses r_p(θ) from the *base* preload, and
+  the foil deflects by ``p_A/k(θ)`` with ``k = k_assy`` under the stingers: the
+  stack's compression is a pocket under the stinger (``actuator_compliance``).
+- ``"lobe"``: the stinger lifts the whole lobe, so its compression lowers the
+  whole lobe, ``r_p(θ) = Σ_n δ_PZT,n/2 (cos 3(θ − θ_n) + 1)`` (Eqs. 3b, 5, 6),
+  with ``δ_PZT,n = δ_base,n − p_A(θ_n)/(k_p + 4k_sp)`` and the bump alone under
+  it: ``H`` gains ``Σ_n lobe_n(θ) D_n`` with the compression
+  ``D_n = p_a max(q(θ_n), 0)/(C (k_p + 4k_sp))`` (:meth:`FilmModel.stack_compression`).
+
+Either way the reported piezoelectric preload is ``δ_PZT,n = δ_base,n −
+p_A(θ_n)/(k_p + 4k_sp)`` (Eq. 3b). The shimmed GFB has the base r_p and
+``k = k_b`` everywhere (rigid shims). ``[actuators] dynamics`` says whether the
+compliance acts during the motion (``"compliant"``) or the stinger keeps its
+quasi-static position (``"held"``); it matters to the dynamic analyses only.
 """
 
 from __future__ import annotations
@@ -31,7 +43,7 @@ from foilbearing.case import Case
 from foilbearing.reynolds import FilmGrid
 from foilbearing.structure import preload_shape, stiffness_function
 
-__all__ = ["FilmModel", "drag_torque", "film_model"]
+__all__ = ["FilmModel", "drag_torque", "film_model", "interpolation_rows"]
 
 FloatArray = NDArray[np.float64]
 
@@ -62,6 +74,18 @@ class FilmModel:
     lift_off
         Whether sub-ambient film pressure lifts the top foil off the bumps, so
         that the film holds none (P ≥ 1, a complementarity condition).
+    preload_response, actuator_dynamics
+        The case's reading of the actuator in the film (docs/model.md §3.8):
+        ``"local"`` or ``"lobe"``, ``"compliant"`` or ``"held"``.
+    lobe_shapes
+        The unit preload lobe of each actuator, (cos 3(θ_i − θ_n) + 1)/2 on its
+        sector, shape (n_act, n_theta); empty without actuators.
+    actuator_rows
+        Periodic linear interpolation at each actuator's angle, shape (n_act, n_theta):
+        ``actuator_rows @ f`` is a cell field f at θ_n.
+    stack_compliance
+        p_a/(C (k_p + 4k_sp)) under ``"lobe"`` (the compression per unit gauge
+        pressure, in C per p_a); 0 otherwise.
     """
 
     grid: FilmGrid
@@ -73,11 +97,47 @@ class FilmModel:
     base_preloads: tuple[float, ...]
     actuator_stiffness: float | None
     lift_off: bool = False
+    preload_response: str = "local"
+    actuator_dynamics: str = "compliant"
+    lobe_shapes: FloatArray | None = None
+    actuator_rows: FloatArray | None = None
+    stack_compliance: float = 0.0
 
     @cached_property
     def compliance(self) -> FloatArray:
         """c(θ_i) = p_a/(C k(θ_i)) = bump + actuator compliance, shape (n_theta,)."""
         return self.bump_compliance + self.actuator_compliance
+
+    @property
+    def lobe(self) -> bool:
+        """Whether the stack's compression lowers the whole lobe (``preload_response = "lobe"``)."""
+        return self.stack_compliance > 0.0
+
+    def stack_compression(self, P: FloatArray) -> FloatArray:
+        """D_n = p_a max(q(θ_n), 0)/(C (k_p + 4k_sp)) of each actuator under ``"lobe"``, in C.
+
+        ``P`` is (n_theta, n_z) or flat; zeros (n_act,) under ``"local"`` or without
+        actuators. Sub-ambient pressure does not pull the foil, so not the stinger.
+        """
+        if not self.lobe or self.actuator_rows is None:
+            return np.zeros(len(self.preload_angles))
+        q = np.reshape(P, self.grid.shape).mean(axis=1) - 1.0
+        return self.stack_compliance * np.maximum(self.actuator_rows @ q, 0.0)
+
+    def h_rigid_loaded(self, eps_x: float, eps_y: float, compression: FloatArray) -> FloatArray:
+        """:meth:`h_rigid` with the lobes lowered by ``compression`` D_n (units of C), (n_theta, n_z)."""
+        h = self.h_rigid(eps_x, eps_y)
+        if self.lobe and self.lobe_shapes is not None:
+            h += (np.asarray(compression, float) @ self.lobe_shapes)[:, None]
+        return h
+
+    def film(self, P: FloatArray, eps_x: float, eps_y: float) -> FloatArray:
+        """The film H = h/C of pressures P (n_theta, n_z) at a journal position: the rigid
+        film, the lobes lowered by the stacks' compression (``"lobe"``), and the foil's
+        deflection c(θ) max(q, 0)."""
+        Pg = np.reshape(P, self.grid.shape)
+        h = self.h_rigid_loaded(eps_x, eps_y, self.stack_compression(Pg))
+        return h + (self.compliance * np.maximum(Pg.mean(axis=1) - 1.0, 0.0))[:, None]
 
     def h_rigid(self, eps_x: float, eps_y: float) -> FloatArray:
         """Film thickness without foil deflection, H_r = 1 + ε_X cos θ + ε_Y sin θ − r_p/C.
@@ -96,6 +156,24 @@ class FilmModel:
         x = np.concatenate([th - 2 * np.pi, th, th + 2 * np.pi])
         y = np.concatenate([field, field, field])
         return np.interp(np.mod(angles, 2 * np.pi), x, y)
+
+
+def interpolation_rows(theta: FloatArray, angles: tuple[float, ...]) -> FloatArray:
+    """Periodic linear interpolation of a cell field at ``angles`` as rows, (n_angles, n_theta).
+
+    ``theta`` are the uniform cell centres; row n holds the two weights of the cells
+    on either side of angles[n] (the operator of :meth:`FilmModel.at_angles`).
+    """
+    n = theta.size
+    d = 2.0 * np.pi / n
+    rows = np.zeros((len(angles), n))
+    for k, a in enumerate(angles):
+        x = (np.mod(a, 2.0 * np.pi) - theta[0]) / d
+        i = int(np.floor(x))
+        f = x - i
+        rows[k, i % n] += 1.0 - f
+        rows[k, (i + 1) % n] += f
+    return rows
 
 
 def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -> FilmModel:
@@ -121,6 +199,15 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
     c_bump = np.zeros(grid.n_theta)
     c_act = np.zeros(grid.n_theta)
     pa = case.gas.ambient_pressure
+    reading = ("local", "compliant")
+    lobes = rows = None
+    c_stack = 0.0
+    if case.actuators is not None:
+        act = case.actuators
+        reading = (act.preload_response, act.dynamics)
+        n_act = len(act.angles)
+        lobes = np.array([preload_shape(theta, act.angles, np.eye(n_act)[n]) for n in range(n_act)])
+        rows = interpolation_rows(theta, act.angles)
     if case.foil is not None:
         k_b = case.foil.bump_stiffness
         if case.actuators is not None:
@@ -134,11 +221,28 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
             # total less the bump's: the lift-off reference orbit's cost (solve_ivp) is
             # sensitive to round-off in these (measured 12 s against 231 s on one test).
             c_act = np.maximum(pa / (c * stiffness) - pa / (c * k_b), 0.0)
+            if act.preload_response == "lobe":  # the compliance lowers the lobe instead
+                c_act = np.zeros(grid.n_theta)
+                c_stack = pa / (c * act.stiffness)
         else:
             stiffness = np.full(grid.n_theta, k_b)
         c_bump = np.full(grid.n_theta, pa / (c * k_b))
     lift_off = case.foil is not None and case.foil.lift_off
-    return FilmModel(grid, preload, c_bump, c_act, stiffness, angles, deltas, k_act, lift_off)
+    return FilmModel(
+        grid,
+        preload,
+        c_bump,
+        c_act,
+        stiffness,
+        angles,
+        deltas,
+        k_act,
+        lift_off,
+        *reading,
+        lobes,
+        rows,
+        c_stack,
+    )
 
 
 def drag_torque(case: Case, g: FilmGrid, P: FloatArray, H: FloatArray, omega: float) -> float:

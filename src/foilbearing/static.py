@@ -281,9 +281,19 @@ def film_at_position(
             "of a rigid bearing: choose a smaller eccentricity"
         )
     lam = case.bearing_number(omega)
-    sol = solve_steady(
-        model.grid, h_r, model.compliance, lam, options=opts.newton, lift_off=model.lift_off
-    )
+    if model.lobe:  # the stacks' compressions are unknowns beside P (journal fixed)
+        out = _Equilibrium(model, lam, opts, journal=False).solve(
+            0.0, np.array([eps_x, eps_y]), None
+        )
+        P = out.P.reshape(model.grid.shape)
+        ok = out.converged
+        msg = out.message if ok else f"film not found at this position: {out.message}"
+        its, res = out.iterations, out.residual
+    else:
+        sol = solve_steady(
+            model.grid, h_r, model.compliance, lam, options=opts.newton, lift_off=model.lift_off
+        )
+        P, ok, msg, its, res = sol.P, sol.converged, sol.message, sol.iterations, sol.residual
     return _result(
         case,
         model,
@@ -291,13 +301,13 @@ def film_at_position(
         lam,
         eps_x,
         eps_y,
-        sol.P,
-        sol.H,
-        sol.iterations,
-        sol.residual,
+        P,
+        model.film(P, eps_x, eps_y),
+        its,
+        res,
         math.nan,
-        sol.converged,
-        sol.message,
+        ok,
+        msg,
         equilibrium=False,
     )
 
@@ -369,8 +379,8 @@ def solve_equilibrium(
         note = f"direct Newton failed ({first_reason}); load continuation in {steps} steps: "
         if done < 1.0:
             # The last trial's residual is against its part of the load: report the whole's.
-            force = np.array([system.w_x @ (out.P - 1.0) + load, system.w_y @ (out.P - 1.0)])
-            out = replace(out, converged=False, force_res=float(np.hypot(*force)) / load)
+            R, _, _, G = system._evaluate(out.P, out.eps, model.stack_compression(out.P), load)
+            out = replace(out, converged=False, force_res=system._residuals(R, G, load)[1])
             note += f"stopped at {100 * done:.1f} % of the load; "
     if out.converged:
         message = note + f"converged in {iterations} Newton iterations"
@@ -382,10 +392,7 @@ def solve_equilibrium(
             "that the bearing can carry the load at this speed (the film may be closing)."
         )
     Pf = out.P.reshape(model.grid.shape)
-    H = (
-        model.h_rigid(*out.eps)
-        + (model.compliance * np.maximum(Pf.mean(axis=1) - 1.0, 0.0))[:, None]
-    )
+    H = model.film(Pf, *out.eps)
     return _result(
         case,
         model,
@@ -416,25 +423,65 @@ class _EquilibriumOutcome:
 
 
 class _Equilibrium:
-    """The bordered system (P, ε_X, ε_Y) of one film model at one speed."""
+    """The bordered system (P, ε_X, ε_Y, D) of one film model at one speed.
 
-    def __init__(self, model: FilmModel, lam: float, opts: EquilibriumOptions) -> None:
+    The border's unknowns are the journal position ε (unless it is prescribed) and,
+    under ``preload_response = "lobe"``, the stacks' compressions D_n (units of C), with
+    the rows ``F + W = 0`` and ``D_n − c_s max(q(θ_n), 0) = 0`` (Eq. 3b). Newton
+    eliminates them by a Schur complement of the border's size.
+    """
+
+    def __init__(
+        self, model: FilmModel, lam: float, opts: EquilibriumOptions, journal: bool = True
+    ) -> None:
         g = model.grid
-        self.model, self.lam, self.opts = model, lam, opts
+        self.model, self.lam, self.opts, self.journal = model, lam, opts, journal
         self.ws = Workspace(g)
         self.cos_t = np.repeat(np.cos(g.theta)[:, None], g.n_z, axis=1).ravel()
         self.sin_t = np.repeat(np.sin(g.theta)[:, None], g.n_z, axis=1).ravel()
         w_x, w_y = g.force_weights()
         self.w_x, self.w_y = w_x.ravel(), w_y.ravel()
         self.scale = 1.0 / (g.d_theta * g.d_z)
+        self.n_stack = len(model.preload_angles) if model.lobe else 0
+        if self.n_stack:
+            assert model.lobe_shapes is not None and model.actuator_rows is not None
+            self.lobe_cells = np.repeat(model.lobe_shapes, g.n_z, axis=1).T  # (n, n_stack)
+            self.q_rows = np.repeat(model.actuator_rows, g.n_z, axis=1) / g.n_z  # q_n = · (P − 1)
 
-    def _evaluate(self, P: FloatArray, eps: FloatArray, load: float) -> tuple[Any, ...]:
+    def _evaluate(
+        self, P: FloatArray, eps: FloatArray, D: FloatArray, load: float
+    ) -> tuple[Any, ...]:
         m = self.model
         R, j_pp, j_ph = coupled_system(
-            P, m.grid, m.h_rigid(*eps), m.compliance, self.lam, self.ws, lift_off=m.lift_off
+            P,
+            m.grid,
+            m.h_rigid_loaded(eps[0], eps[1], D),
+            m.compliance,
+            self.lam,
+            self.ws,
+            lift_off=m.lift_off,
         )
-        G = np.array([self.w_x @ (P - 1.0) + load, self.w_y @ (P - 1.0)])
+        G = np.array([self.w_x @ (P - 1.0) + load, self.w_y @ (P - 1.0)]) if self.journal else None
+        if self.n_stack:
+            g_d = D - m.stack_compression(P)
+            G = g_d if G is None else np.concatenate([G, g_d])
         return R, j_pp, j_ph, G
+
+    def _border(self, j_ph: Any, P: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Columns B = dR/d(ε, D), rows C = dG/dP and block E = dG/d(ε, D) of the border."""
+        cols, rows = [], []
+        if self.journal:
+            cols += [j_ph @ self.cos_t, j_ph @ self.sin_t]
+            rows += [self.w_x, self.w_y]
+        if self.n_stack:
+            cols += list((j_ph @ self.lobe_cells).T)
+            engaged = (self.q_rows @ (P - 1.0)) > 0.0
+            rows += list(-self.model.stack_compliance * engaged[:, None] * self.q_rows)
+        k = len(cols)
+        E = np.zeros((k, k))
+        if self.n_stack:
+            E[k - self.n_stack :, k - self.n_stack :] = np.eye(self.n_stack)
+        return np.column_stack(cols), np.array(rows), E
 
     def _factor(self, j_pp: Any) -> Any:
         """LU of dR/dP for ``.solve``: the block-cyclic LU on the foil-coupled pattern."""
@@ -443,20 +490,43 @@ class _Equilibrium:
             return factor_coupled(j_pp.data, j_pp.indices, j_pp.indptr, g.n_theta, g.n_z)
         return TransposedSuperLU(j_pp.data, j_pp.indices, j_pp.indptr, g.size)
 
-    def _film_min(self, P: FloatArray, eps: FloatArray) -> float:
+    def _film_min(self, P: FloatArray, eps: FloatArray, D: FloatArray) -> float:
         m = self.model
         p_mean = P.reshape(m.grid.shape).mean(axis=1) - 1.0
-        h = m.h_rigid(*eps)[:, 0] + m.compliance * np.maximum(p_mean, 0.0)
+        h = m.h_rigid_loaded(eps[0], eps[1], D)[:, 0] + m.compliance * np.maximum(p_mean, 0.0)
         return float(h.min())
 
+    def _residuals(
+        self, R: FloatArray, G: FloatArray | None, load_ref: float
+    ) -> tuple[float, float]:
+        """max|R|/(ΔθΔZ), and |F + W|/|W| with the stacks' rows (units of C) beside it."""
+        res = float(np.max(np.abs(R))) * self.scale
+        if G is None:
+            return res, 0.0
+        force = float(np.hypot(*G[:2])) / load_ref if self.journal else 0.0
+        stack = float(np.max(np.abs(G[-self.n_stack :]))) if self.n_stack else 0.0
+        return res, max(force, stack)
+
+    def _merit(self, R: FloatArray, G: FloatArray | None, load_ref: float) -> float:
+        r = R * self.scale
+        if G is None:
+            return float(r @ r)
+        g = G.copy()
+        if self.journal:
+            g[:2] /= load_ref
+        return _merit(r, g)
+
     def solve(self, load: float, eps: FloatArray, P0: FloatArray | None) -> _EquilibriumOutcome:
-        """Damped Newton on (P, ε) for a dimensionless load along +X."""
+        """Damped Newton on (P, ε, D) for a dimensionless load along +X (ε fixed if not
+        ``journal``)."""
         m, opts = self.model, self.opts
         g = m.grid
         eps = np.asarray(eps, dtype=float).copy()
+        D = m.stack_compression(P0) if P0 is not None else np.zeros(self.n_stack)
+        D = D[: self.n_stack]
         first = solve_steady(
             g,
-            m.h_rigid(*eps),
+            m.h_rigid_loaded(eps[0], eps[1], D),
             m.compliance,
             self.lam,
             P0,
@@ -477,11 +547,14 @@ class _Equilibrium:
                 "pressure solve at the starting position failed: " + first.message,
             )
         iterations = first.iterations
-        R, j_pp, j_ph, G = self._evaluate(P, eps, load)
-        merit = _merit(R * self.scale, G / load_ref)
+        if not self.journal and not self.n_stack:
+            res = first.residual
+            return _EquilibriumOutcome(P, eps, True, iterations, res, 0.0, "converged")
+        R, j_pp, j_ph, G = self._evaluate(P, eps, D, load)
+        merit = self._merit(R, G, load_ref)
+        n_j = 2 if self.journal else 0
         for it in range(opts.max_iter):
-            res = float(np.max(np.abs(R))) * self.scale
-            force_res = float(np.hypot(*G)) / load_ref
+            res, force_res = self._residuals(R, G, load_ref)
             if res <= opts.newton.tol and force_res <= opts.force_tol:
                 return _EquilibriumOutcome(
                     P, eps, True, iterations + it, res, force_res, "converged"
@@ -492,24 +565,27 @@ class _Equilibrium:
                 return _EquilibriumOutcome(
                     P, eps, False, iterations + it, res, force_res, "singular Jacobian"
                 )
-            # Schur complement: dP = a - Y dε with J a = -R, J Y = dR/dε; then the force rows.
+            # Schur complement: dP = a − Y dx with J a = −R, J Y = B; (E − C Y) dx = −G − C a.
+            B, C, E = self._border(j_ph, P)
             a = -lu.solve(R)
-            y = lu.solve(np.column_stack([j_ph @ self.cos_t, j_ph @ self.sin_t]))
-            schur = np.array(
-                [[self.w_x @ y[:, 0], self.w_x @ y[:, 1]], [self.w_y @ y[:, 0], self.w_y @ y[:, 1]]]
-            )
-            d_eps = np.linalg.solve(schur, G + np.array([self.w_x @ a, self.w_y @ a]))
-            d_p = a - y @ d_eps
+            y = lu.solve(B)
+            dx = np.linalg.solve(E - C @ y, -G - C @ a)
+            d_p = a - y @ dx
+            d_eps, d_d = dx[:n_j], dx[n_j:]
             # Step control: limit the journal move, keep P > 0 and the film open, backtrack.
-            step = min(1.0, opts.max_step / max(float(np.max(np.abs(d_eps))), 1e-300))
+            step = 1.0
+            if self.journal:
+                step = min(1.0, opts.max_step / max(float(np.max(np.abs(d_eps))), 1e-300))
             neg = d_p < 0
             if np.any(neg):
                 step = min(step, 0.9 * float(np.min(-P[neg] / d_p[neg])))
             for _ in range(30):
-                P_t, eps_t = P + step * d_p, eps + step * d_eps
-                if self._film_min(P_t, eps_t) > opts.min_film:
-                    R_t, jpp_t, jph_t, G_t = self._evaluate(P_t, eps_t, load)
-                    m_t = _merit(R_t * self.scale, G_t / load_ref)
+                P_t = P + step * d_p
+                eps_t = eps + step * d_eps if self.journal else eps
+                D_t = D + step * d_d
+                if self._film_min(P_t, eps_t, D_t) > opts.min_film:
+                    R_t, jpp_t, jph_t, G_t = self._evaluate(P_t, eps_t, D_t, load)
+                    m_t = self._merit(R_t, G_t, load_ref)
                     if m_t < (1.0 - 1e-4 * step) * merit or step < 1e-3:
                         break
                 step *= 0.5
@@ -524,9 +600,8 @@ class _Equilibrium:
                     f"line search failed (the film would close below h/C = {opts.min_film}, "
                     "or the residual did not decrease)",
                 )
-            P, eps, R, j_pp, j_ph, G, merit = P_t, eps_t, R_t, jpp_t, jph_t, G_t, m_t
-        res = float(np.max(np.abs(R))) * self.scale
-        force_res = float(np.hypot(*G)) / load_ref
+            P, eps, D, R, j_pp, j_ph, G, merit = P_t, eps_t, D_t, R_t, jpp_t, jph_t, G_t, m_t
+        res, force_res = self._residuals(R, G, load_ref)
         converged = res <= opts.newton.tol and force_res <= opts.force_tol  # after the last step
         return _EquilibriumOutcome(
             P,

@@ -1,7 +1,9 @@
 """The bearing case: ``model`` (frozen dataclasses, SI) and ``toml`` (reading, validating and finding case files)."""
 
 from foilbearing.case.model import (
+    ACTUATOR_DYNAMICS,
     MAX_SPEED_DEFAULT,
+    PRELOAD_RESPONSES,
     SUBAMBIENT_MODELS,
     Actuators,
     Bearing,
@@ -26,7 +28,9 @@ from foilbearing.case.toml import (
 )
 
 __all__ = [
+    "ACTUATOR_DYNAMICS",
     "MAX_SPEED_DEFAULT",
+    "PRELOAD_RESPONSES",
     "SUBAMBIENT_MODELS",
     "Actuators",
     "Bearing",

@@ -23,7 +23,9 @@ from foilbearing.structure import (
 )
 
 __all__ = [
+    "ACTUATOR_DYNAMICS",
     "MAX_SPEED_DEFAULT",
+    "PRELOAD_RESPONSES",
     "SUBAMBIENT_MODELS",
     "Actuators",
     "Bearing",
@@ -102,6 +104,14 @@ class BumpGeometry:
 #: How a foil bearing treats sub-ambient film pressure (docs/model.md §3).
 SUBAMBIENT_MODELS = ("lift-off", "retained")
 
+#: How the stack's compression under the film pressure shapes the film (docs/model.md §3.8):
+#: a pocket under the stinger, or the whole preload lobe lowered.
+PRELOAD_RESPONSES = ("local", "lobe")
+
+#: How the stack's compliance acts during the journal's motion (docs/model.md §3.8): at the
+#: motion's frequency (an elastic stack under open-loop voltage), or not at all (a positioner).
+ACTUATOR_DYNAMICS = ("compliant", "held")
+
 
 @dataclass(frozen=True)
 class Foil:
@@ -142,6 +152,10 @@ class Actuators:
     voltages: tuple[float, ...]  # V per actuator
     max_voltage: float  # V
     smoothness: float = 50.0  # α of k(θ), 1/rad
+    #: How the stack's compression enters the film statically, one of PRELOAD_RESPONSES.
+    preload_response: str = "local"
+    #: How the stack's compliance acts during the motion, one of ACTUATOR_DYNAMICS.
+    dynamics: str = "compliant"
 
     @property
     def k_p(self) -> float:
@@ -299,6 +313,50 @@ class Case:
                 source=self.source,
             )
         return replace(self, foil=replace(self.foil, subambient=model))
+
+    def with_actuator_reading(
+        self, preload_response: str | None = None, dynamics: str | None = None
+    ) -> Case:
+        """The same case with another reading of the actuator in the film (docs/model.md §3.8).
+
+        Parameters
+        ----------
+        preload_response
+            ``"local"`` (the stack's compression carves a pocket under the stinger) or
+            ``"lobe"`` (it lowers the whole preload lobe); None keeps the case's.
+        dynamics
+            ``"compliant"`` (the stack's compliance acts at the motion's frequency) or
+            ``"held"`` (the stinger keeps its quasi-static position); None keeps the case's.
+        """
+        act = self.actuators
+        for name, value, allowed in (
+            ("preload_response", preload_response, PRELOAD_RESPONSES),
+            ("dynamics", dynamics, ACTUATOR_DYNAMICS),
+        ):
+            if value is None:
+                continue
+            if value not in allowed:
+                raise InputError(
+                    f"actuators.{name} = {value!r}: expected one of "
+                    + ", ".join(repr(a) for a in allowed),
+                    source=self.source,
+                )
+            if act is None:
+                raise InputError(
+                    f"actuators.{name} = {value!r}: this case has no [actuators] (a shimmed, "
+                    "passive or rigid bearing has no stack); drop the option",
+                    source=self.source,
+                )
+        if act is None:
+            return self
+        return replace(
+            self,
+            actuators=replace(
+                act,
+                preload_response=preload_response or act.preload_response,
+                dynamics=dynamics or act.dynamics,
+            ),
+        )
 
     def with_speed(self, speed: float) -> Case:
         """The same case at another rotor speed (rad/s, > 0)."""

@@ -22,7 +22,9 @@ from typing import Any
 import numpy as np
 
 from foilbearing.case.model import (
+    ACTUATOR_DYNAMICS,
     MAX_SPEED_DEFAULT,
+    PRELOAD_RESPONSES,
     SUBAMBIENT_MODELS,
     Actuators,
     Bearing,
@@ -245,6 +247,8 @@ def _read_actuators(t: TableReader, bearing: Bearing) -> Actuators:
         voltages=voltages,
         max_voltage=t.positive("max_voltage", "voltage"),
         smoothness=t.number("smoothness", 0.0, math.inf, lo_open=True, default=50.0),
+        preload_response=t.choice("preload_response", PRELOAD_RESPONSES, default="local"),
+        dynamics=t.choice("dynamics", ACTUATOR_DYNAMICS, default="compliant"),
     )
     t.done()
     _check_arcs(act.angles, act.stinger_arc, t, "stinger_arc")

@@ -18,6 +18,7 @@ from foilbearing.cli.common import (
     emit,
     parse_list,
 )
+from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import SolverError
 
 __all__ = ["cmd_coefficients", "register"]
@@ -37,6 +38,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "(default: 20 ratios 0.1-2.0 of the rotor speed)",
     )
     add_subambient_arg(coef)
+    add_reading_args(coef)
     coef.add_argument("--out", type=Path, help="write the coefficients to FILE.nc")
     coef.add_argument("--plot", metavar="DIR", type=Path, help="write the figure (PNG) to DIR")
     coef.add_argument("--json", action="store_true", help="print one JSON object")
@@ -59,7 +61,7 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
     from foilbearing.io import save_figure, write_with
     from foilbearing.static import solve_equilibrium
 
-    case = apply_subambient(load_case(args.case), args.subambient)
+    case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
     if args.speed is not None:
         (speed,) = parse_list(args.speed, "speed", "--speed")
         case = case.with_speed(speed)

@@ -18,6 +18,7 @@ from foilbearing.cli.common import (
     emit,
     parse_list,
 )
+from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_stability", "register"]
@@ -27,7 +28,17 @@ def register(sub: Any) -> argparse.ArgumentParser:
     """Add the ``stability`` subcommand to the main parser's subparsers ``sub``."""
     stab = sub.add_parser("stability", help="linear stability: onset speed and whirl frequency")
     add_case_arg(stab)
-    stab.add_argument("--voltage", default="0,50,100,150V", help="voltages, e.g. 0,50,100,150V")
+    stab.add_argument(
+        "--voltage",
+        default=None,
+        help="voltages, e.g. 0,50,100,150V (default); with --design one voltage (default 150V)",
+    )
+    stab.add_argument(
+        "--design",
+        action="store_true",
+        help="the stack-stiffness design answer: the onset against K_p under each reading of "
+        "the actuator, beside the shimmed GFB, and the K_p for 90 %% of its onset",
+    )
     stab.add_argument("--shimmed", action="store_true", help="the shimmed GFB twins")
     stab.add_argument(
         "--speed-range",
@@ -35,6 +46,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         help="scan START:STOP:STEP (default 5000rpm:150000rpm:5000rpm)",
     )
     add_subambient_arg(stab)
+    add_reading_args(stab)
     stab.add_argument(
         "--plot", metavar="DIR", type=Path, help="write the stability map (PNG) to DIR"
     )
@@ -51,9 +63,11 @@ def cmd_stability(args: argparse.Namespace) -> int:
     from foilbearing.stability import onsets_per_voltage, stability_map
     from foilbearing.units import parse_speed_range
 
-    case = apply_subambient(load_case(args.case), args.subambient)
+    case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
     speeds = parse_speed_range(args.speed_range, field="--speed-range")
-    voltages = parse_list(args.voltage, "voltage", "--voltage")
+    if args.design:
+        return _design(case, args, speeds)
+    voltages = parse_list(args.voltage or "0,50,100,150V", "voltage", "--voltage")
     if case.actuators is None:
         raise InputError("the stability study over voltages needs a case with [actuators]")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
@@ -82,4 +96,39 @@ def cmd_stability(args: argparse.Namespace) -> int:
                 )
             )
             print(f"  {e['bearing']} {e['voltage_V']:6.1f} V: {text}")
+    return 0
+
+
+def _design(case: Any, args: argparse.Namespace, speeds: Any) -> int:
+    """``stability --design``: :func:`foilbearing.design.stack_design` at one voltage."""
+    from foilbearing.design import stack_design
+    from foilbearing.io import save_figure
+
+    volts = parse_list(args.voltage or "150V", "voltage", "--voltage")
+    if len(volts) != 1:
+        raise InputError(f"--voltage {args.voltage!r}: --design takes one voltage")
+    progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
+    design = stack_design(case, volts[0], speeds=speeds, progress=progress)
+    out = design.headline()
+    if args.plot is not None:
+        from foilbearing.output.plots.dynamics import plot_stack_design
+
+        path = save_figure(plot_stack_design(design), args.plot / "stack_design.png")
+        out["figures"] = [str(path)]
+    if args.json:
+        emit(out)
+        return 0
+    print(f"What the stack's stiffness buys at {design.voltage:g} V (linear onset, rigid rotor):")
+    for row in out["table"]:
+        on = row["onset_speed_rpm"]
+        text = (
+            "stable over the scan"
+            if on is None
+            else (f"onset {on:8.0f} rpm, whirl {row['whirl_frequency_Hz']:.1f} Hz")
+        )
+        print(f"  {row['bearing']:52s} {text}")
+    target = f"{design.target:.0%} of the shimmed GFB's onset"
+    for key, k in out["required_stack_stiffness_N_per_m"].items():
+        need = "not reached in the scan" if k is None else f"K_p = {k / 1e6:.3g} MN/m"
+        print(f"  {target} under {key}: {need}")
     return 0

@@ -19,6 +19,7 @@ from foilbearing.cli.common import (
     emit,
     parse_list,
 )
+from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
 
 if TYPE_CHECKING:
@@ -56,6 +57,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         help="film at this journal position (units of C), no equilibrium search",
     )
     add_subambient_arg(stat)
+    add_reading_args(stat)
     stat.add_argument("--out", type=Path, help="write the results to FILE.nc (NetCDF)")
     stat.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
     stat.add_argument("--json", action="store_true", help="print one JSON object")
@@ -68,7 +70,7 @@ def cmd_static(args: argparse.Namespace) -> int:
     from foilbearing.case import load_case
     from foilbearing.io import write_with
 
-    case = apply_subambient(load_case(args.case), args.subambient)
+    case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
     speeds = parse_list(args.speed, "speed", "--speed") if args.speed else [case.operation.speed]
     for s in speeds:
         if s <= 0.0:

@@ -55,6 +55,14 @@ class OrbitSimulation:
             if act is None:
                 raise InputError("a voltage program needs a case with [actuators]")
             voltage.check(act.max_voltage, self.n_act)
+        if act is not None and (act.preload_response, act.dynamics) != ("local", "compliant"):
+            raise InputError(
+                f"actuators.preload_response = {act.preload_response!r}, dynamics = "
+                f"{act.dynamics!r}: the orbit integrates only the default reading so far "
+                "('local', 'compliant'); the static and linear analyses take every reading "
+                "(docs/model.md §3.8)",
+                source=case.source,
+            )
         self.voltage = voltage
         self.model = film_model(case)
         g = self.model.grid

@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["plot_coefficients", "plot_stability_map"]
+__all__ = ["plot_coefficients", "plot_stability_map", "plot_stack_design"]
 
 LABELS = (("XX", 0, 0), ("XY", 0, 1), ("YX", 1, 0), ("YY", 1, 1))
 
@@ -60,4 +60,32 @@ def plot_stability_map(ds: Any, onsets: Sequence[float | None] | None = None) ->
         f"Linear stability map, {ds.attrs.get('bearing', '')}, rigid rotor "
         f"{ds.attrs.get('rotor_mass_kg', 0):.3g} kg per bearing"
     )
+    return fig
+
+
+def plot_stack_design(design: Any) -> Figure:
+    """Onset against the stack stiffness under each reading, with the shimmed GFB's onset and
+    the target fraction of it (:class:`foilbearing.design.StackDesign`)."""
+    rpm = np.pi / 30.0
+    fig = Figure(figsize=(8.5, 4.5), layout="constrained")
+    ax = fig.subplots()
+    k_p = design.stack_stiffness * design.factors / 1e6
+    top = design.max_speed / rpm / 1e3
+    styles = {"compliant": "-", "held": "--"}
+    for key, onsets in design.onsets.items():
+        response, dynamics = key.split("+")
+        y = np.where(np.isnan(onsets), top, onsets / rpm / 1e3)
+        ax.semilogx(k_p, y, styles[dynamics], marker="o" if response == "local" else "s", label=key)
+    if design.shimmed_onset is not None:
+        shim = design.shimmed_onset / rpm / 1e3
+        ax.axhline(shim, color="k", lw=1.2, label="shimmed GFB (ideal positioner)")
+        ax.axhline(
+            design.target * shim, color="k", lw=0.8, ls=":", label=f"{design.target:.0%} of it"
+        )
+    ax.axvline(design.stack_stiffness / 1e6, color="0.5", lw=0.8, ls="-.", label="identified K_p")
+    ax.set_xlabel("stack stiffness K_p (MN/m)")
+    ax.set_ylabel(f"linear onset (krpm; {top:.0f} = stable over the scan)")
+    ax.set_title(f"What the stack's stiffness buys at {design.voltage:g} V")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
     return fig
