@@ -115,3 +115,28 @@ def test_identify_recovers_the_papers_coefficients_from_the_example_data(capsys)
         se = head[key.replace("_um", "_se_um")]
         assert abs(head[key] - paper) < 3 * se, (key, head[key], se)
     assert head["k_p_N_per_m3"] == pytest.approx(1.30e9, rel=0.01)
+
+
+def test_a_closed_stdout_ends_the_command_quietly() -> None:
+    # ``foilbearing case show --json | head -0``: stdout is a pipe whose reader has gone, so
+    # the command's first write (here the interpreter's flush) fails with EPIPE.
+    import os
+    import subprocess
+    import sys
+
+    read_end, write_end = os.pipe()
+    os.close(read_end)  # no reader from the start: deterministic, unlike racing a real `head`
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).parents[1] / "src"))
+    try:
+        proc = subprocess.run(
+            [sys.executable, "-m", "foilbearing", "case", "show", "--json"],
+            stdout=write_end,
+            stderr=subprocess.PIPE,
+            env=env,
+            timeout=60,
+        )
+    finally:
+        os.close(write_end)
+    err = proc.stderr.decode()
+    assert "Traceback" not in err and "BrokenPipeError" not in err, err
+    assert proc.returncode == 141  # 128 + SIGPIPE, as a shell reports `yes | head`
