@@ -33,7 +33,7 @@ from foilbearing.cli import (
     sweep,
     uncertainty,
 )
-from foilbearing.cli.common import parse_list
+from foilbearing.cli.common import attach_negative_values, parse_list
 from foilbearing.errors import InputError, SolverError
 
 __all__ = ["main", "parse_list"]
@@ -69,7 +69,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _run(argv: Sequence[str] | None) -> int:
     parser = _parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(attach_negative_values(sys.argv[1:] if argv is None else argv))
     if not getattr(args, "func", None):
         parser.print_help()
         return 0

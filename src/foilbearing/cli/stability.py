@@ -16,7 +16,7 @@ from foilbearing.cli.common import (
     add_subambient_arg,
     apply_subambient,
     emit,
-    parse_list,
+    voltage_list,
 )
 from foilbearing.errors import InputError
 
@@ -53,7 +53,7 @@ def cmd_stability(args: argparse.Namespace) -> int:
 
     case = apply_subambient(load_case(args.case), args.subambient)
     speeds = parse_speed_range(args.speed_range, field="--speed-range")
-    voltages = parse_list(args.voltage, "voltage", "--voltage")
+    voltages = voltage_list(args.voltage, case)
     if case.actuators is None:
         raise InputError("the stability study over voltages needs a case with [actuators]")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
