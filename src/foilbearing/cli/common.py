@@ -90,7 +90,7 @@ def apply_subambient(case: Case, model: str | None) -> Case:
 
 
 def add_dask_args(p: argparse.ArgumentParser, what: str) -> None:
-    """``--scheduler``, ``--workers`` and ``--resume``: where the points of ``what`` run."""
+    """``--scheduler``, ``--workers``, ``--dashboard`` and ``--resume``: where the points of ``what`` run."""
     p.add_argument(
         "--scheduler",
         metavar="ADDRESS",
@@ -104,17 +104,27 @@ def add_dask_args(p: argparse.ArgumentParser, what: str) -> None:
         metavar="N",
         help="worker processes of the local cluster (default: one per core)",
     )
+    p.add_argument(
+        "--dashboard",
+        action="store_true",
+        help="start the local cluster's Dask dashboard on 127.0.0.1 and print its address "
+        "(default: none)",
+    )
     p.add_argument("--resume", action="store_true", help=f"continue {what}, skip finished points")
 
 
 def check_dask_args(args: argparse.Namespace) -> None:
-    """One-line errors for ``--workers`` below 1 or given with ``--scheduler``."""
+    """One-line errors for ``--workers`` below 1, or ``--workers``/``--dashboard`` with ``--scheduler``."""
     from foilbearing.errors import InputError
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers {args.workers}: expected at least 1")
     if args.workers is not None and args.scheduler is not None:
         raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")
+    if args.dashboard and args.scheduler is not None:
+        raise InputError(
+            "--dashboard starts the local cluster's; with --scheduler use that scheduler's own"
+        )
 
 
 def parse_list(text: str, kind: str, field: str) -> list[float]:
