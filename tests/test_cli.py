@@ -115,3 +115,102 @@ def test_identify_recovers_the_papers_coefficients_from_the_example_data(capsys)
         se = head[key.replace("_um", "_se_um")]
         assert abs(head[key] - paper) < 3 * se, (key, head[key], se)
     assert head["k_p_N_per_m3"] == pytest.approx(1.30e9, rel=0.01)
+
+
+def test_a_closed_stdout_ends_the_command_quietly() -> None:
+    # ``foilbearing case show --json | head -0``: stdout is a pipe whose reader has gone, so
+    # the command's first write (here the interpreter's flush) fails with EPIPE.
+    import os
+    import subprocess
+    import sys
+
+    read_end, write_end = os.pipe()
+    os.close(read_end)  # no reader from the start: deterministic, unlike racing a real `head`
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).parents[1] / "src"))
+    try:
+        proc = subprocess.run(
+            [sys.executable, "-m", "foilbearing", "case", "show", "--json"],
+            stdout=write_end,
+            stderr=subprocess.PIPE,
+            env=env,
+            timeout=60,
+        )
+    finally:
+        os.close(write_end)
+    err = proc.stderr.decode()
+    assert "Traceback" not in err and "BrokenPipeError" not in err, err
+    assert proc.returncode == 141  # 128 + SIGPIPE, as a shell reports `yes | head`
+
+
+@pytest.mark.parametrize("argv", [["--speed", "-5rpm"], ["--speed=-5rpm"]])
+def test_a_negative_speed_is_one_line_naming_the_option(argv: list[str], capsys) -> None:
+    # argparse alone reads "-5rpm" after --speed as an unknown option ("expected one argument").
+    assert main(["static", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err == "foilbearing: error: --speed = '-5rpm': a speed must be > 0\n"
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["coefficients", "--speed", "-5rpm"], "--speed = '-5rpm': a speed must be > 0"),
+        (
+            ["coefficients", "--frequency", "-100,200Hz"],
+            "--frequency = '-100,200Hz': a frequency must be > 0",
+        ),
+        (["static", "--voltage", "-50V"], "--voltage = '-50V': allowed 0 to 150 V (max_voltage)"),
+        (
+            ["stability", "--voltage", "-50,0V"],
+            "--voltage = '-50,0V': allowed 0 to 150 V (max_voltage)",
+        ),
+        (["orbit", "--speed", "-5rpm"], "--speed = '-5rpm': a speed must be > 0"),
+        (
+            ["orbit", "--speed", "5000rpm", "--duration", "-1s"],
+            "--duration = '-1s': a duration must be > 0",
+        ),
+        (["orbit", "--stop-time", "-1s"], "--stop-time = '-1s': a time must be > 0"),
+        (["orbit", "--sample-rate", "-1e4Hz"], "--sample-rate = '-1e4Hz': a frequency must be > 0"),
+        (
+            ["optimize", "--objective", "drag", "--speed", "-5rpm"],
+            "--speed = '-5rpm': a speed must be > 0",
+        ),
+        (
+            ["optimize", "--objective", "drag", "--speed", "5000rpm", "--load", "-5N"],
+            "--load = '-5N': a load must be >= 0",
+        ),
+        (["schedule", "--margin", "-0.1"], "--margin -0.1: expected a log decrement >= 0"),
+        (["identify", "--contact-area", "-3e-4m**2"], "--contact-area '-3e-4m**2': must be > 0"),
+    ],
+)
+def test_negative_quantities_reach_the_parser_and_get_a_range_error(
+    argv: list[str], message: str, capsys
+) -> None:
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err, err
+
+
+def test_a_negative_eccentricity_is_a_value_not_an_option(capsys) -> None:
+    assert main(["static", "--eccentricity", "-0.3,0.2", "--speed", "50000rpm", "--json"]) == 0
+    out = _json(capsys)
+    assert out["eccentricity"] == pytest.approx((0.3**2 + 0.2**2) ** 0.5)
+
+
+def test_attach_negative_values_joins_only_a_negative_after_a_long_option() -> None:
+    from foilbearing.cli.common import attach_negative_values
+
+    argv = ["static", "--speed", "-5rpm", "--eccentricity", "-.3,0.2", "--out", "-x.nc"]
+    assert attach_negative_values(argv) == [
+        "static",
+        "--speed=-5rpm",
+        "--eccentricity=-.3,0.2",
+        "--out",
+        "-x.nc",  # not a number: argparse's own error stays
+    ]
+    assert attach_negative_values(["--voltage=-5V", "-1", "--", "--speed", "-5rpm"]) == [
+        "--voltage=-5V",
+        "-1",
+        "--",
+        "--speed",
+        "-5rpm",
+    ]

@@ -48,10 +48,10 @@ def test_stability_json(capsys) -> None:
 @pytest.mark.parametrize(
     ("argv", "text"),
     [
-        (["coefficients", "--frequency", "0Hz"], "every frequency must be > 0"),
+        (["coefficients", "--frequency", "0Hz"], "--frequency = '0Hz': a frequency must be > 0"),
         (["coefficients", "--speed", "2000Hz"], "not Hz"),
         (["stability", "--speed-range", "9000rpm:1000rpm:10rpm"], "START < STOP"),
-        (["stability", "--voltage", "300V"], "allowed 0 to max_voltage"),
+        (["stability", "--voltage", "300V"], "--voltage = '300V': allowed 0 to 150 V"),
         (["static", "--subambient", "gumbel"], "subambient = 'gumbel': expected one of"),
     ],
 )

@@ -506,3 +506,33 @@ def _centre(z: np.ndarray, n: int) -> np.ndarray:
     """Centred mean over n samples (fewer at the ends), written out."""
     half = n // 2
     return np.array([z[max(0, i - half) : i + half + 1].mean() for i in range(z.size)])
+
+
+def test_waterfall_colours_a_component_40_db_below_1x_well_above_the_floor() -> None:
+    from matplotlib.collections import QuadMesh
+
+    from foilbearing.output.plots.orbit import plot_waterfall
+    from foilbearing.signals import Waterfall
+
+    speeds = np.linspace(10_000.0, 60_000.0, 26)  # rpm
+    freqs = np.arange(0.0, 1200.0, 4.0)  # Hz
+    amp = np.zeros((speeds.size, freqs.size))
+    rows = np.arange(speeds.size)
+    one_x = np.searchsorted(freqs, speeds / 60.0)
+    weak = np.full(speeds.size, np.searchsorted(freqs, 200.0))  # a whirl near 200 Hz
+    amp[rows, one_x] = 10e-6  # strong 1X line, 10 µm
+    amp[rows, weak] = 10e-6 * 10 ** (-40 / 20)  # 40 dB weaker: 0.1 µm
+    wf = Waterfall(speeds / 600.0, speeds, freqs, amp, 0.25)
+
+    fig = plot_waterfall(wf, onset_whirl_hz=205.0)
+    ax, bar = fig.axes
+    (mesh,) = (c for c in ax.collections if isinstance(c, QuadMesh))
+    shown = np.asarray(mesh.get_array()).reshape(-1, speeds.size)  # (frequency, speed)
+    colour = np.asarray(mesh.norm(shown))
+    # Linear in µm the weak line would sit at 1 % of the range, the floor's colour.
+    assert colour[weak[0], :].min() > 0.3  # -40 dB of a -60 dB floor: 1/3 of the way up
+    assert colour[one_x[0], 0] == pytest.approx(1.0)
+    assert colour.min() == pytest.approx(0.0)  # no amplitude at all: the floor
+    assert "dB" in bar.get_ylabel() and "-60" in bar.get_ylabel()
+    whirl = [line for line in ax.lines if "onset" in str(line.get_label())]
+    assert len(whirl) == 1 and np.allclose(whirl[0].get_ydata(), 205.0)

@@ -11,6 +11,8 @@ import json
 import math
 import os
 import signal
+import urllib.error
+import urllib.request
 from dataclasses import replace
 from pathlib import Path
 
@@ -144,12 +146,64 @@ def test_output_paths() -> None:
 # --------------------------------------------------------------------------- on a real cluster
 
 
+def _listening(pid: int) -> set[str]:
+    """The addresses a process and its children listen on (TCP)."""
+    import psutil
+
+    procs = [psutil.Process(pid), *psutil.Process(pid).children(recursive=True)]
+    return {
+        c.laddr.ip
+        for p in procs
+        for c in p.net_connections(kind="tcp")
+        if c.status == psutil.CONN_LISTEN
+    }
+
+
+def _loopback(ip: str) -> bool:
+    import ipaddress
+
+    return ipaddress.ip_address(ip).is_loopback
+
+
+@pytest.mark.parametrize("dashboard", [False, True])
+def test_the_local_cluster_listens_on_loopback_only(dashboard: bool, capsys) -> None:
+    # A sweep's own cluster (the runner's _client, one worker): its scheduler and its
+    # HTTP server (the dashboard when asked for, else only health and metrics) must
+    # not be reachable from the network; LocalCluster's dashboard_address=":0" bound
+    # the HTTP server to 0.0.0.0.
+    pytest.importorskip("distributed")
+    from foilbearing.sweep.runner import _client
+
+    with _client(None, 1, dashboard=dashboard) as cl:
+        http = cl.cluster.scheduler.http_server
+        addresses = _listening(os.getpid())
+        link = cl.cluster.dashboard_link  # .../status: the dashboard (or, without bokeh, a stub)
+        try:
+            status = urllib.request.urlopen(link, timeout=5).status
+        except urllib.error.HTTPError as exc:
+            status = exc.code
+    assert _loopback(http.address), http.address
+    assert addresses and all(_loopback(ip) for ip in addresses), addresses
+    assert link.startswith("http://127.0.0.1:")
+    err = capsys.readouterr().err
+    if dashboard:
+        assert status == 200 and f"dashboard: {link}" in err
+    else:
+        assert status == 404 and "dashboard" not in err
+
+
+def test_dashboard_belongs_to_the_local_cluster() -> None:
+    args = _cli(["sweep", str(EXAMPLE), "--scheduler", "tcp://127.0.0.1:1", "--dashboard"])
+    with pytest.raises(InputError, match="--dashboard starts the local cluster's"):
+        args.func(args)
+
+
 @pytest.fixture(scope="module")
 def client():
     distributed = pytest.importorskip("distributed")
     with (
         distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0"
         ) as cluster,
         distributed.Client(cluster) as cl,
     ):

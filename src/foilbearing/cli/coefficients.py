@@ -16,7 +16,9 @@ from foilbearing.cli.common import (
     add_subambient_arg,
     apply_subambient,
     emit,
-    parse_list,
+    positive_list,
+    positive_quantity,
+    voltage_list,
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import SolverError
@@ -63,17 +65,17 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
 
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
     if args.speed is not None:
-        (speed,) = parse_list(args.speed, "speed", "--speed")
-        case = case.with_speed(speed)
+        case = case.with_speed(positive_quantity(args.speed, "speed", "--speed", "a speed"))
     if args.voltage is not None:
-        (volt,) = parse_list(args.voltage, "voltage", "--voltage")
+        (volt,) = voltage_list(args.voltage, case)
         case = case.with_voltages(volt)
     if args.shimmed:
         case = case.shimmed()
     if args.frequency is None:
         freqs = np.linspace(0.1, 2.0, 20) * case.operation.speed
     else:
-        freqs = 2 * np.pi * np.array(parse_list(args.frequency, "frequency", "--frequency"))
+        given = positive_list(args.frequency, "frequency", "--frequency", "a frequency")
+        freqs = 2 * np.pi * np.array(given)
     static = solve_equilibrium(case)
     if not static.converged:
         raise SolverError(static.message)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -15,10 +17,48 @@ __all__ = [
     "add_dask_args",
     "add_subambient_arg",
     "apply_subambient",
+    "attach_negative_values",
     "check_dask_args",
     "emit",
     "parse_list",
+    "positive_list",
+    "positive_quantity",
+    "voltage_list",
 ]
+
+# A token that starts like a negative number: "-5rpm", "-0.3,0.2", "-.5", "-1e4Hz".
+_NEGATIVE_START = re.compile(r"-\.?\d")
+
+
+def attach_negative_values(argv: Sequence[str]) -> list[str]:
+    """``argv`` with ``--option -5rpm`` written ``--option=-5rpm``.
+
+    argparse takes a token that begins with ``-`` for an option unless it is a
+    bare negative number, so ``--speed -5rpm`` or ``--eccentricity -0.3,0.2``
+    would end in "expected one argument". A token that starts like a negative
+    number (``-``, then a digit or ``.digit``; no option of the command does)
+    right after a long option without ``=`` is joined to it in the ``=`` form,
+    which argparse documents for values that begin with ``-``. After ``--``
+    nothing is changed. Joined to an option that takes no value, the token
+    still ends in argparse's error, as it did alone.
+    """
+    tokens = list(argv)
+    out: list[str] = []
+    for k, token in enumerate(tokens):
+        if token == "--":
+            out.extend(tokens[k:])
+            break
+        prev = out[-1] if out else ""
+        if (
+            _NEGATIVE_START.match(token)
+            and prev.startswith("--")
+            and len(prev) > 2
+            and "=" not in prev
+        ):
+            out[-1] = f"{prev}={token}"
+        else:
+            out.append(token)
+    return out
 
 
 def add_case_arg(p: argparse.ArgumentParser) -> None:
@@ -50,7 +90,7 @@ def apply_subambient(case: Case, model: str | None) -> Case:
 
 
 def add_dask_args(p: argparse.ArgumentParser, what: str) -> None:
-    """``--scheduler``, ``--workers`` and ``--resume``: where the points of ``what`` run."""
+    """``--scheduler``, ``--workers``, ``--dashboard`` and ``--resume``: where the points of ``what`` run."""
     p.add_argument(
         "--scheduler",
         metavar="ADDRESS",
@@ -64,17 +104,27 @@ def add_dask_args(p: argparse.ArgumentParser, what: str) -> None:
         metavar="N",
         help="worker processes of the local cluster (default: one per core)",
     )
+    p.add_argument(
+        "--dashboard",
+        action="store_true",
+        help="start the local cluster's Dask dashboard on 127.0.0.1 and print its address "
+        "(default: none)",
+    )
     p.add_argument("--resume", action="store_true", help=f"continue {what}, skip finished points")
 
 
 def check_dask_args(args: argparse.Namespace) -> None:
-    """One-line errors for ``--workers`` below 1 or given with ``--scheduler``."""
+    """One-line errors for ``--workers`` below 1, or ``--workers``/``--dashboard`` with ``--scheduler``."""
     from foilbearing.errors import InputError
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers {args.workers}: expected at least 1")
     if args.workers is not None and args.scheduler is not None:
         raise InputError("--workers sets the local cluster's size; with --scheduler leave it out")
+    if args.dashboard and args.scheduler is not None:
+        raise InputError(
+            "--dashboard starts the local cluster's; with --scheduler use that scheduler's own"
+        )
 
 
 def parse_list(text: str, kind: str, field: str) -> list[float]:
@@ -98,6 +148,46 @@ def parse_list(text: str, kind: str, field: str) -> list[float]:
         )
         out.append(parse_quantity(value, kind, field=field))
     return out
+
+
+def positive_quantity(text: str, kind: str, field: str, what: str, *, zero: bool = False) -> float:
+    """The quantity ``text`` in SI, > 0 (``zero``: >= 0), else a one-line error.
+
+    ``what`` names it in the message, e.g. "--speed = '-5rpm': a speed must be > 0".
+    """
+    from foilbearing.errors import InputError
+    from foilbearing.units import parse_quantity
+
+    value = parse_quantity(text, kind, field=field)
+    if not (value >= 0.0 if zero else value > 0.0):
+        raise InputError(f"{field} = {text!r}: {what} must be {'>=' if zero else '>'} 0")
+    return value
+
+
+def positive_list(text: str, kind: str, field: str, what: str) -> list[float]:
+    """:func:`parse_list` with every value > 0, else a one-line error naming ``what``."""
+    from foilbearing.errors import InputError
+
+    values = parse_list(text, kind, field)
+    if not all(v > 0.0 for v in values):
+        raise InputError(f"{field} = {text!r}: {what} must be > 0")
+    return values
+
+
+def voltage_list(text: str, case: Case, field: str = "--voltage") -> list[float]:
+    """Voltages, V, from ``text`` (see :func:`parse_list`) within 0 to the case's ``max_voltage``.
+
+    The one-line error names the option, not the case file; a case without
+    ``[actuators]`` gets only the parse (the caller says what it needs).
+    """
+    from foilbearing.errors import InputError
+
+    values = parse_list(text, "voltage", field)
+    if case.actuators is not None:
+        top = case.actuators.max_voltage
+        if not all(0.0 <= v <= top for v in values):
+            raise InputError(f"{field} = {text!r}: allowed 0 to {top:g} V (max_voltage)")
+    return values
 
 
 def emit(obj: dict[str, Any]) -> None:

@@ -3,7 +3,9 @@
 Every subcommand that computes something takes ``--json`` and then prints its
 headline results as one JSON object on stdout, keys named with their units.
 Bad input ends with a one-line error on stderr and exit code 2, never a
-traceback; a solver failure with exit code 3.
+traceback; a solver failure with exit code 3. A reader that closes stdout early
+(``foilbearing case show --json | head -2``) ends the command quietly, with
+exit code 141.
 
 This module is the entry point and registers the subcommands, each in its own
 module of :mod:`foilbearing.cli` (``register`` adds its parser, ``cmd_*`` runs
@@ -13,6 +15,7 @@ it); those import the numerics only when their subcommand runs.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 
@@ -30,16 +33,43 @@ from foilbearing.cli import (
     sweep,
     uncertainty,
 )
-from foilbearing.cli.common import parse_list
+from foilbearing.cli.common import attach_negative_values, parse_list
 from foilbearing.errors import InputError, SolverError
 
 __all__ = ["main", "parse_list"]
 
 
+#: Exit code when stdout's reader went away: 128 + SIGPIPE (13), what a shell reports for a
+#: Unix tool killed by SIGPIPE (``yes | head``), so a pipeline's status tells "reader
+#: left early" apart from success (0) and from our errors (2, 3), as 130 = 128 + SIGINT does
+#: for an interrupt. (Python ignores SIGPIPE, so the write raises BrokenPipeError instead.)
+EXIT_BROKEN_PIPE = 141
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code."""
+    """Run the command line; returns the exit code.
+
+    A closed stdout (``BrokenPipeError``, wherever the command writes) ends it
+    quietly with :data:`EXIT_BROKEN_PIPE`, as the Python documentation advises
+    (``signal`` module, "Note on SIGPIPE"): stdout is pointed at ``os.devnull``
+    so that the interpreter's last flush at exit cannot fail again.
+    """
+    try:
+        try:
+            code = _run(argv)
+        finally:  # also after --help's SystemExit
+            sys.stdout.flush()  # a write still buffered fails here, not at exit
+    except BrokenPipeError:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+        return EXIT_BROKEN_PIPE
+    return code
+
+
+def _run(argv: Sequence[str] | None) -> int:
     parser = _parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(attach_negative_values(sys.argv[1:] if argv is None else argv))
     if not getattr(args, "func", None):
         parser.print_help()
         return 0

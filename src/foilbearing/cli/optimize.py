@@ -14,7 +14,7 @@ import json
 import sys
 from typing import Any
 
-from foilbearing.cli.common import add_case_arg
+from foilbearing.cli.common import add_case_arg, positive_quantity
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_optimize", "register"]
@@ -71,7 +71,7 @@ def cmd_optimize(args: argparse.Namespace) -> int:
     """
     from foilbearing.case import load_case
     from foilbearing.optimize import PAPER_VOLTAGES, maximize_onset, minimize_drag
-    from foilbearing.units import parse_quantity, parse_speed_range
+    from foilbearing.units import parse_speed_range
 
     if args.objective not in OBJECTIVES:
         raise InputError(f"--objective {args.objective!r}: allowed onset or drag")
@@ -98,8 +98,12 @@ def cmd_optimize(args: argparse.Namespace) -> int:
     else:
         if args.speed is None:
             raise InputError("--objective drag needs --speed, e.g. --speed 50000rpm")
-        speed = parse_quantity(args.speed, "speed", field="--speed")
-        load = None if args.load is None else parse_quantity(args.load, "force", field="--load")
+        speed = positive_quantity(args.speed, "speed", "--speed", "a speed")
+        load = (
+            None
+            if args.load is None
+            else positive_quantity(args.load, "force", "--load", "a load", zero=True)
+        )
         result = minimize_drag(
             case,
             speed,

@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from foilbearing.cli.common import add_case_arg, add_subambient_arg
+from foilbearing.cli.common import add_case_arg, add_subambient_arg, positive_quantity
 from foilbearing.errors import InputError
 
 if TYPE_CHECKING:
@@ -128,6 +128,19 @@ def _schedule_spec(path: str | None) -> dict[str, str] | None:
     return {"path": str(path), "text": Path(path).read_text(encoding="utf-8")}
 
 
+def _check_positive(args: argparse.Namespace) -> None:
+    """One-line errors for a speed, duration, stop time or sample rate that is not > 0."""
+    checks = (
+        (args.speed, "speed", "--speed", "a speed"),
+        (args.duration if args.speed is not None else None, "time", "--duration", "a duration"),
+        (args.stop_time, "time", "--stop-time", "a time"),
+        (args.sample_rate, "frequency", "--sample-rate", "a frequency"),
+    )
+    for text, kind, field, what in checks:
+        if text is not None:
+            positive_quantity(text, kind, field, what)
+
+
 def _cmd_orbit(args: argparse.Namespace) -> int:
     from foilbearing.io import write_with
     from foilbearing.orbit import RunStatus, simulate
@@ -140,10 +153,11 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         resume, spec = load_orbit(args.resume)
         stop_time = None  # a resumed run goes on to the end unless told
         if args.stop_time is not None:
-            stop_time = cli_quantity(args.stop_time, "time", "--stop-time")
+            stop_time = positive_quantity(args.stop_time, "time", "--stop-time", "a time")
         spec = dataclasses.replace(spec, stop_time=stop_time)
         out_path = args.out or args.resume
     else:
+        _check_positive(args)
         spec = run_spec_from_args(args)
         out_path = args.out
     case, profile, program, settings, stop = spec.build()

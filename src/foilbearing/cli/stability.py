@@ -16,7 +16,7 @@ from foilbearing.cli.common import (
     add_subambient_arg,
     apply_subambient,
     emit,
-    parse_list,
+    voltage_list,
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
@@ -67,7 +67,7 @@ def cmd_stability(args: argparse.Namespace) -> int:
     speeds = parse_speed_range(args.speed_range, field="--speed-range")
     if args.design:
         return _design(case, args, speeds)
-    voltages = parse_list(args.voltage or "0,50,100,150V", "voltage", "--voltage")
+    voltages = voltage_list(args.voltage or "0,50,100,150V", case)
     if case.actuators is None:
         raise InputError("the stability study over voltages needs a case with [actuators]")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
@@ -104,7 +104,7 @@ def _design(case: Any, args: argparse.Namespace, speeds: Any) -> int:
     from foilbearing.design import stack_design
     from foilbearing.io import save_figure
 
-    volts = parse_list(args.voltage or "150V", "voltage", "--voltage")
+    volts = voltage_list(args.voltage or "150V", case)
     if len(volts) != 1:
         raise InputError(f"--voltage {args.voltage!r}: --design takes one voltage")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))

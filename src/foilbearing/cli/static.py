@@ -17,7 +17,8 @@ from foilbearing.cli.common import (
     add_subambient_arg,
     apply_subambient,
     emit,
-    parse_list,
+    positive_list,
+    voltage_list,
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
@@ -71,18 +72,16 @@ def cmd_static(args: argparse.Namespace) -> int:
     from foilbearing.io import write_with
 
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
-    speeds = parse_list(args.speed, "speed", "--speed") if args.speed else [case.operation.speed]
-    for s in speeds:
-        if s <= 0.0:
-            raise InputError(f"--speed {s:g} rad/s: a speed must be > 0 (e.g. 50000rpm)")
+    speeds = (
+        positive_list(args.speed, "speed", "--speed", "a speed")
+        if args.speed
+        else [case.operation.speed]
+    )
     volts: list[float | None] = [None]
     if args.voltage is not None:
         if case.actuators is None:
             raise InputError("--voltage given but the case has no [actuators]")
-        given = parse_list(args.voltage, "voltage", "--voltage")
-        for v in given:
-            case.with_voltages(v)  # validates the range with a clear message
-        volts = list(given)
+        volts = list(voltage_list(args.voltage, case))
     if len(speeds) > 1 or len(volts) > 1 or args.compare:
         return _static_sweep_cli(case, speeds, volts, args)
     if volts[0] is not None:

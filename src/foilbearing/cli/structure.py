@@ -10,8 +10,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import add_case_arg, emit, parse_list
-from foilbearing.errors import InputError
+from foilbearing.cli.common import add_case_arg, emit, voltage_list
 
 __all__ = ["cmd_structure", "register"]
 
@@ -34,13 +33,7 @@ def cmd_structure(args: argparse.Namespace) -> int:
     from foilbearing.output.summary import structure_summary
 
     case = load_case(args.case)
-    voltages = parse_list(args.voltage, "voltage", "--voltage")
-    if case.actuators is not None:
-        for v in voltages:
-            if not 0.0 <= v <= case.actuators.max_voltage:
-                raise InputError(
-                    f"--voltage {v:g} V: allowed 0 to {case.actuators.max_voltage:g} V (max_voltage)"
-                )
+    voltages = voltage_list(args.voltage, case)
     out = structure_summary(case, voltages)
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_structure_figures(case, args.plot)]

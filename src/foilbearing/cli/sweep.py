@@ -1,9 +1,10 @@
 """The ``foilbearing sweep`` subcommand: a parameter sweep on Dask.
 
 ``foilbearing sweep SWEEP.toml [--out RESULT] [--scheduler ADDRESS]
-[--workers N] [--resume] [--assemble] [--json]`` runs every point of the sweep
-file (``docs/sweep-format.md``) on a local Dask cluster (one single-thread
-worker process per core) or on an existing ``dask.distributed`` scheduler,
+[--workers N] [--dashboard] [--resume] [--assemble] [--json]`` runs every
+point of the sweep file (``docs/sweep-format.md``) on a local Dask cluster
+(one single-thread worker process per core, on 127.0.0.1; ``--dashboard``
+prints its dashboard's address) or on an existing ``dask.distributed`` scheduler,
 writes each finished point to ``RESULT.d/points/`` as it completes and the
 assembled Dataset to ``RESULT.nc``. Exit code 0 when every point is ok, 3 when
 some failed (they are recorded with their message), 2 for bad input.
@@ -72,6 +73,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         out,
         scheduler=args.scheduler,
         n_workers=args.workers,
+        dashboard=args.dashboard,
         resume=args.resume or args.assemble,
         compute=not args.assemble,
         progress=not args.json,

@@ -1,9 +1,9 @@
 """The ``foilbearing uncertainty`` subcommand: envelopes and sensitivity indices on Dask.
 
 ``foilbearing uncertainty [UQ.toml] [--samples N] [--scheduler ADDRESS]
-[--workers N] [--resume] [--out DIR] [--plot DIR] [--json]`` draws the sample
-of the uncertainty file (``docs/uncertainty.md``; default: what the paper
-leaves open), evaluates every point on a local Dask cluster or an existing
+[--workers N] [--dashboard] [--resume] [--out DIR] [--plot DIR] [--json]``
+draws the sample of the uncertainty file (``docs/uncertainty.md``; default:
+what the paper leaves open), evaluates every point on a local Dask cluster or an existing
 scheduler, writes each finished point to ``DIR/points/`` as it completes, and
 the percentiles and sensitivity indices to ``DIR/uncertainty.nc`` and
 ``DIR/uncertainty.json``. Exit code 0 when every point is ok, 3 when some
@@ -93,6 +93,7 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
         out,
         scheduler=args.scheduler,
         n_workers=args.workers,
+        dashboard=args.dashboard,
         resume=args.resume,
         progress=not args.json,
     )

@@ -120,9 +120,18 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
 
 
 def write_orbit_figures(
-    result: OrbitResult, analysis: OrbitAnalysis, folder: Path, label: str = "orbit"
+    result: OrbitResult,
+    analysis: OrbitAnalysis,
+    folder: Path,
+    label: str = "orbit",
+    *,
+    onset_whirl_hz: float | None = None,
 ) -> list[Path]:
-    """Transient (Fig. 13a/14), waterfall colour map and 3-D (Fig. 13b), orbits; PNG files."""
+    """Transient (Fig. 13a/14), waterfall colour map and 3-D (Fig. 13b), orbits; PNG files.
+
+    ``onset_whirl_hz``, the linear onset's whirl frequency (Hz), is marked on the
+    colour map when given.
+    """
     from foilbearing.io import save_figure
     from foilbearing.output.plots import orbit as po
 
@@ -135,7 +144,10 @@ def write_orbit_figures(
     ]
     if analysis.waterfall is not None:
         paths.append(
-            save_figure(po.plot_waterfall(analysis.waterfall), folder / f"{label}_waterfall.png")
+            save_figure(
+                po.plot_waterfall(analysis.waterfall, onset_whirl_hz=onset_whirl_hz),
+                folder / f"{label}_waterfall.png",
+            )
         )
         paths.append(
             save_figure(

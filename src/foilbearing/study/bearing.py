@@ -330,7 +330,13 @@ def _case_point(case: Case, found: dict[float, Any]) -> dict[str, Any]:
     return point
 
 
-def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None]) -> dict[str, Any]:
+def _orbit(
+    case: Case,
+    plan: StudyPlan,
+    out: Path,
+    stage: Callable[[str], None],
+    onset_whirl_hz: float | None = None,
+) -> dict[str, Any]:
     from foilbearing.control import linear_ramp, voltage_ramp
     from foilbearing.io import write_with
     from foilbearing.orbit import simulate
@@ -370,7 +376,7 @@ def _orbit(case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None])
     write_with(path, lambda tmp: to_netcdf(result, spec, tmp))
     analysis = analyse_orbit(result)
     head = analysis.headline(result) | {"netcdf": str(path)}
-    figures = write_orbit_figures(result, analysis, out, "speedup")
+    figures = write_orbit_figures(result, analysis, out, "speedup", onset_whirl_hz=onset_whirl_hz)
     stage(f"  orbit: {result.message} ({result.wall_time:.0f} s)")
     return head | {"figures": [str(p) for p in figures]}
 
@@ -438,7 +444,8 @@ def bearing_study(
             f"{plan.orbit_acceleration:g} rad/s², imbalance {case.rotor.imbalance * 1e6:g} g·mm"
             + ("" if ramp is None else f", voltages to {ramp[2]:g} V at {ramp[0]:g}-{ramp[1]:g} s")
         )
-        results["bearing_orbit"] = _orbit(case, plan, out, stage)
+        onset = (results.get("bearing_stability") or {}).get("onset") or {}
+        results["bearing_orbit"] = _orbit(case, plan, out, stage, onset.get("whirl_frequency_Hz"))
     if any(k in CASE_POINT_KEYS for k in plan.reference):
         results["case_point"] = _case_point(case, found)
     if plan.reference:

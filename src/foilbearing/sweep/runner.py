@@ -21,6 +21,7 @@ import json
 import logging
 import math
 import os
+import sys
 import time
 import uuid
 from collections.abc import Callable, Iterator, Mapping
@@ -143,8 +144,22 @@ def _prepare(spec: PointSet, folder: Path, resume: bool) -> dict[int, dict[str, 
     return {}
 
 
+#: Where the local cluster's HTTP server (and dashboard, when asked for) listens: this
+#: machine only, a free port.
+DASHBOARD_ADDRESS = "127.0.0.1:0"
+
+
 @contextmanager
-def _client(scheduler: str | None, n_workers: int | None) -> Iterator[Any]:
+def _client(
+    scheduler: str | None, n_workers: int | None, *, dashboard: bool = False
+) -> Iterator[Any]:
+    """A client on ``scheduler``, else on a new local cluster of ``n_workers`` processes.
+
+    The local cluster listens on 127.0.0.1 only, its scheduler's HTTP server on
+    :data:`DASHBOARD_ADDRESS`. Without ``dashboard`` that server has no
+    dashboard, only its health and metrics routes; with it, the dashboard's
+    address is printed on stderr.
+    """
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
@@ -160,11 +175,21 @@ def _client(scheduler: str | None, n_workers: int | None) -> Iterator[Any]:
             n_workers=n_workers or os.cpu_count() or 1,
             threads_per_worker=1,
             processes=True,
-            dashboard_address=":0",
+            host="127.0.0.1",
+            # Not dashboard_address=None: the scheduler's HTTP server (always started) would
+            # then take port 8787, and a second cluster warn that it is in use.
+            dashboard_address=DASHBOARD_ADDRESS,
+            scheduler_kwargs={"dashboard": dashboard},
             silence_logs=logging.ERROR,
         ) as cluster,
         Client(cluster) as client,
     ):
+        if dashboard:
+            import importlib.util
+
+            missing = importlib.util.find_spec("bokeh") is None
+            note = " (a stub: the dashboard needs bokeh, pip install bokeh)" if missing else ""
+            print(f"dashboard: {cluster.dashboard_link}{note}", file=sys.stderr, flush=True)
         yield client
 
 
@@ -200,6 +225,7 @@ def run_points(
     client: Any = None,
     scheduler: str | None = None,
     n_workers: int | None = None,
+    dashboard: bool = False,
     resume: bool = False,
     compute: bool = True,
     progress: bool = False,
@@ -233,7 +259,12 @@ def run_points(
     try:
         if todo:
             prefix = uuid.uuid4().hex[:12]
-            with _client(scheduler, n_workers) if client is None else nullcontext(client) as cl:
+            pool = (
+                _client(scheduler, n_workers, dashboard=dashboard)
+                if client is None
+                else nullcontext(client)
+            )
+            with pool as cl:
                 n_failed += _run_points(points, todo, folder, cl, evaluate, prefix, bar, on_point)
     finally:
         bar.close()
@@ -247,6 +278,7 @@ def run_sweep(
     client: Any = None,
     scheduler: str | None = None,
     n_workers: int | None = None,
+    dashboard: bool = False,
     resume: bool = False,
     compute: bool = True,
     progress: bool = False,
@@ -263,7 +295,10 @@ def run_sweep(
     client
         A ``distributed.Client`` to use; else one on ``scheduler`` (an address),
         else a new ``LocalCluster`` of ``n_workers`` single-thread processes
-        (default: one per core).
+        (default: one per core), listening on 127.0.0.1 only.
+    dashboard
+        Start the new local cluster's dashboard, on 127.0.0.1 at a free port,
+        and print its address on stderr (default: no dashboard).
     resume
         Continue the sweep in ``RESULT.d``, skipping the points already there.
     compute
@@ -288,6 +323,7 @@ def run_sweep(
         client=client,
         scheduler=scheduler,
         n_workers=n_workers,
+        dashboard=dashboard,
         resume=resume,
         compute=compute,
         progress=progress,

@@ -54,6 +54,7 @@ def run_uncertainty(
     client: Any = None,
     scheduler: str | None = None,
     n_workers: int | None = None,
+    dashboard: bool = False,
     resume: bool = False,
     compute: bool = True,
     progress: bool = False,
@@ -69,7 +70,7 @@ def run_uncertainty(
         Results folder: ``points/`` (one JSON per point, written as each
         finishes), ``uncertainty.nc`` and ``uncertainty.json`` (written
         atomically when the sample is done, or stopped).
-    client, scheduler, n_workers, resume, compute, progress, on_point
+    client, scheduler, n_workers, dashboard, resume, compute, progress, on_point
         As :func:`foilbearing.sweep.runner.run_sweep`.
 
     Returns
@@ -88,6 +89,7 @@ def run_uncertainty(
             client=client,
             scheduler=scheduler,
             n_workers=n_workers,
+            dashboard=dashboard,
             resume=resume,
             compute=compute,
             progress=progress,

@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 __all__ = [
+    "WATERFALL_FLOOR_DB",
     "plot_orbits",
     "plot_subsync",
     "plot_transient",
@@ -46,25 +47,63 @@ def plot_transient(
     return fig
 
 
-def plot_waterfall(
-    wf: Any, *, fmax_hz: float | None = None, vmax_um: float | None = None
-) -> Figure:
-    """Waterfall as a colour map: frequency against speed, amplitude (µm) as colour, 1X and 0.5X.
+#: Bottom of the waterfall's colour scale, dB re the largest amplitude shown.
+WATERFALL_FLOOR_DB = -60.0
 
-    ``fmax_hz`` defaults to 1.2 × the highest running frequency; ``vmax_um`` caps
-    the colour scale, so that a diverging whip does not wash out the rest.
+
+def plot_waterfall(
+    wf: Any,
+    *,
+    fmax_hz: float | None = None,
+    vmax_um: float | None = None,
+    floor_db: float = WATERFALL_FLOOR_DB,
+    onset_whirl_hz: float | None = None,
+) -> Figure:
+    """Waterfall as a colour map: frequency against speed, amplitude in dB as colour, 1X and 0.5X.
+
+    The colour is the amplitude in dB re the largest amplitude shown,
+    ``20 log10(A / A_max)``, from ``floor_db`` to 0 dB, as rotordynamic
+    waterfalls are drawn: a sub-synchronous whirl 40 dB below the 1X line takes
+    a third of the colours, where on a linear scale it would take 1 %. The
+    reference amplitude is in the colour bar's label.
+
+    Parameters
+    ----------
+    wf
+        The waterfall (:class:`foilbearing.signals.Waterfall`; amplitude in m).
+    fmax_hz
+        Top of the frequency axis, Hz (default 1.2 × the highest running frequency).
+    vmax_um
+        Reference amplitude of 0 dB, µm, instead of the largest one, so that a
+        diverging whip does not push the rest down to the floor; above it the
+        colour is that of 0 dB.
+    floor_db
+        Bottom of the colour scale, dB (< 0); smaller amplitudes, and zero, take its colour.
+    onset_whirl_hz
+        Whirl frequency at the linear onset of instability, Hz, drawn as a
+        horizontal line (None: not drawn).
     """
+    if not floor_db < 0.0:
+        raise ValueError(f"floor_db = {floor_db!r}: expected a level below 0 dB")
     fmax = fmax_hz if fmax_hz is not None else 1.2 * float(np.max(wf.speeds_rpm)) / 60.0
     keep = wf.frequencies_hz <= fmax
+    amp_um = wf.amplitude[:, keep].T * UM
+    finite = amp_um[np.isfinite(amp_um)]
+    ref = vmax_um if vmax_um is not None else (float(finite.max()) if finite.size else 0.0)
+    if not ref > 0.0:
+        ref = 1.0  # nothing to show: all at the floor
+    with np.errstate(invalid="ignore"):
+        ratio = np.clip(amp_um / ref, 10 ** (floor_db / 20), 1.0)
     fig = Figure(figsize=(8.5, 4.5), layout="constrained")
     ax = fig.subplots()
     mesh = ax.pcolormesh(
         wf.speeds_rpm / 1e3,
         wf.frequencies_hz[keep],
-        wf.amplitude[:, keep].T * UM,
+        20.0 * np.log10(ratio),
         shading="nearest",
         cmap="viridis",
-        vmax=vmax_um,
+        vmin=floor_db,
+        vmax=0.0,
     )
     for order, style in ((1.0, "--"), (0.5, ":")):
         ax.plot(
@@ -74,12 +113,23 @@ def plot_waterfall(
             lw=1,
             label=f"{order:g}X",
         )
+    if onset_whirl_hz is not None:
+        ax.axhline(
+            onset_whirl_hz,
+            color="tab:red",
+            ls="-.",
+            lw=1,
+            label=f"linear onset whirl, {onset_whirl_hz:.0f} Hz",
+        )
     ax.set_ylim(0, fmax)
     ax.set_xlabel("speed (krpm)")
     ax.set_ylabel("frequency (Hz)")
     ax.set_title(f"Waterfall (Hann, {wf.window_s:g} s windows)")
     ax.legend(loc="upper left", fontsize=8)
-    fig.colorbar(mesh, ax=ax, label="amplitude (µm)")
+    largest = "" if vmax_um is not None else ", the largest"
+    fig.colorbar(
+        mesh, ax=ax, label=f"amplitude (dB re {ref:.3g} µm{largest}; floor {floor_db:g} dB)"
+    )
     return fig
 
 
