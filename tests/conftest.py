@@ -41,9 +41,8 @@ def write_case(tmp_path_factory: pytest.TempPathFactory) -> Callable[..., Path]:
     return write
 
 
-#: What one test may take on 2 cores, s (issue 28). pyproject's ``timeout`` allows 2.5 times
-#: this, for a machine that a second job loads; a test that must take longer says why in
-#: its docstring.
+#: What one test may take on 2 cores, s (issue 28); a test that must take longer says why in
+#: its docstring. pyproject's ``timeout`` fails a test past 5 times this.
 TEST_BUDGET_S = 120
 
 

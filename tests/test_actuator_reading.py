@@ -222,3 +222,22 @@ def test_a_stiff_stack_recovers_the_shimmed_onset_in_the_design_scan() -> None:
     assert d.onsets["local+compliant"][0] < 0.8 * d.shimmed_onset
     rows = d.table()
     assert rows[0]["bearing"].startswith("shimmed") and len(rows) == 3  # × 3, × 10 not scanned
+
+
+def test_stability_design_on_the_command_line(write_case, capsys, tmp_path) -> None:
+    # The CLI's table is the API's (one voltage, the shimmed GFB first), the figure is
+    # written and a second voltage is a one-line error.
+    import json
+
+    from foilbearing.cli.main import main
+
+    path = write_case("coarse_design", n_theta=48, n_z=6)
+    args = ["stability", str(path), "--design", "--speed-range", "40000rpm:140000rpm:20000rpm"]
+    assert main([*args, "--json", "--plot", str(tmp_path)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["voltage_V"] == 150.0 and out["table"][0]["bearing"].startswith("shimmed")
+    need = out["required_stack_stiffness_N_per_m"]
+    assert set(need) == {"local+compliant", "local+held", "lobe+compliant", "lobe+held"}
+    assert (tmp_path / "stack_design.png").stat().st_size > 10_000
+    assert main([*args, "--voltage", "100,150V"]) == 2
+    assert "--design takes one voltage" in capsys.readouterr().err

@@ -360,6 +360,9 @@ def test_a_resumed_run_keeps_the_controllers_latch_and_voltage() -> None:
 @pytest.mark.slow
 @pytest.mark.no_cover  # long orbit runs: see the module docstring
 def test_paper_protocol_with_a_light_imbalance_control_delays_the_divergence() -> None:
+    """Over the 120 s budget of a test (75-280 s on 2 cores, the cores shared or not): two
+    speed-ups from 3 krpm past the divergence, about 50,000 steps each, which no shorter run
+    can stand in for; the orbit-speed issue (30) is what brings it under."""
     # The paper's protocol as published (the ramp to 150 V at 6.0-6.5 s, 32.6 krpm) with
     # the 1 g·mm imbalance of the study's second series: our 0 V run survives the control
     # time and diverges well below 90 krpm, after its linear onset (the whirl grows while
