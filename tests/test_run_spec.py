@@ -32,6 +32,8 @@ def _specs() -> list[RunSpec]:
             imbalance=1e-6,
             settings=OrbitSettings(steps_per_rev=20, order=2, sample_rate=12_345.5, rtol=1e-5),
             stop_time=5.0 / 3.0,
+            preload_response="lobe",
+            actuator_dynamics="held",
         ),
         RunSpec.of(paper, SubsyncController(threshold=3e-6, slew_rate=500.0), stop_time=1.0),
         RunSpec.of(paper, ScheduleText(SCHEDULE, "s.toml")),
@@ -112,3 +114,18 @@ def test_run_status_is_the_plain_word_with_advice() -> None:
     assert "not an error" in RunStatus.CONTACT.advice
     assert "--steps-per-rev" in RunStatus.FAILED.advice
     assert not RunStatus.CONTACT.resumable and RunStatus.RUNNING.resumable
+
+
+def test_the_actuator_reading_travels_from_the_command_line_to_the_run() -> None:
+    """``orbit --preload-response lobe --actuator-dynamics held`` is stored in the run's
+    specification, so a resumed run integrates the same reading."""
+    args = _parser().parse_args(
+        ["orbit", "--preload-response", "lobe", "--actuator-dynamics", "held"]
+    )
+    spec = run_spec_from_args(args)
+    assert (spec.preload_response, spec.actuator_dynamics) == ("lobe", "held")
+    act = RunSpec.from_json(spec.to_json()).load_case().actuators
+    assert act is not None and (act.preload_response, act.dynamics) == ("lobe", "held")
+    bad = _parser().parse_args(["orbit", "--actuator-dynamics", "frozen"])
+    with pytest.raises(InputError, match="dynamics = 'frozen'"):
+        run_spec_from_args(bad)

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from foilbearing.cli.common import add_case_arg, add_subambient_arg, positive_quantity
+from foilbearing.cli.reading import add_reading_args
 from foilbearing.errors import InputError
 
 if TYPE_CHECKING:
@@ -74,6 +75,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--sample-rate", default="10000Hz", help="output sampling rate (default 10 kHz)")
     add_subambient_arg(p)
+    add_reading_args(p)
     p.add_argument("--out", type=Path, help="write the time series (NetCDF); checkpoints too")
     p.add_argument(
         "--checkpoint-every",
@@ -114,6 +116,8 @@ def run_spec_from_args(args: argparse.Namespace) -> RunSpec:
             "order": OrbitSettings.order if args.order is None else args.order,
             "sample_rate": args.sample_rate,
             "subambient": args.subambient,
+            "preload_response": args.preload_response,
+            "actuator_dynamics": args.actuator_dynamics,
         }
     )
 

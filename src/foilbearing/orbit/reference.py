@@ -70,7 +70,9 @@ def _derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArray:
     P, _U, _eps, v = sys_.split(y)
     H, _q = sys_.film(y, inp.preload)
     dt = 1e-6
-    preload_rate = (sim.preload(sim.volts(t + dt)) - sim.preload(sim.volts(t - dt))) / (2 * dt)
+    preload_rate = (
+        sim.preload_at(t + dt, sim.volts(t + dt)) - sim.preload_at(t - dt, sim.volts(t - dt))
+    ) / (2 * dt)
     n = sys_.n
     du = f[n : n + nt]
     dh_known = sys_.cos_t * v[0] + sys_.sin_t * v[1] - preload_rate + du  # (nt,)

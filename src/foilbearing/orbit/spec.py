@@ -55,6 +55,8 @@ _CLI_DEFAULTS: dict[str, Any] = {
     "order": None,  # runs saved before the order was stored: BDF2
     "sample_rate": "10000Hz",
     "subambient": None,
+    "preload_response": None,
+    "actuator_dynamics": None,
 }
 
 
@@ -189,6 +191,9 @@ class RunSpec:
         Case file (None: the built-in default case).
     subambient
         Sub-ambient film model applied to the case (None: the case's).
+    preload_response, actuator_dynamics
+        The reading of the actuator in the film applied to the case
+        (docs/model.md §3.8; None: the case's).
     imbalance
         Rotor imbalance applied to the case, kg·m (None: the case's).
     settings
@@ -205,6 +210,8 @@ class RunSpec:
     imbalance: float | None = None
     settings: OrbitSettings = field(default_factory=OrbitSettings)
     stop_time: float | None = None
+    preload_response: str | None = None
+    actuator_dynamics: str | None = None
 
     @classmethod
     def of(
@@ -217,6 +224,8 @@ class RunSpec:
         imbalance: float | None = None,
         settings: OrbitSettings | None = None,
         stop_time: float | None = None,
+        preload_response: str | None = None,
+        actuator_dynamics: str | None = None,
     ) -> RunSpec:
         """The specification of a run from its objects.
 
@@ -244,11 +253,20 @@ class RunSpec:
             None if imbalance is None else float(imbalance),
             OrbitSettings() if settings is None else settings,
             None if stop_time is None else float(stop_time),
+            preload_response,
+            actuator_dynamics,
         )
 
     def load_case(self) -> Case:
-        """The case file with the overrides (sub-ambient model, imbalance) applied."""
-        return _load_case(self.case, self.subambient, self.imbalance)
+        """The case file with the overrides (sub-ambient model, actuator reading, imbalance)
+        applied."""
+        return _load_case(
+            self.case,
+            self.subambient,
+            self.imbalance,
+            self.preload_response,
+            self.actuator_dynamics,
+        )
 
     def build(self, case: Case | None = None) -> BuiltRun:
         """The case, speed profile, voltage program, settings and stop time of the run.
@@ -272,6 +290,8 @@ class RunSpec:
             "format": FORMAT,
             "case": self.case,
             "subambient": self.subambient,
+            "preload_response": self.preload_response,
+            "actuator_dynamics": self.actuator_dynamics,
             "imbalance": self.imbalance,
             "speed_times": list(self.speed_times),
             "speeds": list(self.speeds),
@@ -311,6 +331,8 @@ class RunSpec:
             data.get("imbalance"),
             OrbitSettings(**data.get("settings", {})),
             data.get("stop_time"),
+            data.get("preload_response"),
+            data.get("actuator_dynamics"),
         )
 
     def to_json(self) -> str:
@@ -339,7 +361,13 @@ class RunSpec:
         from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
 
         spec = _CLI_DEFAULTS | dict(strings)
-        case_obj = _load_case(spec["case"], spec["subambient"], None)  # its errors come first
+        case_obj = _load_case(  # its errors come first
+            spec["case"],
+            spec["subambient"],
+            None,
+            spec["preload_response"],
+            spec["actuator_dynamics"],
+        )
         if spec["speed"] is not None:
             profile = constant_speed(
                 cli_quantity(spec["speed"], "speed", "--speed"),
@@ -397,12 +425,20 @@ class RunSpec:
             program,
             case=None if spec["case"] is None else str(spec["case"]),
             subambient=spec["subambient"],
+            preload_response=spec["preload_response"],
+            actuator_dynamics=spec["actuator_dynamics"],
             settings=settings,
             stop_time=None if stop is None else cli_quantity(stop, "time", "--stop-time"),
         )
 
 
-def _load_case(path: str | None, subambient: str | None, imbalance: float | None) -> Case:
+def _load_case(
+    path: str | None,
+    subambient: str | None,
+    imbalance: float | None,
+    preload_response: str | None = None,
+    actuator_dynamics: str | None = None,
+) -> Case:
     """The case file (None: the default case) with the overrides applied."""
     from dataclasses import replace
 
@@ -411,6 +447,8 @@ def _load_case(path: str | None, subambient: str | None, imbalance: float | None
     case = load_case(path)
     if subambient is not None:
         case = case.with_subambient(subambient)
+    if preload_response is not None or actuator_dynamics is not None:
+        case = case.with_actuator_reading(preload_response, actuator_dynamics)
     if imbalance is not None:
         case = replace(case, rotor=replace(case.rotor, imbalance=imbalance))
     return case

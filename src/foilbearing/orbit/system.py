@@ -20,6 +20,7 @@ from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import film_model
 from foilbearing.orbit.disturbance import DisturbanceForce
+from foilbearing.orbit.held import HeldStingers
 from foilbearing.orbit.problem import RunStats, StepperProblem
 from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.sampling import Samples
@@ -55,12 +56,20 @@ class OrbitSimulation:
             if act is None:
                 raise InputError("a voltage program needs a case with [actuators]")
             voltage.check(act.max_voltage, self.n_act)
-        if act is not None and (act.preload_response, act.dynamics) != ("local", "compliant"):
+        held = act is not None and act.dynamics == "held"
+        if act is not None and (act.preload_response, act.dynamics) == ("lobe", "compliant"):
             raise InputError(
-                f"actuators.preload_response = {act.preload_response!r}, dynamics = "
-                f"{act.dynamics!r}: the orbit integrates only the default reading so far "
-                "('local', 'compliant'); the static and linear analyses take every reading "
-                "(docs/model.md §3.8)",
+                "actuators.preload_response = 'lobe' with dynamics = 'compliant': the orbit "
+                "does not integrate this reading yet (the lobes would follow the film at the "
+                "whirl's frequency); the static and linear analyses take it, the orbit takes "
+                "the other three (docs/model.md §3.8)",
+                source=case.source,
+            )
+        if held and voltage is not None and voltage.observes:
+            raise InputError(
+                "actuators.dynamics = 'held' with a closed-loop controller: the held stingers "
+                "follow the equilibrium of voltages known ahead of time; use a voltage ramp "
+                "or schedule, or dynamics = 'compliant'",
                 source=case.source,
             )
         self.voltage = voltage
@@ -71,7 +80,8 @@ class OrbitSimulation:
         self.system = TransientSystem(
             g,
             sigma=12.0 * gas.viscosity * b.radius**2 / (gas.ambient_pressure * b.clearance**2),
-            c_act=self.model.actuator_compliance,
+            # Held stingers do not yield to the film's motion: their compression is an input.
+            c_act=np.zeros(g.n_theta) if held else self.model.actuator_compliance,
             c_bump=self.model.bump_compliance,
             loss_factor=gamma,
             film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
@@ -90,6 +100,11 @@ class OrbitSimulation:
         self.static_preload = self.model.preload if act is None else None
         self._preload_cache: tuple[bytes, FloatArray] | None = None
         self._lambda_per_speed = case.bearing_number(1.0)  # Λ ∝ ω
+        self.held = (
+            HeldStingers(case, self.model, speed.omega, self.volts, speed.duration)
+            if held
+            else None
+        )
         d = case.disturbance
         self.disturbance = None if d is None or d.force_rms == 0.0 else DisturbanceForce(d)
         self._atol: FloatArray | None = None
@@ -129,6 +144,12 @@ class OrbitSimulation:
         self._preload_cache = (key, r_p)
         return r_p
 
+    def preload_at(self, t: float, volts: FloatArray) -> FloatArray:
+        """The rigid film's preload r_p/C at time t: the lobes at ``volts``, less the held
+        stacks' quasi-static compression under ``dynamics = "held"``."""
+        r_p = self.preload(volts)
+        return r_p if self.held is None else r_p - self.held(t)
+
     def inputs(self, t: float, volts: FloatArray, imbalance: bool = True) -> Inputs:
         """Inputs of the system at time t: the load, and the imbalance and disturbance forces
         (``imbalance=False``: the load only)."""
@@ -142,7 +163,7 @@ class OrbitSimulation:
         force = np.array([fx / c, fy / c])
         if imbalance and self.disturbance is not None:
             force += self.disturbance(t) / (m * c)
-        return Inputs(self._lambda_per_speed * w, w, self.preload(volts), force)
+        return Inputs(self._lambda_per_speed * w, w, self.preload_at(t, volts), force)
 
     # ------------------------------------------------------------ start state
     def initial_state(self) -> FloatArray:
