@@ -145,6 +145,8 @@ def stack_design(
     factors: Sequence[float] = (0.3, 1.0, 3.0, 10.0, 30.0, 100.0),
     speeds: Sequence[float] | None = None,
     target: float = 0.9,
+    readings: Sequence[tuple[str, str]] = READINGS,
+    refine: bool = True,
     progress: Callable[[str], None] | None = None,
 ) -> StackDesign:
     """Onsets of the case at ``voltage`` against its stack stiffness, under every reading.
@@ -161,6 +163,11 @@ def stack_design(
         Onset scan speeds, rad/s (default 5 krpm to the case's max_speed in 5 krpm steps).
     target
         Fraction of the shimmed GFB's onset that ``required_factor`` asks for, in (0, 1].
+    readings
+        The readings (preload_response, dynamics) to scan (default all four).
+    refine
+        Refine the required stiffness by Brent's method (a few onsets more per reading);
+        otherwise interpolate the onset linearly in log k_p between the scan's points.
     progress
         Called with one line per onset found.
     """
@@ -197,13 +204,17 @@ def stack_design(
     shim = onset_speed(base.shimmed(), speeds)
     onsets, whirls, required = {}, {}, {}
     goal = None if shim.onset_speed is None else target * shim.onset_speed
-    for reading in READINGS:
+    for reading in readings:
         key = "+".join(reading)
         pairs = [at(x, reading) for x in f]
         onsets[key] = np.array([p[0] for p in pairs])
         whirls[key] = np.array([p[1] for p in pairs])
         required[key] = _first_crossing(
-            f, onsets[key], goal, speeds[-1], functools.partial(_onset_of, at, reading)
+            f,
+            onsets[key],
+            goal,
+            speeds[-1],
+            functools.partial(_onset_of, at, reading) if refine else None,
         )
     return StackDesign(
         voltage=float(voltage),
@@ -232,10 +243,11 @@ def _first_crossing(
     onsets: np.ndarray,
     goal: float | None,
     top: float,
-    onset_at: Callable[[float], float],
+    onset_at: Callable[[float], float] | None,
 ) -> float | None:
     """The least factor whose onset reaches ``goal`` (stable over the scan counts as above it),
-    refined by Brent's method in log10 of the factor to 1 %."""
+    refined by Brent's method in log10 of the factor to 1 % (``onset_at`` given), or
+    interpolated linearly in log10 of the factor between the scan's points."""
     if goal is None:
         return None
     reached = np.where(np.isnan(onsets), top, onsets) >= goal
@@ -244,6 +256,12 @@ def _first_crossing(
     i = int(np.argmax(reached))
     if i == 0:
         return float(factors[0])
+
+    if onset_at is None:
+        y = np.where(np.isnan(onsets), top, onsets)
+        lo, hi = math.log10(factors[i - 1]), math.log10(factors[i])
+        frac = (goal - y[i - 1]) / (y[i] - y[i - 1])
+        return float(10.0 ** (lo + frac * (hi - lo)))
 
     def gap(log_f: float) -> float:
         on = onset_at(10.0**log_f)

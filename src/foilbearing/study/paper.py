@@ -152,6 +152,8 @@ def run_study_result(
 
     sweep = _static_stage(case, out, results, stage)
     onsets = _stability_stage(case, out, results, stage)
+    if case.actuators is not None:
+        results["actuator_design"] = _design_stage(case, out, stage)
 
     if uncertainty != "none":
         results["uncertainty"] = _uncertainty_stage(out, UNCERTAINTY_SAMPLES[uncertainty], stage)
@@ -307,6 +309,11 @@ def _stability_stage(
         onsets["shimmed, suction retained"] = onsets_per_voltage(
             kept, PAPER_VOLTAGES, scan, shimmed=True
         )
+    if case.actuators is not None:
+        # The paper's reading of the actuator (lobes lowered, stingers held; docs/model.md
+        # §3.8) beside the case's own.
+        paper_reading = case.with_actuator_reading("lobe", "held")
+        onsets["C-GFB, lobe+held"] = onsets_per_voltage(paper_reading, PAPER_VOLTAGES, scan)
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
     fig = save_figure(
@@ -318,6 +325,28 @@ def _stability_stage(
         for kind, per_volt in onsets.items()
     } | {"figures": [str(fig)]}
     return onsets
+
+
+def _design_stage(case: Case, out: Path, stage: Any) -> dict[str, Any]:
+    """What the stack's stiffness buys at 150 V (docs/model.md §3.8): the default reading
+    and the paper's (lobe + held) at K_p × 0.3, 1, 3 and 10, beside the shimmed GFB; the
+    stiffness for 90 % of its onset interpolated in log K_p (``stability --design``
+    refines it and scans all four readings)."""
+    from foilbearing.design import stack_design
+    from foilbearing.io import save_figure
+    from foilbearing.output.plots.dynamics import plot_stack_design
+
+    stage("the stack's stiffness: 150 V onset against K_p, default and paper's reading")
+    design = stack_design(
+        case,
+        150.0,
+        factors=(0.3, 1.0, 3.0, 10.0),
+        readings=(("local", "compliant"), ("lobe", "held")),
+        refine=False,
+        progress=lambda line: stage(line),
+    )
+    fig = save_figure(plot_stack_design(design), out / "stack_design.png")
+    return design.headline() | {"figures": [str(fig)]}
 
 
 def _uncertainty_stage(out: Path, samples: int | None, stage: Any) -> dict[str, Any]:

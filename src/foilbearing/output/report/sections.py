@@ -40,6 +40,7 @@ STAGES: tuple[tuple[str, str], ...] = (
     ("static", "Static performance, C-GFB and shimmed GFB (Figs. 9-12)"),
     ("coefficients", "Dynamic force coefficients"),
     ("stability", "Linear stability"),
+    ("actuator_design", "What the stack's stiffness buys (the paper's conclusion)"),
     ("orbits", "Speed-up orbits (Figs. 13-15)"),
     ("uncertainty", "What the unknowns allow: uncertainty envelopes (beyond the paper)"),
     ("schedule", "A voltage schedule for the controller (beyond the paper)"),
@@ -212,6 +213,7 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             ("shim", "shimmed"),
             ("kept", "C-GFB, suction retained"),
             ("shim_kept", "shimmed, suction retained"),
+            ("paper_reading", "C-GFB, lobe+held"),
         )
     }
     rows = [
@@ -230,6 +232,15 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         ("shimmed onset (krpm)", onset_of("shim"), ".1f"),
         ("shimmed whirl (Hz)", lambda r: r["shim"].get("whirl_frequency_Hz"), ".0f"),
     ]
+    if others["paper_reading"]:
+        cols += [
+            ("C-GFB, paper's reading: lobe + held (krpm)", onset_of("paper_reading"), ".1f"),
+            (
+                "its whirl (Hz)",
+                lambda r: r["paper_reading"].get("whirl_frequency_Hz"),
+                ".0f",
+            ),
+        ]
     if others["kept"]:
         cols += [
             ("C-GFB, suction retained (krpm)", onset_of("kept"), ".1f"),
@@ -246,9 +257,46 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             if others["kept"]
             else ""
         )
+        + (
+            " The C-GFB columns read the actuator as the case does (local + compliant: the "
+            "stack's compression a pocket under the stinger, its compliance acting at the "
+            "whirl); the paper's reading lowers the whole lobe and holds the stinger during "
+            "the motion (docs/model.md §3.8)."
+            if others["paper_reading"]
+            else ""
+        )
         + "</p>"
     )
     return note + _records(rows, cols)
+
+
+def _actuator_design(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [
+        ("bearing at the voltage", _key("bearing"), ""),
+        ("stack stiffness K_p (MN/m)", _scaled("stack_stiffness_N_per_m", 1e-6), ".3g"),
+        ("linear onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whirl (Hz)", _key("whirl_frequency_Hz"), ".0f"),
+    ]
+    need = d.get("required_stack_stiffness_N_per_m") or {}
+    target = d.get("target_fraction_of_shimmed_onset", 0.9)
+    items = "".join(
+        f"<li>{escape(k)}: "
+        + ("not reached in the scan" if v is None else f"K_p = {v / 1e6:.3g} MN/m")
+        + "</li>"
+        for k, v in need.items()
+    )
+    note = (
+        f'<p class="note">At {d.get("voltage_V", 150):g} V: the linear onset under the '
+        "case's reading of the actuator (local + compliant) and the paper's (lobe + held), "
+        "beside the shimmed GFB, rigid shims at the base preloads: an ideal positioner "
+        "(docs/model.md §3.8). The stack stiffness each reading needs for "
+        f"{target:.0%} of the shimmed onset:</p><ul>{items}</ul>"
+    )
+    return note + _records(d.get("table", []), cols)
+
+
+def _scaled(name: str, factor: float) -> Callable[[dict[str, Any]], Any]:
+    return lambda r: None if r.get(name) is None else float(r[name]) * factor
 
 
 def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
@@ -520,6 +568,7 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "static": _static,
     "coefficients": _coefficients,
     "stability": _stability,
+    "actuator_design": _actuator_design,
     "orbits": _orbits,
     "uncertainty": _uncertainty,
     "schedule": _schedule,
