@@ -214,3 +214,21 @@ def test_attach_negative_values_joins_only_a_negative_after_a_long_option() -> N
         "--speed",
         "-5rpm",
     ]
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["static", "--speed=1e7rpm", "--json"],
+        ["coefficients", "--speed=5e6rpm"],
+        ["stability", "--voltage", "150V", "--speed-range", "100000rpm:200000rpm:50000rpm"],
+        ["orbit", "--speed", "200000rpm", "--duration", "0.01s"],
+    ],
+    ids=["static", "coefficients", "stability", "orbit"],
+)
+def test_a_speed_above_the_cases_max_speed_is_refused_before_any_work(argv, capsys) -> None:
+    # Issue 33: a film solved at 21 km/s surface speed is no answer. Every analysis refuses
+    # speeds above [operation] max_speed (150 krpm here) in one line naming the field.
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "operation.max_speed = 150000 rpm" in err[0]

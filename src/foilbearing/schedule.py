@@ -280,16 +280,9 @@ class SpeedSchedule:
 
 
 def check_speed_range(case: Case, speeds: Sequence[float], field: str = "--speed-range") -> None:
-    """A one-line error for speeds outside ``(0, operation.max_speed]`` of the case."""
-    w = np.asarray(speeds, float)
-    top = case.operation.max_speed
-    if w.size == 0 or not np.all(np.isfinite(w)) or w.min() <= 0.0 or w.max() > top * (1 + 1e-12):
-        shown = f"{w.min() / RPM:.0f}-{w.max() / RPM:.0f} rpm" if w.size else "empty"
-        raise InputError(
-            f"{field} {shown}: allowed above 0 and up to the case's operation.max_speed = "
-            f"{top / RPM:.0f} rpm",
-            source=case.source,
-        )
+    """A one-line error for speeds outside ``(0, operation.max_speed]`` of the case
+    (:meth:`foilbearing.case.Case.check_speeds`)."""
+    case.check_speeds(speeds, field)
 
 
 def _envelope(speeds: FloatArray, volts: FloatArray, slope: float) -> FloatArray:

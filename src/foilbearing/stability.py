@@ -215,10 +215,12 @@ def onset_speed(
         Brent's tolerance on the onset, relative to the bracket's upper speed.
     """
     if speeds is None:
-        speeds = [rpm * RPM for rpm in range(5_000, 150_001, 5_000)]
+        top = case.operation.max_speed * (1 + 1e-12)
+        speeds = [rpm * RPM for rpm in range(5_000, 150_001, 5_000) if rpm * RPM <= top]
     speeds_arr = np.asarray(sorted(speeds), dtype=float)
     if speeds_arr.size < 2 or speeds_arr[0] <= 0:
         raise InputError("the onset search needs at least two speeds > 0")
+    case.check_speeds(speeds_arr, "onset scan")
     scan = _Scanner(case, model or film_model(case))
     dec, ratio = [], []
     prev_mode = None
@@ -325,6 +327,7 @@ def stability_map(
 
     if case.actuators is None:
         raise InputError("a stability map over voltages needs a case with [actuators]")
+    case.check_speeds(speeds, "stability map speeds")
     speeds = sorted(speeds)
     dec = np.full((len(voltages), len(speeds)), np.nan)
     ratio = np.full_like(dec, np.nan)

@@ -248,6 +248,7 @@ def _check_speed(case: Case, speed: float | None) -> float:
     omega = case.operation.speed if speed is None else speed
     if not (math.isfinite(omega) and omega > 0.0):
         raise InputError(f"speed = {omega!r} rad/s: expected a speed > 0 (e.g. '50000 rpm')")
+    case.check_speeds(omega)
     return omega
 
 

@@ -358,6 +358,29 @@ class Case:
             ),
         )
 
+    def check_speeds(self, speeds: Any, field: str = "speed") -> None:
+        """A one-line error for any speed (rad/s) outside ``(0, operation.max_speed]``.
+
+        Every analysis checks its speeds here before any work: no bearing of this case is
+        meant to run faster, and a film solved at, say, 1e7 rpm is no answer.
+        """
+        w = np.atleast_1d(np.asarray(speeds, float))
+        top = self.operation.max_speed
+        if w.size and np.all(np.isfinite(w)) and w.min() > 0.0 and w.max() <= top * (1 + 1e-12):
+            return
+        rpm = 1.0 / RPM
+        if w.size == 0:
+            shown = "empty"
+        elif w.min() == w.max():
+            shown = f"= {w[0] * rpm:.6g} rpm"
+        else:
+            shown = f"{w.min() * rpm:.6g}-{w.max() * rpm:.6g} rpm"
+        raise InputError(
+            f"{field} {shown}: allowed above 0 and up to operation.max_speed = "
+            f"{top * rpm:.0f} rpm (raise [operation] max_speed to go faster)",
+            source=self.source,
+        )
+
     def with_speed(self, speed: float) -> Case:
         """The same case at another rotor speed (rad/s, > 0)."""
         require(speed > 0.0, "operation.speed", speed, "> 0 rad/s", self.source)

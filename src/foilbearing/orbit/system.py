@@ -49,6 +49,7 @@ class OrbitSimulation:
     ) -> None:
         self.case, self.profile = case, speed
         self.settings = settings or OrbitSettings()
+        case.check_speeds(speed.speeds, "speed profile")
         self.settings.check(float(np.max(speed.speeds)))
         act = case.actuators
         self.n_act = 0 if act is None else len(act.angles)
