@@ -1,7 +1,8 @@
 """The ``foilbearing uncertainty`` subcommand: envelopes and sensitivity indices on Dask.
 
-``foilbearing uncertainty [UQ.toml] [--samples N] [--scheduler ADDRESS]
-[--workers N] [--dashboard] [--resume] [--out DIR] [--plot DIR] [--json]``
+``foilbearing uncertainty [UQ.toml] [--samples N] [--estimator sobol|rbd_fast]
+[--sampler sobol|lhs] [--scheduler ADDRESS] [--workers N] [--dashboard] [--resume] [--out DIR]
+[--plot DIR] [--json]``
 draws the sample of the uncertainty file (``docs/uncertainty.md``; default:
 what the paper leaves open), evaluates every point on a local Dask cluster or an existing
 scheduler, writes each finished point to ``DIR/points/`` as it completes, and
@@ -20,6 +21,10 @@ from pathlib import Path
 from typing import Any
 
 from foilbearing.cli.common import add_dask_args, check_dask_args
+
+#: foilbearing.uncertainty.design's ESTIMATORS and SAMPLERS, spelt out: ``--help`` loads no SciPy.
+ESTIMATORS = ("sobol", "rbd_fast")
+SAMPLERS = ("sobol", "lhs")
 
 __all__ = ["cmd_uncertainty", "register"]
 
@@ -45,6 +50,21 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
         default=None,
         metavar="N",
         help="model evaluations (default: the file's samples)",
+    )
+    p.add_argument(
+        "--estimator",
+        choices=ESTIMATORS,
+        default=None,
+        help="sensitivity indices: sobol (first order and total, Saltelli design; noise at "
+        "8 base rows, usable at 36) or rbd_fast (first order, any sample; holds at 64 "
+        "evaluations of an lhs sample); default: the file's estimator",
+    )
+    p.add_argument(
+        "--sampler",
+        choices=SAMPLERS,
+        default=None,
+        help="the unit sample: sobol (scrambled Sobol' sequence) or lhs (Latin hypercube; "
+        "the one for rbd_fast); default: the file's sampler",
     )
     p.add_argument(
         "--out",
@@ -79,7 +99,9 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
     from foilbearing.uncertainty import load_uncertainty, result_paths, run_uncertainty
 
     check_dask_args(args)
-    spec = load_uncertainty(args.uq_file, samples=args.samples)
+    spec = load_uncertainty(
+        args.uq_file, samples=args.samples, estimator=args.estimator, sampler=args.sampler
+    )
     stem = args.uq_file.stem if args.uq_file is not None else "uncertainty_paper"
     out = args.out if args.out is not None else Path(stem)
     if not args.json:
@@ -123,8 +145,16 @@ def _fmt(x: float | None) -> str:
 
 
 def _table(summary: dict[str, Any]) -> str:
-    """Percentiles and the input with the largest index, one line per output."""
-    lines = [f"{'output':<44} {'p5':>9} {'p50':>9} {'p95':>9}  most influential (S1 / ST)"]
+    """Percentiles and the input with the largest index, one line per output.
+
+    Indices are those of :func:`~foilbearing.uncertainty.summary_json`: in [0, 1],
+    "–" where not estimable at the sample's size; the first line names the
+    estimator and the size.
+    """
+    lines = [
+        f"indices: {summary['indices']['description']}; – where not estimable",
+        f"{'output':<44} {'p5':>9} {'p50':>9} {'p95':>9}  most influential (S1 / ST)",
+    ]
     for name, o in summary["outputs"].items():
         s1 = {k: v for k, v in o.get("first_order", {}).items() if v is not None}
         st = {k: v for k, v in (o.get("total_order") or {}).items() if v is not None}

@@ -14,6 +14,15 @@ Two estimators, both from SALib, chosen by the sample budget:
     ordering, bias correction of Tissot and Prieur 2012): cheaper per index,
     no total index.
 
+Neither estimate is bounded by construction: at a small sample the Sobol'
+estimator's first order can come out above 1 or below 0 (its numerator and the
+variance it divides by are estimated from the same few rows), RBD-FAST's bias
+correction can take a small index below 0. :func:`screen` keeps every reported
+index in [0, 1]: one outside it whose 95 % half-width reaches back into [0, 1]
+is clipped to the nearer end (``clipped``), one whose interval lies wholly
+outside is ``not estimable`` (NaN) at that sample size; the raw estimates are
+kept beside them.
+
 The unit sample is drawn by :mod:`scipy.stats.qmc`: a scrambled Sobol'
 sequence or a Latin hypercube, seeded, so a file gives the same sample on any
 machine and ``--resume`` finds the same points.
@@ -27,14 +36,29 @@ from typing import Any
 import numpy as np
 from scipy.stats import qmc
 
-__all__ = ["ESTIMATORS", "SAMPLERS", "indices", "minimum_samples", "unit_sample"]
+__all__ = [
+    "ESTIMATORS",
+    "INDEX_STATUS",
+    "SAMPLERS",
+    "describe_estimator",
+    "indices",
+    "minimum_samples",
+    "screen",
+    "unit_sample",
+]
 
 SAMPLERS = ("sobol", "lhs")
 ESTIMATORS = ("sobol", "rbd_fast")
 #: Base rows N of the Saltelli design below which the bootstrap intervals mean little.
 MIN_BASE = 8
-#: Harmonics of RBD-FAST; its bias correction needs N > 2M, its half-size bootstrap N > 4M.
-RBD_HARMONICS = 10
+#: Harmonics M of RBD-FAST; its bias correction needs N > 2M, its half-size bootstrap N > 4M.
+#: 4, not SALib's 10: on the study's quick plan (64 points, Latin hypercube) M = 4 gives
+#: indices as close to the full run's as M = 10 with half the bootstrap half-width, and a
+#: bias correction 2M/N of 0.125 instead of 0.31 (docs/uncertainty.md, issue 33).
+RBD_HARMONICS = 4
+#: What :func:`screen` says of each index.
+INDEX_STATUS = ("ok", "clipped", "not estimable")
+_ROUNDING = 1e-12  # an index this far outside [0, 1] is rounding, not the estimator's noise
 _U_CLIP = 1e-12  # probabilities kept inside (0, 1): a normal's inverse CDF is infinite at 0 and 1
 
 
@@ -42,7 +66,7 @@ def minimum_samples(estimator: str, n_inputs: int) -> int:
     """The least number of model evaluations the estimator accepts."""
     if estimator == "sobol":
         return MIN_BASE * (n_inputs + 2)
-    return 6 * RBD_HARMONICS + 4  # 64: the half-size bootstrap keeps N/2 > 2M + 10
+    return 6 * RBD_HARMONICS + 4  # 28: the half-size bootstrap keeps N/2 > 2M + 2
 
 
 def unit_sample(n_inputs: int, samples: int, sampler: str, estimator: str, seed: int) -> np.ndarray:
@@ -142,3 +166,42 @@ def indices(
         "first_order": [float(v) for v in si["S1"]],
         "first_order_conf": [float(v) for v in si["S1_conf"]],
     }
+
+
+def screen(raw: np.ndarray, conf: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Indices as reported: every value in [0, 1], or NaN and ``not estimable``.
+
+    Parameters
+    ----------
+    raw, conf
+        The estimator's indices and their 95 % half-widths (any shape, NaN
+        where there were too few points or the output was constant).
+
+    Returns
+    -------
+    (value, conf, status)
+        ``value`` is ``raw`` where it lies in [0, 1] (``ok``), clipped to the
+        nearer end where it lies outside but its interval ``raw ± conf`` reaches
+        into [0, 1] (``clipped``), NaN where the interval lies wholly outside or
+        the estimate is NaN (``not estimable``); ``conf`` is NaN there too.
+    """
+    raw = np.asarray(raw, dtype=float)
+    conf = np.asarray(conf, dtype=float)
+    finite = np.isfinite(raw)
+    # rounding (an exact 0 computed as -1e-17) is inside
+    inside = finite & (raw >= -_ROUNDING) & (raw <= 1.0 + _ROUNDING)
+    c = np.where(np.isfinite(conf), conf, 0.0)
+    reaches = finite & ~inside & (raw + c >= 0.0) & (raw - c <= 1.0)
+    value = np.where(inside | reaches, np.clip(raw, 0.0, 1.0), np.nan)
+    status = np.where(inside, "ok", np.where(reaches, "clipped", "not estimable")).astype(object)
+    return value, np.where(inside | reaches, conf, np.nan), status
+
+
+def describe_estimator(estimator: str, n_points: int, n_inputs: int) -> str:
+    """One line naming the estimator and the sample behind the indices."""
+    if estimator == "sobol":
+        return (
+            f"Sobol' (Saltelli 2010 first order, Jansen total) from {n_points} evaluations "
+            f"({n_points // (n_inputs + 2)} base rows of {n_inputs + 2})"
+        )
+    return f"RBD-FAST first order ({RBD_HARMONICS} harmonics) from {n_points} evaluations"

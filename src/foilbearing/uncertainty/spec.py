@@ -186,7 +186,11 @@ _TOP_KEYS = {
 
 
 def load_uncertainty(
-    path: str | Path | None = None, *, samples: int | None = None
+    path: str | Path | None = None,
+    *,
+    samples: int | None = None,
+    estimator: str | None = None,
+    sampler: str | None = None,
 ) -> UncertaintySpec:
     """Read an uncertainty file, draw the sample and validate every point's case.
 
@@ -196,6 +200,11 @@ def load_uncertainty(
         The uncertainty file (default: :func:`default_uncertainty_path`).
     samples
         Number of model evaluations, overriding the file's ``samples``.
+    estimator
+        ``"sobol"`` or ``"rbd_fast"``, overriding the file's ``estimator``
+        (``--estimator``; the study's quick plan takes ``rbd_fast``).
+    sampler
+        ``"sobol"`` or ``"lhs"``, overriding the file's ``sampler`` (``--sampler``).
 
     Raises
     ------
@@ -212,8 +221,14 @@ def load_uncertainty(
         if key not in _TOP_KEYS:
             raise InputError(f"unknown key {key!r} (allowed: {sorted(_TOP_KEYS)})", source=src)
     case_path, base, case = base_tables(data, path)
-    sampler = _choice(data, "sampler", "sobol", SAMPLERS, src)
-    estimator = _choice(data, "estimator", "sobol", ESTIMATORS, src)
+    file_sampler = _choice(data, "sampler", "sobol", SAMPLERS, src)
+    if sampler is not None and sampler not in SAMPLERS:
+        raise InputError(f"--sampler {sampler!r}: expected one of {list(SAMPLERS)}")
+    sampler = file_sampler if sampler is None else sampler
+    file_estimator = _choice(data, "estimator", "sobol", ESTIMATORS, src)
+    if estimator is not None and estimator not in ESTIMATORS:
+        raise InputError(f"--estimator {estimator!r}: expected one of {list(ESTIMATORS)}")
+    estimator = file_estimator if estimator is None else estimator
     seed = data.get("seed", 1)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise InputError(f"seed = {seed!r}: expected an integer ≥ 0", source=src)

@@ -168,5 +168,6 @@ def plot_indices(ds: Any, max_outputs: int = 12) -> Figure:
     ax.set_xlabel("sensitivity index (filled: first order; outline: total)")
     ax.legend(fontsize=7, loc="lower right")
     ax.grid(axis="x", alpha=0.3)
-    ax.set_title(f"Which input matters ({ds.attrs.get('estimator')} estimator)")
+    told = ds.attrs.get("indices_from") or f"{ds.attrs.get('estimator')} estimator"
+    ax.set_title(f"Which input matters: {told}", fontsize=9)
     return fig

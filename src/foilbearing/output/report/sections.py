@@ -349,31 +349,40 @@ def _generic(d: dict[str, Any], case: dict[str, Any]) -> str:
 
 def _uncertainty(d: dict[str, Any], case: dict[str, Any]) -> str:
     inputs = d.get("inputs") or {}
+    idx = d.get("indices") or {}
+    described = idx.get("description") or f"{d.get('estimator')} estimator"
     intro = (
-        f'<p class="note">{d.get("n_ok", "?")} of {d.get("n_points", "?")} evaluations ok; '
-        f"{escape(str(d.get('estimator')))} estimator on a {escape(str(d.get('sampler')))} "
-        "sample. Inputs: "
+        f'<p class="note">{d.get("n_ok", "?")} of {d.get("n_points", "?")} evaluations ok, '
+        f"on a {escape(str(d.get('sampler')))} sample. Inputs: "
         + escape("; ".join(f"{k} {v.get('distribution', '')}" for k, v in inputs.items()))
         + ". Static readouts hold the case's load; onset speeds and whirl frequencies are "
-        "linear (rigid rotor), and orbit_* readouts, where asked for, come from speed-ups. "
-        "The indices' 95 % half-widths shrink as 1/√N: rerun with "
+        "linear (rigid rotor), and orbit_* readouts, where asked for, come from speed-ups.</p>"
+        f'<p class="note">Sensitivity indices: {escape(str(described))}. Every index shown '
+        "lies in [0, 1]: an estimate outside it whose 95 % half-width reaches back into "
+        "[0, 1] is clipped to the nearer end and marked so, one whose interval lies wholly "
+        "outside is shown as not estimable at this sample size (the raw numbers are in the "
+        "results' JSON). The half-widths shrink as 1/√N: rerun with "
         f"<code>{escape(str(d.get('command', 'foilbearing uncertainty')))}</code> and a larger "
-        "<code>--samples</code> for sharper ones.</p>"
+        "<code>--samples</code>, or <code>foilbearing study --uncertainty full</code> "
+        "(252 evaluations, first-order and total indices), for sharper ones.</p>"
     )
     rows = []
     for name, o in (d.get("outputs") or {}).items():
-        ranked = {k: v for k, v in (o.get("total_order") or o.get("first_order") or {}).items()
-                  if v is not None}  # fmt: skip
+        kind = "total_order" if o.get("total_order") else "first_order"
+        values = o.get(kind) or {}
+        ranked = {k: v for k, v in values.items() if v is not None}
         top = max(ranked, key=lambda k: ranked[k]) if ranked else None
-        conf = (o.get("total_order_conf") or o.get("first_order_conf") or {}).get(top or "")
+        if top is None:
+            cell = "not estimable" if values else "—"
+        else:
+            conf = (o.get(f"{kind}_conf") or {}).get(top)
+            mark = (o.get(f"{kind}_status") or {}).get(top)
+            cell = f"{top}: {_f(ranked[top], '.2f')} ± {_f(conf, '.2f')}" + (
+                " (clipped)" if mark == "clipped" else ""
+            )
+            cell += "" if kind == "first_order" else " (total)"
         rows.append(
-            [
-                name,
-                _f(o.get("p5"), ".4g"),
-                _f(o.get("p50"), ".4g"),
-                _f(o.get("p95"), ".4g"),
-                "—" if top is None else f"{top}: {_f(ranked[top], '.2f')} ± {_f(conf, '.2f')}",
-            ]
+            [name, _f(o.get("p5"), ".4g"), _f(o.get("p50"), ".4g"), _f(o.get("p95"), ".4g"), cell]
         )
     heads = ["output (unit in the name)", "p5", "p50", "p95", "largest index ± 95 %"]
     return intro + _table(heads, rows, num=(1, 2, 3))
