@@ -359,3 +359,101 @@ def test_cli_on_its_own_local_cluster(tmp_path: Path, capsys) -> None:
     args = _cli(["sweep", str(path), "--out", str(tmp_path / "r"), "--assemble", "--json"])
     assert args.func(args) == 0
     assert json.loads(capsys.readouterr().out)["n_computed"] == 0
+
+
+def _certificates(folder: Path) -> dict[str, str]:
+    """A throw-away CA and one certificate it signs for 127.0.0.1 (openssl), as PEM files."""
+    import subprocess
+
+    def ssl(*args: str) -> None:
+        subprocess.run(["openssl", *args], cwd=folder, check=True, capture_output=True)
+
+    ssl(
+        "req",
+        "-x509",
+        "-newkey",
+        "rsa:2048",
+        "-nodes",
+        "-days",
+        "1",
+        "-subj",
+        "/CN=test-ca",
+        "-keyout",
+        "ca-key.pem",
+        "-out",
+        "ca.pem",
+    )
+    ssl(
+        "req",
+        "-newkey",
+        "rsa:2048",
+        "-nodes",
+        "-subj",
+        "/CN=127.0.0.1",
+        "-keyout",
+        "key.pem",
+        "-out",
+        "req.pem",
+    )
+    (folder / "ext.cnf").write_text("subjectAltName=IP:127.0.0.1\n")
+    ssl(
+        "x509",
+        "-req",
+        "-in",
+        "req.pem",
+        "-CA",
+        "ca.pem",
+        "-CAkey",
+        "ca-key.pem",
+        "-CAcreateserial",
+        "-days",
+        "1",
+        "-extfile",
+        "ext.cnf",
+        "-out",
+        "cert.pem",
+    )
+    return {name: str(folder / f"{name}.pem") for name in ("ca", "cert", "key")}
+
+
+def test_a_tls_scheduler_takes_the_clients_certificates_from_dask_config(tmp_path: Path) -> None:
+    # Issue 33: `--scheduler tls://...` with the certificate files in Dask's configuration
+    # (a config file or DASK_* variables): the client connects, encrypted, and a task runs;
+    # without them, one line naming the keys, before any work.
+    import shutil
+
+    if shutil.which("openssl") is None:
+        pytest.skip("openssl is needed to make the test's certificates")
+    dask = pytest.importorskip("dask")
+    distributed = pytest.importorskip("distributed")
+    from foilbearing.sweep.runner import _client
+
+    pem = _certificates(tmp_path)
+    files = {"tls_ca_file": pem["ca"]}
+    for role in ("scheduler", "worker", "client"):
+        files |= {f"tls_{role}_cert": pem["cert"], f"tls_{role}_key": pem["key"]}
+    security = distributed.Security(require_encryption=True, **files)
+    with distributed.LocalCluster(
+        n_workers=1,
+        processes=False,
+        protocol="tls",
+        host="127.0.0.1",
+        security=security,
+        dashboard_address="127.0.0.1:0",
+    ) as cluster:
+        address = cluster.scheduler_address
+        assert address.startswith("tls://")
+        with pytest.raises(InputError, match=r"distributed\.comm\.tls\.ca-file.*DASK_"):
+            with _client(address, None):
+                pass
+        config = {
+            "distributed.comm.tls.ca-file": pem["ca"],
+            "distributed.comm.tls.client.cert": pem["cert"],
+            "distributed.comm.tls.client.key": pem["key"],
+        }
+        with dask.config.set(config), _client(address, None) as client:
+            assert client.submit(lambda x: x + 1, 41).result(timeout=20) == 42
+        with dask.config.set(config | {"distributed.comm.tls.ca-file": str(tmp_path / "no.pem")}):
+            with pytest.raises(InputError, match="no such file"):
+                with _client(address, None):
+                    pass

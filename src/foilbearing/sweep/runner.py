@@ -149,6 +149,37 @@ def _prepare(spec: PointSet, folder: Path, resume: bool) -> dict[int, dict[str, 
 DASHBOARD_ADDRESS = "127.0.0.1:0"
 
 
+#: Dask's configuration keys of a TLS client's files (a config file or DASK_* variables).
+TLS_KEYS = (
+    "distributed.comm.tls.ca-file",
+    "distributed.comm.tls.client.cert",
+    "distributed.comm.tls.client.key",
+)
+
+
+def _security(scheduler: str) -> Any:
+    """The client's ``distributed.Security`` for ``scheduler``: for a ``tls://`` address, the
+    certificate files from Dask's configuration (docs/sweep-format.md), checked to exist;
+    None (Dask's default) for any other address."""
+    if not scheduler.startswith("tls://"):
+        return None
+    import dask
+    from distributed import Security
+
+    missing = [key for key in TLS_KEYS if not dask.config.get(key, None)]
+    if missing:
+        env = ", ".join("DASK_" + k.upper().replace(".", "__").replace("-", "_") for k in missing)
+        raise InputError(
+            f"--scheduler {scheduler!r}: a TLS scheduler needs the client's certificate files: "
+            f"set {', '.join(missing)} in a Dask config file, or {env}"
+        )
+    for key in TLS_KEYS:
+        path = Path(str(dask.config.get(key)))
+        if not path.is_file():
+            raise InputError(f"--scheduler {scheduler!r}: {key} = {str(path)!r}: no such file")
+    return Security(require_encryption=True)
+
+
 @contextmanager
 def _client(
     scheduler: str | None, n_workers: int | None, *, dashboard: bool = False
@@ -163,8 +194,9 @@ def _client(
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
+        security = _security(scheduler)
         try:
-            client = Client(scheduler, timeout="20s")
+            client = Client(scheduler, timeout="20s", security=security)
         except OSError as exc:
             raise InputError(f"--scheduler {scheduler!r}: cannot connect ({exc})") from None
         with client:
