@@ -13,7 +13,7 @@ from foilbearing.case import Grid, default_case
 from foilbearing.coefficients import force_coefficients
 from foilbearing.errors import InputError
 from foilbearing.paper import PAPER
-from foilbearing.reynolds import solve_steady
+from foilbearing.reynolds import film_force, solve_steady
 from foilbearing.stability import onset_speed
 from foilbearing.static import film_at_position, solve_equilibrium
 
@@ -46,8 +46,6 @@ def held_force(st, eps_x: float, eps_y: float) -> np.ndarray:
     h_r = h_r + (m.actuator_compliance * q)[:, None]
     sol = solve_steady(m.grid, h_r, m.bump_compliance, st.bearing_number, st.P, lift_off=True)
     assert sol.converged
-    from foilbearing.reynolds import film_force
-
     fx, fy = film_force(m.grid, sol.P)
     scale = st.case.gas.ambient_pressure * st.case.bearing.radius**2
     return np.array([fx, fy]) * scale

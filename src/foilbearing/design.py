@@ -250,16 +250,15 @@ def _first_crossing(
     interpolated linearly in log10 of the factor between the scan's points."""
     if goal is None:
         return None
-    reached = np.where(np.isnan(onsets), top, onsets) >= goal
+    y = np.where(np.isnan(onsets), top, onsets)
+    reached = y >= goal
     if not reached.any():
         return None
     i = int(np.argmax(reached))
     if i == 0:
         return float(factors[0])
-
+    lo, hi = math.log10(factors[i - 1]), math.log10(factors[i])
     if onset_at is None:
-        y = np.where(np.isnan(onsets), top, onsets)
-        lo, hi = math.log10(factors[i - 1]), math.log10(factors[i])
         frac = (goal - y[i - 1]) / (y[i] - y[i - 1])
         return float(10.0 ** (lo + frac * (hi - lo)))
 
@@ -267,5 +266,4 @@ def _first_crossing(
         on = onset_at(10.0**log_f)
         return (top if math.isnan(on) else on) - goal
 
-    lo, hi = math.log10(factors[i - 1]), math.log10(factors[i])
     return float(10.0 ** brentq(gap, lo, hi, xtol=0.004))

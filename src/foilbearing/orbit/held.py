@@ -27,8 +27,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
+from foilbearing.constants import RPM
 from foilbearing.errors import SolverError
-from foilbearing.film import FilmModel
 from foilbearing.static import solve_equilibrium
 
 __all__ = ["HeldStingers"]
@@ -43,8 +43,6 @@ class HeldStingers:
     ----------
     case
         The run's case (its actuator reading decides pocket or lobes).
-    model
-        Its film model.
     speed, volts
         ω(t) in rad/s and the actuator voltages V(t), known ahead of time
         (open-loop programs).
@@ -59,7 +57,6 @@ class HeldStingers:
     def __init__(
         self,
         case: Case,
-        model: FilmModel,
         speed: Callable[[float], float],
         volts: Callable[[float], FloatArray],
         duration: float,
@@ -68,7 +65,7 @@ class HeldStingers:
         voltage_step: float = 2.0,
         max_interval: float = 0.25,
     ) -> None:
-        self.case, self.model = case, model
+        self.case = case
         self.speed, self.volts, self.duration = speed, volts, duration
         self.speed_step, self.voltage_step, self.max_interval = (
             speed_step,
@@ -87,7 +84,7 @@ class HeldStingers:
         if not st.converged:
             raise SolverError(
                 f"no static equilibrium for the held stingers at t = {t:.4g} s "
-                f"({self.speed(t) * 30 / np.pi:.0f} rpm, {volts} V): {st.message}; "
+                f"({self.speed(t) / RPM:.0f} rpm, {volts} V): {st.message}; "
                 "try dynamics = 'compliant' or a lower load"
             )
         self._start = (st.eps_x, st.eps_y, st.P)

@@ -101,11 +101,7 @@ class OrbitSimulation:
         self.static_preload = self.model.preload if act is None else None
         self._preload_cache: tuple[bytes, FloatArray] | None = None
         self._lambda_per_speed = case.bearing_number(1.0)  # Λ ∝ ω
-        self.held = (
-            HeldStingers(case, self.model, speed.omega, self.volts, speed.duration)
-            if held
-            else None
-        )
+        self.held = HeldStingers(case, speed.omega, self.volts, speed.duration) if held else None
         d = case.disturbance
         self.disturbance = None if d is None or d.force_rms == 0.0 else DisturbanceForce(d)
         self._atol: FloatArray | None = None

@@ -78,7 +78,7 @@ def run_study_result(
     uncertainty
         The envelopes of what the paper leaves open (the built-in uncertainty
         file, on the paper's case only): ``"quick"`` (64 evaluations of a Latin
-        hypercube, RBD-FAST first-order indices, about 4 minutes on 2 cores), ``"full"`` (the file's
+        hypercube, RBD-FAST first-order indices, about 2.5 minutes on 2 cores), ``"full"`` (the file's
         256, 252 with the Sobol' estimator's first-order and total indices) or
         ``"none"``.
     schedule
