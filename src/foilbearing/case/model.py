@@ -6,6 +6,7 @@ classes; :mod:`foilbearing.case.toml` reads and checks a file into them.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -233,12 +234,35 @@ class Operation:
     max_speed: float = MAX_SPEED_DEFAULT  # rad/s, the top of any speed range asked for
 
 
+#: Fewest θ cells across a stinger arc (or a shim) on an orbit's grid: the stinger's
+#: compliance and its mean pressure are taken over the cells of its arc, and a coarser
+#: grid sees the actuator in one cell or none (docs/orbit-performance.md, "The orbit's grid").
+MIN_CELLS_PER_STINGER = 2
+
+
 @dataclass(frozen=True)
 class Grid:
-    """Finite-volume grid of the film: cells around the bearing and axially over half its length."""
+    """Finite-volume grid of the film: cells around the bearing and axially over half its length.
+
+    ``n_theta`` × ``n_z`` set the static and linear analyses. The orbit runs on
+    ``orbit_n_theta`` × ``orbit_n_z`` where they are given (None: the same), and a
+    linear analysis on that grid is its by-construction partner (:meth:`Case.orbit_case`).
+    """
 
     n_theta: int = 96
     n_z: int = 12
+    orbit_n_theta: int | None = None
+    orbit_n_z: int | None = None
+
+    @property
+    def orbit_shape(self) -> tuple[int, int]:
+        """(n_theta, n_z) of the orbit's grid."""
+        return (self.orbit_n_theta or self.n_theta, self.orbit_n_z or self.n_z)
+
+    @property
+    def orbit_is_own(self) -> bool:
+        """The orbit runs on another grid than the static and linear analyses."""
+        return self.orbit_shape != (self.n_theta, self.n_z)
 
 
 @dataclass(frozen=True)
@@ -380,6 +404,39 @@ class Case:
             f"{top * rpm:.0f} rpm (raise [operation] max_speed to go faster)",
             source=self.source,
         )
+
+    def orbit_case(self) -> Case:
+        """The same case on the orbit's grid (``[grid] orbit_n_theta``, ``orbit_n_z``).
+
+        Every orbit runs on it, and a static or linear analysis of the returned case is
+        the orbit's partner on one grid (its whirl eigenvalue and onset). The case itself
+        when the orbit has no grid of its own.
+
+        Raises
+        ------
+        InputError
+            The orbit grid cannot carry the case: fewer than
+            :data:`MIN_CELLS_PER_STINGER` θ cells across a stinger arc or a shim.
+        """
+        g = self.grid
+        n_theta, n_z = g.orbit_shape
+        arc = None
+        if self.actuators is not None:
+            arc = self.actuators.stinger_arc
+        elif self.shims is not None:
+            arc = self.shims.arc
+        if arc is not None and arc * n_theta / (2.0 * math.pi) < MIN_CELLS_PER_STINGER:
+            field_name = "orbit_n_theta" if g.orbit_n_theta is not None else "n_theta"
+            need = math.ceil(MIN_CELLS_PER_STINGER * 2.0 * math.pi / arc)
+            raise InputError(
+                f"grid.{field_name} = {n_theta}: the orbit needs at least "
+                f"{MIN_CELLS_PER_STINGER} cells across the {math.degrees(arc):.1f} deg stinger "
+                f"arc to resolve the actuators, so n_theta >= {need}",
+                source=self.source,
+            )
+        if not g.orbit_is_own:
+            return self
+        return replace(self, grid=Grid(n_theta, n_z))
 
     def with_speed(self, speed: float) -> Case:
         """The same case at another rotor speed (rad/s, > 0)."""

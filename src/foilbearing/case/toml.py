@@ -147,6 +147,8 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         grid = Grid(
             n_theta=grid_t.integer("n_theta", 24, 2048, default=Grid.n_theta),
             n_z=grid_t.integer("n_z", 2, 256, default=Grid.n_z),
+            orbit_n_theta=_optional_integer(grid_t, "orbit_n_theta", 24, 2048),
+            orbit_n_z=_optional_integer(grid_t, "orbit_n_z", 2, 256),
         )
         grid_t.done()
     disturbance = _read_disturbance(root.table("disturbance")) if "disturbance" in data else None
@@ -168,6 +170,11 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         study_table=None if study is None else json.dumps(study, default=str),
         disturbance=disturbance,
     )
+
+
+def _optional_integer(t: TableReader, key: str, lo: int, hi: int) -> int | None:
+    """An integer field from ``lo`` to ``hi`` that may be left out (None)."""
+    return None if key not in t.data else t.integer(key, lo, hi, default=lo)
 
 
 def _read_disturbance(t: TableReader) -> Disturbance:

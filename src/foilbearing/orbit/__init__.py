@@ -71,6 +71,14 @@ def simulate(
         if not resume.checkpoint:
             raise InputError("the run to resume has no checkpoint")
         state = State.from_checkpoint(resume.checkpoint)
+        if state.y.size != sim.system.size:
+            g = resume.case.grid
+            raise InputError(
+                f"the run to resume was on a {g.n_theta} x {g.n_z} grid, this case's orbit "
+                f"runs on {sim.system.grid.n_theta} x {sim.system.grid.n_z}: resume it with "
+                "the case it started with",
+                source=case.source,
+            )
         if voltage is not None:
             voltage.restore(resume.checkpoint)
         samples = Samples.from_result(resume)

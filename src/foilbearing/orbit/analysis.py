@@ -43,7 +43,8 @@ class OrbitAnalysis:
     max_subsync_amplitude: float | None
 
     def headline(self, result: OrbitResult) -> dict[str, Any]:
-        """Unit-named keys: onset_speed_rpm, whip_frequency_Hz, divergence_speed_rpm, ..."""
+        """Unit-named keys: onset_speed_rpm, whip_frequency_Hz, divergence_speed_rpm, ...;
+        ``grid``: [n_theta, n_z] of the grid the run was on (the case's orbit grid)."""
         o = self.onset
         return {
             "onset_speed_rpm": None if o is None else o.onset_speed_rpm,
@@ -59,6 +60,7 @@ class OrbitAnalysis:
             "end_speed_rpm": float(result.speed[-1] * 30 / math.pi) if result.speed.size else None,
             "mean_power_loss_W": mean_power_loss(result),
             "steps": result.steps,
+            "grid": [result.case.grid.n_theta, result.case.grid.n_z],
         }
 
 

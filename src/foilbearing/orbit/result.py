@@ -159,6 +159,8 @@ class OrbitResult:
             case_title=self.case.title,
             imbalance_kg_m=self.case.rotor.imbalance,
             rotor_mass_kg=self.case.rotor.mass,
+            grid_n_theta=self.case.grid.n_theta,
+            grid_n_z=self.case.grid.n_z,
         )
         d = self.case.disturbance
         if d is not None:

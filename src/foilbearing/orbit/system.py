@@ -38,7 +38,11 @@ FloatArray = NDArray[np.float64]
 
 
 class OrbitSimulation:
-    """One run: the system, the programs, the stepper state and the output buffers."""
+    """One run: the system, the programs, the stepper state and the output buffers.
+
+    The run is on the orbit's grid (:meth:`~foilbearing.case.Case.orbit_case`): ``case``
+    is the case on that grid, and so is the case of its result.
+    """
 
     def __init__(
         self,
@@ -47,6 +51,8 @@ class OrbitSimulation:
         voltage: VoltageProgram | None = None,
         settings: OrbitSettings | None = None,
     ) -> None:
+        # The orbit's own grid ([grid] orbit_n_theta, orbit_n_z), checked before any work.
+        case = case.orbit_case()
         self.case, self.profile = case, speed
         self.settings = settings or OrbitSettings()
         case.check_speeds(speed.speeds, "speed profile")

@@ -42,7 +42,12 @@ def case_summary(case: Case) -> dict[str, Any]:
                 "disturbance_seed": d.seed,
             }
         ),
-        "grid": {"n_theta": case.grid.n_theta, "n_z": case.grid.n_z},
+        "grid": {
+            "n_theta": case.grid.n_theta,
+            "n_z": case.grid.n_z,
+            "orbit_n_theta": case.grid.orbit_shape[0],
+            "orbit_n_z": case.grid.orbit_shape[1],
+        },
         "bearing_type": BEARING_TYPES[case.kind],
     }
     if case.foil is not None:

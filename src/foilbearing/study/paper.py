@@ -209,10 +209,12 @@ def _paper_comparison(
     if onsets is not None:
         rows += stability_comparison(onsets)
     if "orbits" in results:
+        # The linear partner of the orbits is the analysis on their grid.
+        partner = "C-GFB, orbit grid" if case.grid.orbit_is_own else "C-GFB"
         linear = (
             {
                 v: r.onset_speed and r.onset_speed * 30.0 / math.pi
-                for v, r in onsets["C-GFB"].items()
+                for v, r in onsets[partner].items()
             }
             if onsets is not None
             else None
@@ -225,7 +227,13 @@ def _paper_comparison(
         out / "paper_comparison.md",
         "# Our numbers beside the paper's\n\n"
         f"Case: {case.title}. Viscosity {case.gas.viscosity:g} Pa·s (assumed: the paper does "
-        f"not give it); grid {case.grid.n_theta} × {case.grid.n_z} (θ × half length).\n\n"
+        f"not give it); grid {case.grid.n_theta} × {case.grid.n_z} (θ × half length)"
+        + (
+            f"; the orbits on {case.grid.orbit_shape[0]} × {case.grid.orbit_shape[1]}"
+            if case.grid.orbit_is_own
+            else ""
+        )
+        + ".\n\n"
         + table
         + "\n",
     )
@@ -317,6 +325,9 @@ def _stability_stage(
         onsets["shimmed, suction retained"] = onsets_per_voltage(
             kept, PAPER_VOLTAGES, scan, shimmed=True
         )
+    if case.grid.orbit_is_own:
+        # The orbits' partner on their own grid: their readouts are set beside it.
+        onsets["C-GFB, orbit grid"] = onsets_per_voltage(case.orbit_case(), PAPER_VOLTAGES, scan)
     if case.actuators is not None:
         # The paper's reading of the actuator (lobes lowered, stingers held; docs/model.md
         # §3.8) beside the case's own.

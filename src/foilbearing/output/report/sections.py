@@ -60,7 +60,7 @@ def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
             f"<b>{escape(str(case.get('title', '?')))}</b>{escape(kind)}: every analysis that "
             f"applies to this kind of bearing, on the plan below. Stages: "
             f"{escape('; '.join(ran[1:]) or 'none')}. Reynolds grid "
-            f"{_f(grid.get('n_theta'), 'd')} × {_f(grid.get('n_z'), 'd')} (θ × half length). "
+            f"{_grid_text(grid)}. "
             "The paper's numbers belong to the paper's bearing and are not shown here; a "
             "<code>[study.reference]</code> table in the case file puts measured values beside "
             "ours.</p>"
@@ -77,9 +77,18 @@ def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
         f"{_f(case.get('viscosity_Pa_s'), '.3g')} Pa·s, rotor mass "
         f"{_f(case.get('rotor_mass_kg'), '.3g')} kg, imbalance "
         f"{_f(case.get('imbalance_g_mm'), '.3g')} g·mm. Reynolds grid "
-        f"{_f(grid.get('n_theta'), 'd')} × {_f(grid.get('n_z'), 'd')} (θ × half length).</p>"
+        f"{_grid_text(grid)}.</p>"
     )
     return text + _records([case], [c for c in _CASE_COLUMNS if c[1](case) is not None])
+
+
+def _grid_text(grid: dict[str, Any]) -> str:
+    """'96 × 12 (θ × half length)', and the orbits' own grid where they have one."""
+    text = f"{_f(grid.get('n_theta'), 'd')} × {_f(grid.get('n_z'), 'd')} (θ × half length)"
+    orbit = (grid.get("orbit_n_theta"), grid.get("orbit_n_z"))
+    if None not in orbit and orbit != (grid.get("n_theta"), grid.get("n_z")):
+        text += f"; the orbits run on {_f(orbit[0], 'd')} × {_f(orbit[1], 'd')}"
+    return text
 
 
 _CASE_COLUMNS: list[Column] = [
@@ -214,6 +223,7 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             ("kept", "C-GFB, suction retained"),
             ("shim_kept", "shimmed, suction retained"),
             ("paper_reading", "C-GFB, lobe+held"),
+            ("orbit_grid", "C-GFB, orbit grid"),
         )
     }
     rows = [
@@ -232,6 +242,8 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         ("shimmed onset (krpm)", onset_of("shim"), ".1f"),
         ("shimmed whirl (Hz)", lambda r: r["shim"].get("whirl_frequency_Hz"), ".0f"),
     ]
+    if others["orbit_grid"]:
+        cols.append(("C-GFB on the orbits' grid (krpm)", onset_of("orbit_grid"), ".1f"))
     if others["paper_reading"]:
         cols += [
             ("C-GFB, paper's reading: lobe + held (krpm)", onset_of("paper_reading"), ".1f"),

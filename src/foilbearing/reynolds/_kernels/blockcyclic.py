@@ -24,11 +24,11 @@ DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a freque
 # and N−1, cut the ring into two chains, A = 0 … p−1 and B = p+1 … N−2, that
 # are eliminated independently; the separators are then solved from their
 # 2 n_z × 2 n_z Schur complement S. (The chains could go to two threads: with
-# numba's OpenMP layer that halves the factorisation in isolation, but it
-# gained nothing measurable inside the orbit on the 2-core test machine, whose
-# two cores share one core's floating-point units: two chains eliminated at
-# once on two threads take 133 µs against 97 µs for one alone. GNU OpenMP is
-# also not fork-safe for the study's process pool, so it is not done.)
+# numba's OpenMP layer that halves the factorisation in isolation, 0.22 against
+# 0.47 ms on 96 × 12, but it gained nothing measurable inside the orbit
+# (benchmarks/bench_two_threads.py; docs/orbit-performance.md, "The second
+# core"). GNU OpenMP is also not fork-safe for the study's process pool, and
+# the study's runs already fill both cores, so it is not done.)
 #
 # In a chain with first row f, last row e, left separator l (coupled to f)
 # and right separator r (coupled to e; r = e + 1), block Gaussian elimination
