@@ -332,3 +332,42 @@ def test_stability_design_on_the_command_line(write_case, capsys, tmp_path) -> N
     assert (tmp_path / "stack_design.png").stat().st_size > 10_000
     assert main([*args, "--voltage", "100,150V"]) == 2
     assert "--design takes one voltage" in capsys.readouterr().err
+
+
+def test_the_study_runs_the_protocol_under_the_papers_reading(tmp_path) -> None:
+    """``foilbearing study --paper-reading``'s stage runs the paper's protocol under lobe +
+    held at 1 g·mm: its 0 V run is, sample for sample, a direct speed-up of that reading
+    (and not of the case's own reading), its runs and files carry the ``lobe-held_`` prefix,
+    and the report's table, captions and comparison rows name the reading (stopped at
+    0.03 s on 32 x 4: the stage's plumbing, not its readouts)."""
+    from foilbearing.control import linear_ramp
+    from foilbearing.orbit import simulate
+    from foilbearing.orbit.netcdf import load_orbit
+    from foilbearing.output.report.captions import READING_TEXT, _caption
+    from foilbearing.output.report.sections import _orbits
+    from foilbearing.paper import orbit_comparison
+    from foilbearing.study.paper import paper_reading_orbits
+
+    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    got = paper_reading_orbits(case, tmp_path, lambda line: None, stop_time=0.03)
+    runs = got["runs"]
+    assert [r["voltage_V"] for r in runs] == [0.0, 50.0, 100.0, 150.0]
+    assert all(r["label"].startswith("lobe-held_") and r["imbalance_g_mm"] == 1.0 for r in runs)
+    assert (tmp_path / "orbit_lobe-held_0V_1gmm.nc").is_file()
+    assert got["reading"] == "lobe + held" and got["figures"]
+
+    profile = linear_ramp(3000 * RPM, 90000 * RPM, 500.0)
+    held = case.with_actuator_reading("lobe", "held")
+    held = replace(held, rotor=replace(held.rotor, imbalance=1e-6))
+    direct = simulate(held, profile, stop_time=0.03)
+    own = simulate(replace(case, rotor=held.rotor), profile, stop_time=0.03)
+    zero, _spec = load_orbit(tmp_path / "orbit_lobe-held_0V_1gmm.nc")
+    np.testing.assert_array_equal(zero.e_x, direct.e_x)
+    assert np.max(np.abs(own.e_x - direct.e_x)) > 1e-3 * np.ptp(direct.e_x)
+
+    html = _orbits(got, {"actuator_reading": "local + compliant"})
+    assert "<b>lobe + held</b>" in html and "the paper's reading" in html
+    name = f"orbit_{runs[1]['label']}_transient.png"
+    assert _caption(name, runs).endswith(READING_TEXT)
+    rows = orbit_comparison(runs, None, 0.0, "the paper's: lobe + held")
+    assert all("lobe + held" in r.quantity for r in rows)

@@ -269,8 +269,12 @@ def orbit_comparison(
     runs: list[dict[str, Any]],
     linear_onsets_rpm: dict[float, float | None] | None = None,
     disturbance_rms: float = 0.0,
+    reading: str | None = None,
 ) -> list[Row]:
     """The speed-up runs beside the paper's Figs. 13-15 (docs/model.md §6).
+
+    ``reading`` names the reading of the actuator in the film that made the runs
+    (for example ``"local + compliant"``, docs/model.md §3.8) in each row.
 
     ``linear_onsets_rpm`` (final voltage → linear onset, rpm) adds each run's lag of
     its divergence behind the linear onset at its final voltage: an onset read from
@@ -337,7 +341,10 @@ def orbit_comparison(
             ref = "(protocol as published, with 1 g·mm) " + paper.get(v, "")
         else:
             ref = "(variant: not in the paper)"
-        rows.append(Row(f"orbit: {run.get('description', v)}", ref, "; ".join(parts), "", note))
+        tag = f" ({reading})" if reading else ""
+        rows.append(
+            Row(f"orbit{tag}: {run.get('description', v)}", ref, "; ".join(parts), "", note)
+        )
     for series in dict.fromkeys(r.get("series") for r in runs):
         members = [r for r in runs if r.get("series") == series]
         if series != "1 g·mm":
@@ -354,7 +361,8 @@ def orbit_comparison(
         shown = " / ".join("none" if d == math.inf else f"{d / 1e3:.1f}" for d in div)
         rows.append(
             Row(
-                f"orbit trend ({series}): divergence delayed by the voltage",
+                f"orbit trend ({series}{', ' + reading if reading else ''}): divergence "
+                "delayed by the voltage",
                 "yes (33 / 44.4 / none / none krpm)",
                 ("yes: " if div == sorted(div) else "NO: ")
                 + shown

@@ -49,6 +49,15 @@ def case_summary(case: Case) -> dict[str, Any]:
             "orbit_n_z": case.grid.orbit_shape[1],
         },
         "bearing_type": BEARING_TYPES[case.kind],
+        **(
+            {}
+            if case.actuators is None
+            else {
+                "actuator_reading": (
+                    f"{case.actuators.preload_response} + {case.actuators.dynamics}"
+                )
+            }
+        ),
     }
     if case.foil is not None:
         out["k_b_N_per_m3"] = case.foil.bump_stiffness

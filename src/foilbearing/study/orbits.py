@@ -55,6 +55,8 @@ class OrbitRun:
     imbalance: float
     series: str
     schedule: Any = None
+    #: Prefix of the label (and so of its files): a reading's runs beside the case's own.
+    tag: str = ""
 
     @property
     def constant(self) -> bool:
@@ -70,7 +72,7 @@ class OrbitRun:
         else:
             tail = "" if self.ramp is None else f"_ramp{self.ramp[0]:.2f}s"
             head = f"{self.volts:g}V{tail}"
-        return f"{head}_{self.imbalance * 1e6:g}gmm"
+        return f"{self.tag}{head}_{self.imbalance * 1e6:g}gmm"
 
     def describe(self) -> str:
         imbalance = f"imbalance {self.imbalance * 1e6:g} g·mm"
@@ -181,11 +183,14 @@ def paper_orbit_runs(
     workers: int | None = None,
     stop_time: float | None = None,
     results: dict[str, Any] | None = None,
+    tag: str = "",
 ) -> dict[str, Any]:
     """Run the speed-ups (see the module docstring), write their figures and Fig. 15.
 
     ``results``, if given, receives each run by its label, as :func:`run_one` returns it
     (``"result"``, ``"analysis"``, ``"headline"``), with the ``"figures"`` written of it.
+    ``tag`` prefixes every run's label and file names (and Fig. 15's), so that the runs of
+    another reading of the case can share the folder.
     """
     from foilbearing.io import save_figure
     from foilbearing.orbit.analysis import write_orbit_figures
@@ -202,13 +207,13 @@ def paper_orbit_runs(
             run["result"], run["analysis"], out, f"orbit_{run['label']}"
         )
 
-    zero = OrbitRun(0.0, None, imb, "paper protocol")
+    zero = OrbitRun(0.0, None, imb, "paper protocol", tag=tag)
     finish(run_one(case, zero, out, stop_time))
     first = done[zero.label]
     runs: list[OrbitRun] = []
     contact = first["result"].contact
     if contact is None or contact["time_s"] >= RAMP[0]:
-        runs += [OrbitRun(v, RAMP, imb, "paper protocol") for v in PAPER_ORBITS if v > 0]
+        runs += [OrbitRun(v, RAMP, imb, "paper protocol", tag=tag) for v in PAPER_ORBITS if v > 0]
         note = "the paper's protocol ran as published"
     else:
         note = (
@@ -220,17 +225,21 @@ def paper_orbit_runs(
     if contact is not None and contact["time_s"] < RAMP[0]:
         early = _early_ramp(first)
         runs += [
-            OrbitRun(v, early, imb, "control before our divergence") for v in PAPER_ORBITS if v > 0
+            OrbitRun(v, early, imb, "control before our divergence", tag=tag)
+            for v in PAPER_ORBITS
+            if v > 0
         ]
         if abs(imb - SENSITIVITY_IMBALANCE) > 1e-12:
             light = run_one(
-                case, OrbitRun(0.0, None, SENSITIVITY_IMBALANCE, "1 g·mm"), out, stop_time
+                case, OrbitRun(0.0, None, SENSITIVITY_IMBALANCE, "1 g·mm", tag=tag), out, stop_time
             )
             finish(light)
             c_light = light["result"].contact
             ramp = RAMP if c_light is None or c_light["time_s"] >= RAMP[0] else _early_ramp(light)
             runs += [
-                OrbitRun(v, ramp, SENSITIVITY_IMBALANCE, "1 g·mm") for v in PAPER_ORBITS if v > 0
+                OrbitRun(v, ramp, SENSITIVITY_IMBALANCE, "1 g·mm", tag=tag)
+                for v in PAPER_ORBITS
+                if v > 0
             ]
     run_first = list(done)  # the 0 V runs, one after the other
     n = workers or (os.cpu_count() or 1)
@@ -261,7 +270,7 @@ def paper_orbit_runs(
         }
         if subs:
             suffix = {"paper protocol": "", "1 g·mm": "_1gmm"}.get(series, "_control")
-            name = "fig15_subsync" + suffix
+            name = f"{tag}fig15_subsync{suffix}"
             figures.append(str(save_figure(plot_subsync(subs, onsets), out / f"{name}.png")))
     return {
         "runs": [done[k]["headline"] for k in order],

@@ -77,6 +77,11 @@ def png_size(data: bytes) -> tuple[int, int] | None:
     return (width, height) if width > 0 and height > 0 else None
 
 
+#: File prefix of the study's runs under the paper's reading of the actuator, and its words.
+READING_TAG = "lobe-held_"
+READING_TEXT = "Under the paper's reading of the actuator in the film (lobe + held)."
+
+
 def _figure(out_dir: Path, name: str, runs: Sequence[Mapping[str, Any]] = ()) -> str:
     """A <figure> with the PNG embedded, or a note where the file is missing or not a PNG.
 
@@ -106,6 +111,8 @@ def _caption(name: str, runs: Sequence[Mapping[str, Any]] = ()) -> str:
     """
     if name in _CAPTIONS:
         return _CAPTIONS[name]
+    if name.startswith(READING_TAG):  # a run of the study's paper-reading stage
+        return _caption(name.removeprefix(READING_TAG), runs).rstrip(".") + f". {READING_TEXT}"
     found = orbit_figure_run(name, runs)
     if found is None:
         return name
@@ -121,4 +128,5 @@ def _caption(name: str, runs: Sequence[Mapping[str, Any]] = ()) -> str:
         "orbits": "Not in the paper: journal orbits at selected speeds",
     }[kind]
     run_text = run.get("description") or run.get("label")
-    return f"{what}; speed-up 3-90 krpm, {run_text}."
+    reading = f" {READING_TEXT}" if str(run.get("label", "")).startswith(READING_TAG) else ""
+    return f"{what}; speed-up 3-90 krpm, {run_text}.{reading}"

@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 from html import escape
 from pathlib import Path
+from typing import Any
 
 from foilbearing.io import write_text
 from foilbearing.output.report.captions import _figure
@@ -89,9 +90,12 @@ def render_report(result: StudyResult) -> str:
     known = {key for key, _ in STAGES} | {"case", "paper_comparison", "case_point"}
     known |= {FIGURE_RECORD_KEY}  # the figure record is the sections' figures, not one
     extra = [(k, k.replace("_", " ").capitalize()) for k in summary if k not in known]
-    orbits = summary.get("orbits")
-    runs = orbits.get("runs") if isinstance(orbits, dict) else None  # captions of speed-ups
-    runs = runs if isinstance(runs, list) else []
+    runs: list[Any] = []  # the speed-ups, which caption their figures
+    for key in ("orbits", "orbits_paper_reading"):
+        stage_runs = (
+            summary.get(key, {}).get("runs") if isinstance(summary.get(key), dict) else None
+        )
+        runs += stage_runs if isinstance(stage_runs, list) else []
     for key, heading in [*STAGES, *extra]:
         data = summary.get(key)
         if not isinstance(data, dict) or not data:
