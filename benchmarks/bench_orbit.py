@@ -2,7 +2,7 @@
 figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
-     [--divergence] [--disturbance] [--newton] [--orbit-grid G ...]
+     [--divergence] [--disturbance] [--newton] [--refresh] [--orbit-grid G ...]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -28,6 +28,10 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   each orbit grid (``[grid] orbit_n_theta``, ``orbit_n_z``) against the case's 96 x 12: onset,
   whip frequency, divergence or contact, and the 1X amplitude at 5 and 10 krpm and at its
   peak; the issue-30 target is 1 % (two runs at a time, about 2 minutes a grid).
+- ``--refresh``: route 4 of issue 30, a fresh factor at the start of a step after a step
+  that took more than T iterations (T = 0: a fresh factor every step), on three orbits of
+  0.05 s and on 96 x 12 and 96 x 6: iterations and factorisations per step, the cost by
+  the measured cost of each, and e_X at the end (about 3 minutes).
 - ``--newton``: the modified Newton iteration of the full speed-up's orbit at 50 krpm
   (0.05 s) under lift-off and with suction retained: calls of the compiled iteration by
   fresh/kept factor and outcome, mean iterations, and the cost per step (about 10 s).
@@ -239,6 +243,70 @@ def newton_statistics() -> None:
                 f"{len(its)} calls, {sum(its) / len(its):.2f} iterations each"
             )
     kern.transient_newton_solve = compiled
+
+
+#: Orbits of ``--refresh``: (label, case maker, speed rpm, imbalance kg·m or None: the case's).
+REFRESH_RUNS = (
+    (
+        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm",
+        lambda: default_case().with_voltages(150.0).shimmed(),
+        50e3,
+        None,
+    ),
+    ("C-GFB, 0 V, 8.5 g·mm, 10 krpm", default_case, 10e3, None),
+    ("C-GFB, 0 V, 1 g·mm, 40 krpm", default_case, 40e3, 1e-6),
+)
+
+
+def refresh_policy() -> None:
+    """A fresh factor at the start of a step after a step of more than T iterations."""
+    from foilbearing.case import Grid
+    from foilbearing.orbit import stepper
+
+    kept = stepper._step_newton
+    rule = {"T": 10**9, "drop": False}
+
+    def policy(problem, newton, y0, inp, c0, hist, weights, lu, lu_c0, work, branches=None):  # type: ignore[no-untyped-def]
+        r = kept(
+            problem,
+            newton,
+            y0,
+            inp,
+            c0,
+            hist,
+            weights,
+            None if rule["drop"] else lu,
+            lu_c0,
+            work,
+            branches,
+        )
+        rule["drop"] = bool(r[0]) and r[2] > rule["T"]
+        return r
+
+    stepper._step_newton = policy
+    print(
+        "route 4: a fresh factor after a step of more than T iterations (T = none: today's "
+        "rule; T = 0: a fresh factor every step), 0.05 s at constant speed"
+    )
+    for n_z in (12, 6):
+        for label, make, rpm, imbalance in REFRESH_RUNS:
+            case = replace(make(), grid=Grid(96, n_z))
+            if imbalance is not None:
+                case = replace(case, rotor=replace(case.rotor, imbalance=imbalance))
+            profile = constant_speed(rpm * RPM, 0.05)
+            simulate(case, constant_speed(rpm * RPM, 5e-4))  # compile, warm up
+            for threshold in (None, 6, 4, 2, 0):
+                rule["T"], rule["drop"] = (10**9 if threshold is None else threshold), False
+                res = simulate(case, profile)
+                print(
+                    f"  96 x {n_z:2d}, {label}, T = {threshold}: "
+                    f"{res.newton_iterations / res.steps:.2f} iterations and "
+                    f"{res.factorizations / res.steps:.3f} factorisations per step, "
+                    f"{1e3 * res.wall_time / res.steps:.3f} ms per step, e_X at the end "
+                    f"{res.e_x[-1] * 1e6:.4f} µm",
+                    flush=True,
+                )
+    stepper._step_newton = kept
 
 
 def _krpm(rpm: float | None) -> str:
@@ -491,6 +559,9 @@ if __name__ == "__main__":
     if "--orbit-grid" in sys.argv:
         names = sys.argv[sys.argv.index("--orbit-grid") + 1 :]
         orbit_grid_readouts([tuple(int(x) for x in g.split("x")) for g in names])  # type: ignore[misc]
+        sys.exit(0)
+    if "--refresh" in sys.argv:
+        refresh_policy()
         sys.exit(0)
     if "--newton" in sys.argv:
         newton_statistics()

@@ -47,12 +47,17 @@ class NewtonRule:
     rtol
         Relative tolerance of the error weights 1/(atol + rtol |y|) (the absolute
         tolerances are per state: ``StepperProblem.atol``).
+    refresh_after
+        A step that took more iterations than this leaves no factor to the next one,
+        which takes a fresh factor at its predictor (None: the factor is kept until
+        it fails or asks for a refresh).
     """
 
     newton_tol: float
     newton_fraction: float
     max_newton: int
     rtol: float
+    refresh_after: int | None = None
 
 
 @dataclass(frozen=True)
@@ -116,6 +121,13 @@ class OrbitSettings:
         The Newton iteration also stops when its update is below this fraction of
         the first update (the predictor's miss), which scales with the step's
         truncation error.
+    refresh_after
+        After a step of more than this many Newton iterations the next step takes a
+        fresh factor at its predictor instead of the kept one (None, the default: the
+        factor is kept until it fails or asks for a refresh). 6 makes a step 3-8 %
+        cheaper on 96 × 12 and 1.5-2.2 times cheaper on 96 × 6, the solution the same
+        to the Newton tolerance (``benchmarks/bench_orbit.py --refresh``;
+        docs/orbit-performance.md, "Route 4").
 
     The Newton defaults (``newton_tol = 0.3``, ``newton_fraction = 0.001``,
     ``max_newton = 10``) converge the iteration far below the step's truncation
@@ -161,6 +173,7 @@ class OrbitSettings:
     atol_position: float = 1e-5
     max_newton: int = 10
     newton_fraction: float = 0.001
+    refresh_after: int | None = None
 
     @property
     def step_rule(self) -> StepRule:
@@ -170,7 +183,9 @@ class OrbitSettings:
     @property
     def newton_rule(self) -> NewtonRule:
         """The settings of the Newton iteration."""
-        return NewtonRule(self.newton_tol, self.newton_fraction, self.max_newton, self.rtol)
+        return NewtonRule(
+            self.newton_tol, self.newton_fraction, self.max_newton, self.rtol, self.refresh_after
+        )
 
     @property
     def sampling(self) -> Sampling:
@@ -199,5 +214,14 @@ class OrbitSettings:
             )
         if not self.max_step > 0:
             raise InputError(f"max_step = {self.max_step!r} s: must be > 0")
+        if self.refresh_after is not None and (
+            isinstance(self.refresh_after, bool)
+            or not isinstance(self.refresh_after, int)
+            or self.refresh_after < 0
+        ):
+            raise InputError(
+                f"refresh_after = {self.refresh_after!r}: an iteration count >= 0, or None "
+                "(keep the factor until it fails)"
+            )
         if not 0.0 < self.contact_film < 1.0:
             raise InputError(f"contact_film = {self.contact_film!r}: a fraction of C in (0, 1)")

@@ -211,6 +211,8 @@ def run(
                     raise FloatingPointError(f"time step collapsed at t = {t:.6f} s")
             counters[0] += 1
             lift_s = [_lift_coordinate(lu, problem.lift_slack), lift_s[0], lift_s[1]]
+            if newton.refresh_after is not None and its > newton.refresh_after:
+                lu = None  # a slow step: the next one takes a fresh factor at its predictor
             # Shift the history by one (rows are reused: no allocation).
             times[1:], ys[1:], qs[1:] = times[:-1], ys[:-1], qs[:-1]
             times[0], ys[0], qs[0] = t_new, y_new, q_new
