@@ -1,0 +1,190 @@
+"""Shooting, Floquet multipliers and Hopf branches on systems whose cycles are known.
+
+- The Hopf normal form ``ṙ = μr + l r³ (+ c r⁵)``, ``θ̇ = ω``: cycles of radius r with
+  ``μ + l r² + c r⁴ = 0``, period 2π/ω, radial multiplier ``exp(T dṙ/dr)``; with l < 0
+  (supercritical) the branch lives at μ > 0 and is stable, with l > 0 (subcritical) at
+  μ < 0 and unstable, and with c = −1 it turns at the fold μ = −1/4, r² = 1/2.
+- The van der Pol oscillator ``ẍ − (1 − x²)ẋ + x = 0``: period 6.66328686 and
+  amplitude 2.00861986 (the published limit cycle); its nontrivial multiplier is
+  ``exp(∮ (1 − x²) dt)`` (the trace of the Jacobian integrated over the orbit: Liouville),
+  computed here by quadrature along the converged orbit, apart from the monodromy.
+- The matrix-free path (GMRES, Arnoldi): the normal form with 70 decaying linear modes
+  appended, whose multipliers are ``exp(−k T)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp, trapezoid
+
+from foilbearing.bifurcation import (
+    FlowMap,
+    HopfPoint,
+    ShootingError,
+    hopf_branch,
+    periodic_orbit,
+)
+
+OMEGA = 1.3
+
+
+def normal_form(l3: float, c5: float = 0.0, extra: np.ndarray | None = None) -> FlowMap:
+    """ẋ = μx − ωy + (l r² + c r⁴) x, ẏ = ωx + μy + (l r² + c r⁴) y; z_k' = −k_k z_k."""
+    decay = np.zeros(0) if extra is None else extra
+
+    def field(y: np.ndarray, mu: float) -> np.ndarray:
+        x, v = y[0], y[1]
+        r2 = x * x + v * v
+        g = mu + l3 * r2 + c5 * r2 * r2
+        return np.concatenate([[g * x - OMEGA * v, OMEGA * x + g * v], -decay * y[2:]])
+
+    def jac(y: np.ndarray, mu: float) -> np.ndarray:
+        x, v = y[0], y[1]
+        r2 = x * x + v * v
+        g = mu + l3 * r2 + c5 * r2 * r2
+        dg = 2.0 * (l3 + 2.0 * c5 * r2)  # dg/d(x or v) = dg * x or dg * v
+        j = np.zeros((y.size, y.size))
+        j[0, 0], j[0, 1] = g + dg * x * x, -OMEGA + dg * x * v
+        j[1, 0], j[1, 1] = OMEGA + dg * x * v, g + dg * v * v
+        j[2:, 2:] = -np.diag(decay)
+        return j
+
+    def advance(y0: np.ndarray, T: float, mu: float) -> np.ndarray:
+        sol = solve_ivp(
+            lambda t, y: field(y, mu), (0.0, T), y0, method="DOP853", rtol=1e-12, atol=1e-13
+        )
+        return sol.y[:, -1]
+
+    def tangent(y0: np.ndarray, T: float, mu: float, w: np.ndarray) -> np.ndarray:
+        n = y0.size
+
+        def rhs(t: float, s: np.ndarray) -> np.ndarray:
+            return np.concatenate([field(s[:n], mu), jac(s[:n], mu) @ s[n:]])
+
+        sol = solve_ivp(
+            rhs, (0.0, T), np.concatenate([y0, w]), method="DOP853", rtol=1e-12, atol=1e-13
+        )
+        return sol.y[n:, -1]
+
+    return FlowMap(advance=advance, field=field, tangent=tangent)
+
+
+def _hopf(flow_size: int, unstable_side: int = 1) -> HopfPoint:
+    q = np.zeros(flow_size, complex)
+    q[0], q[1] = 1.0, -1j  # A q = iω q for A = [[0, −ω], [ω, 0]]
+    return HopfPoint(0.0, OMEGA, q, unstable_side)
+
+
+def test_shooting_finds_the_normal_form_cycle_and_its_multipliers() -> None:
+    """From a guess 25 % off in radius and 10 % in period, the supercritical cycle at
+    μ = 0.04: r = 0.2 to 1e-8, T = 2π/ω to 1e-9, multipliers 1 and exp(−2μT) to 1e-7."""
+    flow = normal_form(-1.0)
+    mu = 0.04
+    orbit = periodic_orbit(flow, np.array([0.25, 0.0]), 1.1 * 2 * np.pi / OMEGA, mu)
+    T = 2 * np.pi / OMEGA
+    assert np.hypot(*orbit.state) == pytest.approx(0.2, abs=1e-8)
+    assert orbit.period == pytest.approx(T, rel=1e-9)
+    values = np.sort(np.abs(orbit.multipliers))
+    np.testing.assert_allclose(values, [np.exp(-2 * mu * T), 1.0], rtol=1e-7)
+    assert orbit.stable
+
+
+def test_shooting_that_cannot_converge_says_how_far_it_got() -> None:
+    """No cycle exists at μ = −0.04 for l < 0: the error names the residual and what to try."""
+    with pytest.raises(ShootingError, match=r"did not converge in 4 Newton iterations.*residual"):
+        periodic_orbit(
+            normal_form(-1.0), np.array([0.2, 0.0]), 2 * np.pi / OMEGA, -0.04, max_iter=4
+        )
+
+
+@pytest.mark.parametrize(
+    ("l3", "kind", "side"), [(-1.0, "supercritical", 1), (1.0, "subcritical", -1)]
+)
+def test_the_branch_direction_gives_the_hopf_type(l3: float, kind: str, side: int) -> None:
+    """Both signs of the cubic coefficient: the type, the side of the branch, its radius
+    r = √(−μ/l) to 1e-6 along it and its stability (stable only when supercritical)."""
+    flow = normal_form(l3)
+    branch = hopf_branch(
+        flow, _hopf(2), lambda mu: np.zeros(2), amplitude=0.02, steps=6, ds=0.5, p_scale=0.01
+    )
+    assert branch.bifurcation_type == kind
+    mus = branch.parameters
+    assert np.all(np.sign(mus) == side)
+    np.testing.assert_allclose(branch.amplitudes, np.sqrt(-mus / l3), rtol=1e-6)
+    assert np.all(branch.stable) == (kind == "supercritical")
+    assert not np.any(branch.stable) == (kind == "subcritical")
+    assert branch.folds == []
+
+
+def test_the_subcritical_branch_turns_at_its_fold_and_regains_stability() -> None:
+    """ṙ = μr + r³ − r⁵: the branch leaves μ = 0 backwards (unstable), turns at the fold
+    μ = −1/4 (found within the branch's spacing, 0.01), and comes back stable on the large
+    cycles r² = (1 + √(1 + 4μ))/2, every orbit on the analytic curve to 1e-6."""
+    flow = normal_form(1.0, -1.0)
+    branch = hopf_branch(
+        flow,
+        _hopf(2),
+        lambda mu: np.zeros(2),
+        amplitude=0.05,
+        steps=40,
+        ds=0.3,
+        p_scale=0.05,
+        p_bounds=(-1.0, 0.02),
+    )
+    assert branch.bifurcation_type == "subcritical"
+    assert len(branch.folds) == 1
+    assert branch.folds[0] == pytest.approx(-0.25, abs=0.01)
+    mu, r = branch.parameters, branch.amplitudes
+    np.testing.assert_allclose(mu + r**2 - r**4, 0.0, atol=1e-6)
+    small, large = r**2 < 0.5 - 1e-3, r**2 > 0.5 + 1e-3
+    assert small.any() and large.any()
+    assert not np.any(branch.stable[small]) and np.all(branch.stable[large])
+
+
+def test_van_der_pol_cycle_period_amplitude_and_multiplier() -> None:
+    """The published cycle of μ = 1 (T = 6.663286859, max x = 2.008619860) to 1e-8, with
+    finite-difference monodromy products (no tangent given); the nontrivial multiplier
+    equals exp(∮ (1 − x²) dt) = 8.6e-4 by quadrature along the orbit, to 1e-5 (the
+    products' own error), and the trivial one is 1."""
+
+    def field(y: np.ndarray, mu: float) -> np.ndarray:
+        return np.array([y[1], mu * (1 - y[0] ** 2) * y[1] - y[0]])
+
+    def advance(y0: np.ndarray, T: float, mu: float) -> np.ndarray:
+        sol = solve_ivp(
+            lambda t, y: field(y, mu), (0, T), y0, method="DOP853", rtol=1e-12, atol=1e-13
+        )
+        return sol.y[:, -1]
+
+    flow = FlowMap(advance=advance, field=field, fd_step=1e-6)
+    orbit = periodic_orbit(flow, np.array([2.0, 0.0]), 6.6, 1.0, tol=1e-10)
+    assert orbit.period == pytest.approx(6.663286859, rel=1e-8)
+    sol = solve_ivp(
+        lambda t, y: field(y, 1.0), (0, orbit.period), orbit.state, method="DOP853",
+        rtol=1e-12, atol=1e-13, dense_output=True,
+    )  # fmt: skip
+    t = np.linspace(0.0, orbit.period, 20001)
+    x = sol.sol(t)[0]
+    assert np.max(x) == pytest.approx(2.008619860, rel=1e-7)
+    liouville = np.exp(trapezoid(1.0 - x**2, t))
+    # Finite-difference products carry errors of about fd_step times the largest
+    # multiplier (1), so the small one is held in absolute terms.
+    assert abs(orbit.nontrivial_multipliers[0]) == pytest.approx(liouville, abs=1e-5)
+    assert np.max(np.abs(orbit.multipliers)) == pytest.approx(1.0, abs=1e-5)
+    assert orbit.stable
+
+
+def test_the_matrix_free_path_on_a_large_system() -> None:
+    """70 decaying modes beside the normal form (n = 72 > dense_max): GMRES shooting finds
+    the same cycle, and Arnoldi the largest multipliers: 1, exp(−2μT) and exp(−k_min T)."""
+    decay = np.linspace(0.5, 5.0, 70)
+    flow = normal_form(-1.0, extra=decay)
+    mu, T = 0.04, 2 * np.pi / OMEGA
+    y0 = np.concatenate([[0.22, 0.01], 1e-3 * np.ones(70)])
+    orbit = periodic_orbit(flow, y0, T, mu, multipliers=4)
+    assert np.hypot(*orbit.state[:2]) == pytest.approx(0.2, abs=1e-8)
+    assert np.max(np.abs(orbit.state[2:])) < 1e-8
+    got = np.sort(np.abs(orbit.multipliers))[::-1][:3]
+    want = np.sort([1.0, np.exp(-2 * mu * T), np.exp(-decay[0] * T)])[::-1]
+    np.testing.assert_allclose(got, want, rtol=1e-6)
