@@ -7,7 +7,8 @@ and scaled to ‖Re q̂‖ = 1): the unknowns (y₀, T, p) solve
 
     φ_T(y₀; p) − y₀ = 0,   ⟨Im q̂, y₀ − y_e(p)⟩ = 0,   ⟨Re q̂, y₀ − y_e(p)⟩ = a,
 
-so p(a) says on which side of p_H the small cycles live. Cycles on the side where
+so p(a) says on which side of p_H the small cycles live (read from the two first
+orbits, at a and 2a, so that it does not depend on how closely p_H is known). Cycles on the side where
 the equilibrium is unstable are born stable (a supercritical Hopf bifurcation: the
 whirl past the onset stays bounded); cycles on the stable side are unstable (a
 subcritical one: a large enough disturbance below the onset already throws the
@@ -236,10 +237,12 @@ def hopf_branch(
     second = on_amplitude(
         2.0 * amplitude, (first.state + amplitude * re_q, first.period, first.parameter)
     )
-    shift = first.parameter - p_h
+    # The direction of p(a) between the two first orbits (p − p_H ≈ c a²): it does not
+    # depend on how closely p_H itself is known.
+    shift = second.parameter - first.parameter
     kind = (
         "degenerate"
-        if abs(shift) <= 1e3 * fd * (1.0 + abs(p_h))
+        if abs(shift) <= 10.0 * fd * (1.0 + abs(p_h))
         else "supercritical"
         if np.sign(shift) == hopf.unstable_side
         else "subcritical"

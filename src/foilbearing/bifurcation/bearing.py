@@ -1,0 +1,287 @@
+"""The whirl's limit cycles of a rotor on the bearing, past and before the linear onset.
+
+The autonomous system is the orbit's (:mod:`foilbearing.orbit`): film, foil and
+journal at a constant speed, the case's voltages held, no imbalance and no
+disturbance, integrated by the orbit's own stepper and compiled kernels. Its flow
+over a time is one stepper run from a state (:func:`bearing_flow`); shooting and
+continuation (:mod:`foilbearing.bifurcation.branch`) find the branch of periodic
+orbits born at the linear onset, the Hopf point, with the parameter the rotor
+speed. The Hopf point and its eigenvector come from the semi-discrete system's
+own linearisation at the static equilibrium (a generalised eigenproblem of its
+Jacobian and storage matrix), seeded by the onset of :func:`~foilbearing.stability.onset_speed`
+on the same grid.
+
+The state is scaled for shooting: pressures in p_a, bump deflections and ε in C,
+the journal's velocity in C·ω_H (so that each part of a whirl is of order its
+amplitude). The flow's derivatives are finite differences of stepper runs with a
+tight Newton tolerance (``SHOOTING_SETTINGS``); under top-foil lift-off the flow
+is only piecewise smooth, so its differences need a larger step (``fd_step``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from foilbearing.bifurcation.branch import Branch, HopfPoint, hopf_branch
+from foilbearing.bifurcation.shooting import FlowMap, PeriodicOrbit
+from foilbearing.case import Case
+from foilbearing.constants import RPM
+from foilbearing.errors import InputError
+
+__all__ = ["SHOOTING_SETTINGS", "WhirlBranch", "bearing_flow", "whirl_branch"]
+
+FloatArray = NDArray[np.float64]
+
+#: Orbit settings of the flow's runs: the Newton iteration converged far below the
+#: finite-difference steps of the shooting (30-300 times tighter than an orbit's).
+SHOOTING_SETTINGS: dict[str, Any] = {
+    "newton_tol": 1e-3,
+    "newton_fraction": 1e-9,
+    "max_newton": 30,
+    "sample_rate": 20_000.0,
+}
+
+
+@dataclass
+class BearingFlow:
+    """The flow of a case at constant speeds, scaled for shooting (see the module)."""
+
+    case: Case
+    scale: FloatArray
+    journal: int
+    settings: Any
+    _sims: dict[float, Any] = field(default_factory=dict)
+
+    def simulation(self, speed: float) -> Any:
+        from foilbearing.control import constant_speed
+        from foilbearing.orbit.system import OrbitSimulation
+
+        key = round(float(speed), 9)
+        if key not in self._sims:
+            self._sims[key] = OrbitSimulation(
+                self.case, constant_speed(speed, 1e3), settings=self.settings
+            )
+        return self._sims[key]
+
+    def run(self, y_scaled: FloatArray, duration: float, speed: float) -> Any:
+        """One stepper run from a scaled state; the result (its checkpoint holds the end)."""
+        from foilbearing.orbit.sampling import Samples
+        from foilbearing.orbit.stepper import State, run
+
+        sim, s = self.simulation(speed), self.settings
+        start = State(0.0, np.asarray(y_scaled, float) * self.scale)
+        samples = Samples(1.0 / s.sample_rate)
+        return run(sim.problem(), start, samples, s.step_rule, s.newton_rule, s.stop_rule(duration))
+
+    def advance(self, y_scaled: FloatArray, duration: float, speed: float) -> FloatArray:
+        res = self.run(y_scaled, duration, speed)
+        if res.status not in ("stopped", "completed"):
+            return np.full(self.scale.size, np.nan)  # contact or failure: no flow there
+        return np.asarray(res.checkpoint["y"], float) / self.scale
+
+    def field(self, y_scaled: FloatArray, speed: float) -> FloatArray:
+        """dy/dt by a run over 1/96 of a revolution (the section's normal and ∂φ/∂T)."""
+        dt = 2.0 * math.pi / (speed * 96.0)
+        return (self.advance(y_scaled, dt, speed) - y_scaled) / dt
+
+    def equilibrium(self, speed: float) -> FloatArray:
+        return np.asarray(self.simulation(speed).initial_state(), float) / self.scale
+
+
+def bearing_flow(case: Case, whirl: float, fd_step: float) -> tuple[FlowMap, BearingFlow]:
+    """The case's autonomous orbit system as a :class:`FlowMap` (and its parts).
+
+    ``case`` is put on its orbit grid, without imbalance or disturbance; ``whirl``
+    (rad/s) scales the journal's velocity.
+    """
+    from foilbearing.orbit import OrbitSettings
+
+    case = case.orbit_case()
+    case = replace(case, rotor=replace(case.rotor, imbalance=0.0), disturbance=None)
+    settings = OrbitSettings(**SHOOTING_SETTINGS)
+    probe = BearingFlow(case, np.ones(1), 0, settings)
+    system = probe.simulation(case.operation.speed).system
+    scale = np.ones(system.size)
+    journal = system.n + system.nt
+    scale[journal + 2 :] = whirl
+    parts = BearingFlow(case, scale, journal, settings)
+    flow = FlowMap(
+        advance=parts.advance,
+        field=parts.field,
+        fd_step=fd_step,
+        dense_max=0,
+        krylov_rtol=1e-6,
+        krylov_accept=0.1,
+    )
+    return flow, parts
+
+
+def _hopf_eigenvector(parts: BearingFlow, speed: float, whirl: float) -> tuple[complex, Any]:
+    """The eigenvalue of the semi-discrete system nearest i·whirl at the equilibrium, and
+    its eigenvector (scaled state): ``(∂f/∂y) q = λ (∂Q/∂y) q``."""
+    import scipy.linalg as sla
+
+    sim = parts.simulation(speed)
+    system = sim.system
+    y = np.asarray(sim.initial_state(), float)
+    inputs = sim.inputs(0.0, sim.volts(0.0), imbalance=False)
+    zero = np.zeros(system.size)
+    with_storage = system.jacobian(y, inputs, 1.0, zero).toarray()
+    without = system.jacobian(y, inputs, 0.0, zero).toarray()
+    values, vectors = sla.eig(-without, with_storage - without)
+    finite = np.isfinite(values)
+    k = int(np.argmin(np.where(finite, np.abs(values - 1j * whirl), np.inf)))
+    return complex(values[k]), vectors[:, k] / parts.scale
+
+
+@dataclass(frozen=True)
+class WhirlBranch:
+    """The branch of whirl limit cycles from the linear onset, with its readouts.
+
+    Attributes
+    ----------
+    case
+        The case on its orbit grid, at the voltages held.
+    hopf_speed, whirl_frequency
+        The linear onset (rad/s) and its whirl frequency (rad/s), on the same grid.
+    eigenvalue
+        The semi-discrete system's eigenvalue at the onset (1/s), nearest i·whirl.
+    branch
+        The periodic orbits (:class:`~foilbearing.bifurcation.branch.Branch`).
+    amplitude
+        Half the largest extent of e_X and e_Y over each orbit, m.
+    min_film
+        Smallest film over each orbit, m.
+    """
+
+    case: Case
+    hopf_speed: float
+    whirl_frequency: float
+    eigenvalue: complex
+    branch: Branch
+    amplitude: FloatArray
+    min_film: FloatArray
+
+    @property
+    def speed_limit(self) -> float | None:
+        """The fold speed of a subcritical branch, else None (rad/s): below the onset, a
+        large enough disturbance already throws the journal beyond the unstable cycle."""
+        if self.branch.bifurcation_type == "subcritical" and self.branch.folds:
+            return float(min(self.branch.folds))
+        return None
+
+    def headline(self) -> dict[str, Any]:
+        """Unit-named keys (``--json``)."""
+        orbits = self.branch.orbits
+        limit = self.speed_limit
+        return {
+            "bifurcation_type": self.branch.bifurcation_type,
+            "hopf_speed_rpm": self.hopf_speed / RPM,
+            "linear_whirl_frequency_Hz": self.whirl_frequency / (2.0 * math.pi),
+            "speed_limit_rpm": None if limit is None else limit / RPM,
+            "speeds_rpm": [o.parameter / RPM for o in orbits],
+            "amplitude_um": [float(a) * 1e6 for a in self.amplitude],
+            "min_film_um": [float(h) * 1e6 for h in self.min_film],
+            "whirl_frequency_Hz": [1.0 / o.period for o in orbits],
+            "stable": [bool(o.stable) for o in orbits],
+            "largest_multiplier": [float(np.max(np.abs(o.nontrivial_multipliers))) for o in orbits],
+            "message": self.branch.message,
+            "grid": [self.case.grid.n_theta, self.case.grid.n_z],
+        }
+
+
+def whirl_branch(
+    case: Case,
+    *,
+    scan: list[float] | None = None,
+    steps: int = 8,
+    amplitude: float = 0.02,
+    ds: float = 1.0,
+    fd_step: float | None = None,
+    tol: float = 1e-7,
+    progress: Callable[[str], None] | None = None,
+) -> WhirlBranch:
+    """The whirl's limit cycles from the linear onset of ``case`` (its voltages held).
+
+    Parameters
+    ----------
+    case
+        The bearing case; its orbit grid is used throughout.
+    scan
+        Speeds of the onset search, rad/s (default that of
+        :func:`~foilbearing.stability.onset_speed`).
+    steps
+        Orbits after the two first ones.
+    amplitude
+        The first orbit's amplitude on the section, in the scaled state (about C/50).
+    ds
+        Arclength step (scaled; :func:`~foilbearing.bifurcation.branch.hopf_branch`).
+    fd_step
+        Relative step of the flow's differences; default 1e-4 under lift-off (the
+        flow is piecewise smooth there), 1e-5 with suction retained.
+    tol
+        Shooting tolerance on ``‖φ_T(y₀) − y₀‖/(1 + ‖y₀‖)``.
+    progress
+        Called with a line per orbit.
+
+    Raises
+    ------
+    InputError
+        No onset in the scan (stable throughout, or unstable from its start).
+    """
+    from foilbearing.stability import onset_speed
+
+    on_grid = case.orbit_case()
+    onset = onset_speed(on_grid, scan)
+    if onset.onset_speed is None or onset.whirl_frequency is None:
+        raise InputError(f"no Hopf point to start from: {onset.message}")
+    if onset.onset_speed <= onset.speeds[0]:
+        raise InputError(
+            f"unstable from the start of the scan ({onset.speeds[0] / RPM:.0f} rpm): start "
+            "the scan lower"
+        )
+    lift = case.foil is not None and case.foil.lift_off
+    step = fd_step if fd_step is not None else (1e-4 if lift else 1e-5)
+    flow, parts = bearing_flow(on_grid, onset.whirl_frequency, step)
+    value, vector = _hopf_eigenvector(parts, onset.onset_speed, onset.whirl_frequency)
+    hopf = HopfPoint(onset.onset_speed, abs(value.imag), vector, 1)
+    paths: dict[int, tuple[float, float]] = {}
+    c = parts.case.bearing.clearance
+
+    def path(orbit: PeriodicOrbit) -> tuple[float, float]:
+        if id(orbit) not in paths:
+            res = parts.run(orbit.state, orbit.period, orbit.parameter)
+            extent = max(np.ptp(res.e_x), np.ptp(res.e_y)) / 2.0
+            paths[id(orbit)] = (float(extent), float(np.min(res.min_film)))
+            if progress is not None:
+                progress(
+                    f"  {orbit.parameter / RPM:8.0f} rpm: cycle {extent * 1e6:7.3f} µm, "
+                    f"{1.0 / orbit.period:6.1f} Hz, {'stable' if orbit.stable else 'unstable'}"
+                )
+        return paths[id(orbit)]
+
+    contact = parts.settings.contact_film * c
+    branch = hopf_branch(
+        flow,
+        hopf,
+        parts.equilibrium,
+        amplitude=amplitude,
+        steps=steps,
+        ds=ds,
+        p_scale=0.01 * onset.onset_speed,
+        p_bounds=(0.5 * onset.onset_speed, float(on_grid.operation.max_speed)),
+        measure=lambda o: path(o)[0],
+        stop=lambda o: path(o)[1] <= contact,
+        tol=tol,
+    )
+    amp = np.array([path(o)[0] for o in branch.orbits])
+    film = np.array([path(o)[1] for o in branch.orbits])
+    return WhirlBranch(
+        parts.case, onset.onset_speed, onset.whirl_frequency, value, branch, amp, film
+    )
