@@ -223,3 +223,27 @@ def test_the_bearing_whirl_branch_from_its_linear_onset() -> None:
     res = parts.run(settle, last.period, last.parameter)
     extent = max(np.ptp(res.e_x), np.ptp(res.e_y)) / 2.0
     assert extent == pytest.approx(wb.amplitude[-1], rel=0.02)
+
+
+def test_the_bifurcation_command(write_case, capsys, tmp_path) -> None:
+    """``foilbearing bifurcation --json`` gives the issue's keys, with the branch's cycles
+    the API's; its figure is written; a scan with no onset in it exits 0 with the linear
+    readouts and says so; two voltages are a one-line error."""
+    import json
+
+    from foilbearing.cli.main import main
+
+    path = write_case("coarse_bifurcation", n_theta=32, n_z=4)
+    base = ["bifurcation", str(path), "--subambient", "retained", "--steps", "0"]
+    scan = ["--speed-range", "5000rpm:30000rpm:2500rpm"]
+    assert main([*base, *scan, "--json", "--plot", str(tmp_path)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    keys = {"bifurcation_type", "hopf_speed_rpm", "speed_limit_rpm", "speeds_rpm"}
+    assert keys | {"amplitude_um", "whirl_frequency_Hz", "stable"} <= set(out)
+    assert out["bifurcation_type"] == "supercritical" and len(out["speeds_rpm"]) == 2
+    assert (tmp_path / "whirl_branch.png").stat().st_size > 10_000
+    assert main([*base, "--speed-range", "3000rpm:8000rpm:2500rpm", "--json"]) == 0
+    stable = json.loads(capsys.readouterr().out)
+    assert stable["bifurcation_type"] is None and "no Hopf point" in stable["message"]
+    assert main([*base, "--voltage", "0,150V"]) == 2
+    assert "one voltage" in capsys.readouterr().err

@@ -20,6 +20,7 @@ import sys
 from collections.abc import Sequence
 
 from foilbearing.cli import (
+    bifurcation,
     case,
     coefficients,
     identify,
@@ -101,6 +102,7 @@ def _parser() -> argparse.ArgumentParser:
         coefficients,
         stability,
         orbit,
+        bifurcation,
         sweep,
         uncertainty,
         optimize,
