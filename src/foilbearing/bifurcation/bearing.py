@@ -279,7 +279,11 @@ def whirl_branch(
         measure=lambda o: path(o)[0],
         stop=lambda o: path(o)[1] <= contact,
         tol=tol,
+        describe=lambda speed: f"{speed / RPM:.0f} rpm",
     )
+    if "(the stop condition)" in branch.message:
+        what = f"(a cycle's film fell below {parts.settings.contact_film:g} C: contact)"
+        branch = replace(branch, message=branch.message.replace("(the stop condition)", what))
     amp = np.array([path(o)[0] for o in branch.orbits])
     film = np.array([path(o)[1] for o in branch.orbits])
     return WhirlBranch(

@@ -145,6 +145,7 @@ def hopf_branch(
     stop: Callable[[PeriodicOrbit], bool] | None = None,
     tol: float = 1e-9,
     max_iter: int = 15,
+    describe: Callable[[float], str] | None = None,
 ) -> Branch:
     """The branch of periodic orbits from ``hopf``, continued by pseudo-arclength.
 
@@ -173,7 +174,10 @@ def hopf_branch(
         ``stop(orbit)``: True ends the branch after that orbit (contact, say).
     tol, max_iter
         Newton convergence (as :func:`~foilbearing.bifurcation.shooting.periodic_orbit`).
+    describe
+        ``describe(p)``: the parameter as the branch's message shows it (default ``p = …``).
     """
+    said = describe or (lambda value: f"p = {value:g}")
     re_q, im_q = _turned(np.asarray(hopf.eigenvector, np.complex128))
     p_h = hopf.parameter
     period_h = 2.0 * np.pi / hopf.frequency
@@ -263,10 +267,10 @@ def hopf_branch(
     for _ in range(steps):
         prev, last = orbits[-2], orbits[-1]
         if stop is not None and stop(last):
-            message = f"stopped at p = {last.parameter:g} (the stop condition)"
+            message = f"stopped at {said(last.parameter)} (the stop condition)"
             break
         if not p_bounds[0] <= last.parameter <= p_bounds[1]:
-            message = f"left the parameter range at p = {last.parameter:g}"
+            message = f"left the parameter range at {said(last.parameter)}"
             break
         secant = (packed(last) - packed(prev)) * scale
         tangent = secant / np.linalg.norm(secant)
@@ -285,7 +289,7 @@ def hopf_branch(
                 step *= 0.5
         if done is None:
             message = (
-                f"the corrector failed at p = {last.parameter:g} with the step down to "
+                f"the corrector failed at {said(last.parameter)} with the step down to "
                 f"{step:.3g}: shorten ds, or tighten the flow's tolerances"
             )
             break
