@@ -48,6 +48,10 @@ SHOOTING_SETTINGS: dict[str, Any] = {
 }
 
 
+#: Speeds whose simulations :class:`BearingFlow` keeps (a Newton step needs two or three).
+_KEPT_SPEEDS = 8
+
+
 @dataclass
 class BearingFlow:
     """The flow of a case at constant speeds, scaled for shooting (see the module)."""
@@ -56,7 +60,9 @@ class BearingFlow:
     scale: FloatArray
     journal: int
     settings: Any
+    #: Simulations and their static equilibria by speed, the most recent last.
     _sims: dict[float, Any] = field(default_factory=dict)
+    _equilibria: dict[float, FloatArray] = field(default_factory=dict)
 
     def simulation(self, speed: float) -> Any:
         from foilbearing.control import constant_speed
@@ -64,6 +70,10 @@ class BearingFlow:
 
         key = round(float(speed), 9)
         if key not in self._sims:
+            if len(self._sims) >= _KEPT_SPEEDS:  # continuation visits a new speed per step
+                oldest = next(iter(self._sims))
+                del self._sims[oldest]
+                self._equilibria.pop(oldest, None)
             self._sims[key] = OrbitSimulation(
                 self.case, constant_speed(speed, 1e3), settings=self.settings
             )
@@ -91,7 +101,13 @@ class BearingFlow:
         return (self.advance(y_scaled, dt, speed) - y_scaled) / dt
 
     def equilibrium(self, speed: float) -> FloatArray:
-        return np.asarray(self.simulation(speed).initial_state(), float) / self.scale
+        """The static equilibrium at ``speed`` as a scaled state (solved once per speed)."""
+        sim, key = self.simulation(speed), round(float(speed), 9)
+        if key not in self._equilibria:
+            state = np.asarray(sim.initial_state(), float) / self.scale
+            state.flags.writeable = False  # shared by every caller at this speed
+            self._equilibria[key] = state
+        return self._equilibria[key]
 
 
 def bearing_flow(case: Case, whirl: float, fd_step: float) -> tuple[FlowMap, BearingFlow]:
@@ -200,6 +216,7 @@ def whirl_branch(
     case: Case,
     *,
     scan: list[float] | None = None,
+    onset: Any = None,
     steps: int = 8,
     amplitude: float = 0.02,
     ds: float = 1.0,
@@ -216,6 +233,9 @@ def whirl_branch(
     scan
         Speeds of the onset search, rad/s (default that of
         :func:`~foilbearing.stability.onset_speed`).
+    onset
+        The onset already found on the case's orbit grid (an
+        :class:`~foilbearing.stability.OnsetResult`); then ``scan`` is not used.
     steps
         Orbits after the two first ones.
     amplitude
@@ -238,7 +258,8 @@ def whirl_branch(
     from foilbearing.stability import onset_speed
 
     on_grid = case.orbit_case()
-    onset = onset_speed(on_grid, scan)
+    if onset is None:
+        onset = onset_speed(on_grid, scan)
     if onset.onset_speed is None or onset.whirl_frequency is None:
         raise InputError(f"no Hopf point to start from: {onset.message}")
     if onset.onset_speed <= onset.speeds[0]:

@@ -8,7 +8,13 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import add_case_arg, add_subambient_arg, apply_subambient, emit
+from foilbearing.cli.common import (
+    add_case_arg,
+    add_subambient_arg,
+    apply_subambient,
+    emit,
+    print_fields,
+)
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
 
@@ -66,7 +72,7 @@ def cmd_bifurcation(args: argparse.Namespace) -> int:
         return _report(out, args)
     try:
         wb = whirl_branch(
-            case, scan=scan, steps=args.steps, progress=None if args.json else _progress
+            case, onset=onset, steps=args.steps, progress=None if args.json else _progress
         )
     except ShootingError as exc:
         rpm = float(onset.onset_speed or 0.0) / RPM
@@ -97,6 +103,5 @@ def _report(out: dict[str, Any], args: argparse.Namespace) -> int:
     if args.json:
         emit(out)
     else:
-        for key, value in out.items():
-            print(f"  {key:<28} {value}")
+        print_fields(out)
     return 0

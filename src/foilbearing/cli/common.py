@@ -190,6 +190,12 @@ def voltage_list(text: str, case: Case, field: str = "--voltage") -> list[float]
     return values
 
 
+def print_fields(obj: dict[str, Any]) -> None:
+    """Print ``obj`` as aligned ``key  value`` lines on stdout (the commands' text output)."""
+    for key, value in obj.items():
+        print(f"  {key:<28} {value}")
+
+
 def emit(obj: dict[str, Any]) -> None:
     """Print ``obj`` as one indented JSON object on stdout (arrays as lists, paths as text)."""
     print(json.dumps(obj, indent=2, default=_json_default))

@@ -11,7 +11,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import emit
+from foilbearing.cli.common import emit, print_fields
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_identify", "register"]
@@ -66,6 +66,5 @@ def cmd_identify(args: argparse.Namespace) -> int:
     if args.json:
         emit(out)
     else:
-        for key, value in out.items():
-            print(f"  {key:<28} {value}")
+        print_fields(out)
     return 0

@@ -14,7 +14,12 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from foilbearing.cli.common import add_case_arg, add_subambient_arg, positive_quantity
+from foilbearing.cli.common import (
+    add_case_arg,
+    add_subambient_arg,
+    positive_quantity,
+    print_fields,
+)
 from foilbearing.cli.reading import add_reading_args
 from foilbearing.errors import InputError
 
@@ -197,6 +202,5 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         print(json.dumps(out, indent=2))
     else:
         print(result.message, file=sys.stderr)
-        for key, value in out.items():
-            print(f"  {key:<28} {value}")
+        print_fields(out)
     return 0 if result.status in (RunStatus.COMPLETED, RunStatus.STOPPED, RunStatus.CONTACT) else 3

@@ -92,9 +92,8 @@ def render_report(result: StudyResult) -> str:
     extra = [(k, k.replace("_", " ").capitalize()) for k in summary if k not in known]
     runs: list[Any] = []  # the speed-ups, which caption their figures
     for key in ("orbits", "orbits_paper_reading"):
-        stage_runs = (
-            summary.get(key, {}).get("runs") if isinstance(summary.get(key), dict) else None
-        )
+        stage = summary.get(key)
+        stage_runs = stage.get("runs") if isinstance(stage, dict) else None
         runs += stage_runs if isinstance(stage_runs, list) else []
     for key, heading in [*STAGES, *extra]:
         data = summary.get(key)
