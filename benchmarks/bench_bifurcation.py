@@ -2,10 +2,11 @@
 (issue 31). Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_bifurcation.py [GRID ...] [--volts V] [--steps N]
-     [--retained]
+     [--retained] [--reading RESPONSE+DYNAMICS]
 
 For each grid (default 32x4), the default case at the voltage given (default 0 V), under
-top-foil lift-off (``--retained``: suction retained as well): the linear onset on that
+top-foil lift-off (``--retained``: suction retained as well), under the case's reading of
+the actuator or ``--reading`` (e.g. ``lobe+held``, the paper's): the linear onset on that
 grid, the semi-discrete eigenvalue there, the branch of limit cycles from it (type, each
 cycle's speed, amplitude, frequency, stability and largest nontrivial multiplier), the
 flow runs it took and its wall time. For a subcritical branch, transients at the speed
@@ -36,17 +37,22 @@ def _extent(parts, y, period: float, speed: float) -> float:  # type: ignore[no-
     return float(max(np.ptp(res.e_x), np.ptp(res.e_y)) / 2.0)
 
 
-def one(grid: tuple[int, int], volts: float, subambient: str, steps: int) -> None:
+def one(
+    grid: tuple[int, int], volts: float, subambient: str, steps: int, reading: str | None
+) -> None:
     case = replace(default_case().with_voltages(volts), grid=Grid(*grid)).with_subambient(
         subambient
     )
+    if reading is not None:
+        case = case.with_actuator_reading(*reading.split("+"))
     scan = [r * RPM for r in range(5000, 120001, 2500)]
     t0 = time.perf_counter()
     wb = whirl_branch(case, scan=scan, steps=steps)
     wall = time.perf_counter() - t0
     head = wb.headline()
     print(
-        f"{grid[0]} x {grid[1]}, {volts:g} V, {subambient}: linear onset "
+        f"{grid[0]} x {grid[1]}, {volts:g} V, {subambient}, {reading or 'the case reading'}: "
+        "linear onset "
         f"{head['hopf_speed_rpm']:.0f} rpm at {head['linear_whirl_frequency_Hz']:.2f} Hz; "
         f"semi-discrete eigenvalue there {wb.eigenvalue.real:+.3g} {wb.eigenvalue.imag:+.5g}i "
         f"1/s; {head['bifurcation_type']}; {wall:.0f} s ({head['message']})"
@@ -88,8 +94,9 @@ if __name__ == "__main__":
     args = sys.argv[1:]
     volts = float(args[args.index("--volts") + 1]) if "--volts" in args else 0.0
     steps = int(args[args.index("--steps") + 1]) if "--steps" in args else 4
+    reading = args[args.index("--reading") + 1] if "--reading" in args else None
     grids = [tuple(int(x) for x in a.split("x")) for a in args if "x" in a and a[0].isdigit()]
     for g in grids or [(32, 4)]:
-        one(g, volts, "lift-off", steps)  # type: ignore[arg-type]
+        one(g, volts, "lift-off", steps, reading)  # type: ignore[arg-type]
         if "--retained" in args:
-            one(g, volts, "retained", steps)  # type: ignore[arg-type]
+            one(g, volts, "retained", steps, reading)  # type: ignore[arg-type]

@@ -2,7 +2,7 @@
 figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
-     [--divergence] [--disturbance] [--newton] [--refresh] [--orbit-grid G ...]
+     [--divergence] [--disturbance] [--newton] [--refresh] [--readings] [--orbit-grid G ...]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -32,6 +32,9 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   that took more than T iterations (T = 0: a fresh factor every step), on three orbits of
   0.05 s and on 96 x 12 and 96 x 6: iterations and factorisations per step, the cost by
   the measured cost of each, and e_X at the end (about 3 minutes).
+- ``--readings``: the orbit's cost under each reading of the actuator in the film
+  (docs/model.md §3.8): the C-GFB at 150 V, 8.5 g·mm, 0.05 s at 50 krpm, ms per step,
+  iterations and factorisations per step, best of 3 (about 1 minute).
 - ``--newton``: the modified Newton iteration of the full speed-up's orbit at 50 krpm
   (0.05 s) under lift-off and with suction retained: calls of the compiled iteration by
   fresh/kept factor and outcome, mean iterations, and the cost per step (about 10 s).
@@ -243,6 +246,26 @@ def newton_statistics() -> None:
                 f"{len(its)} calls, {sum(its) / len(its):.2f} iterations each"
             )
     kern.transient_newton_solve = compiled
+
+
+def reading_costs() -> None:
+    """Cost per step of one orbit under each reading of the actuator (best of 3)."""
+    print("Orbit cost by reading: C-GFB, 150 V, 8.5 g·mm, 0.05 s at 50 krpm, 96 x 12")
+    for response, dynamics in (
+        ("local", "compliant"),
+        ("local", "held"),
+        ("lobe", "compliant"),
+        ("lobe", "held"),
+    ):
+        case = default_case().with_voltages(150.0).with_actuator_reading(response, dynamics)
+        simulate(case, constant_speed(50e3 * RPM, 5e-4))  # compile, warm up
+        runs = [simulate(case, constant_speed(50e3 * RPM, 0.05)) for _ in range(3)]
+        res = min(runs, key=lambda r: r.wall_time)
+        print(
+            f"  {response} + {dynamics:<9}: {1e3 * res.wall_time / res.steps:.3f} ms per step "
+            f"({res.steps} steps, {res.newton_iterations / res.steps:.2f} iterations and "
+            f"{res.factorizations / res.steps:.3f} factorisations per step, status {res.status})"
+        )
 
 
 #: Orbits of ``--refresh``: (label, case maker, speed rpm, imbalance kg·m or None: the case's).
@@ -565,6 +588,9 @@ if __name__ == "__main__":
         sys.exit(0)
     if "--newton" in sys.argv:
         newton_statistics()
+        sys.exit(0)
+    if "--readings" in sys.argv:
+        reading_costs()
         sys.exit(0)
     if "--divergence" in sys.argv or "--disturbance" in sys.argv:
         divergence_study(disturbed="--disturbance" in sys.argv)

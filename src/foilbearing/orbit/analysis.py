@@ -44,8 +44,11 @@ class OrbitAnalysis:
 
     def headline(self, result: OrbitResult) -> dict[str, Any]:
         """Unit-named keys: onset_speed_rpm, whip_frequency_Hz, divergence_speed_rpm, ...;
-        ``grid``: [n_theta, n_z] of the grid the run was on (the case's orbit grid)."""
+        ``grid``: [n_theta, n_z] of the grid the run was on (the case's orbit grid);
+        ``actuator_reading``: the actuator in the film (``"lobe+compliant"``, docs/model.md
+        §3.8), None without actuators."""
         o = self.onset
+        act = result.case.actuators
         return {
             "onset_speed_rpm": None if o is None else o.onset_speed_rpm,
             "whip_frequency_Hz": None if o is None else o.whirl_frequency_hz,
@@ -61,6 +64,7 @@ class OrbitAnalysis:
             "mean_power_loss_W": mean_power_loss(result),
             "steps": result.steps,
             "grid": [result.case.grid.n_theta, result.case.grid.n_z],
+            "actuator_reading": (None if act is None else f"{act.preload_response}+{act.dynamics}"),
         }
 
 

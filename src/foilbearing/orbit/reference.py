@@ -4,9 +4,13 @@ The fast stepper of :mod:`foilbearing.orbit` integrates ``dQ(y)/dt = f(y, t)``
 implicitly. Here the same system is written explicitly, ``dy/dt = M(y)⁻¹ …``:
 ``d(PH)/dt = H dP/dt + P dH/dt`` and the actuator part of ``dH/dt`` depends on
 the row mean of ``dP/dt``, so each θ-row is a diagonal-plus-rank-one system,
-solved by the Sherman–Morrison formula. solve_ivp's BDF then integrates it with
-a finite-difference Jacobian on the known sparsity pattern. It is slow and
-exists to check the fast stepper (tests and ``benchmarks/bench_orbit.py``).
+solved by the Sherman–Morrison formula. Lobes that follow their stacks
+(``preload_response = "lobe"``, ``dynamics = "compliant"``) add ``Σ_n lobe_n(θ)
+dD_n/dt`` to ``dH/dt``, with ``dD_n/dt`` the change of the pressure at stinger n: n_lobe
+further unknowns, eliminated by a small dense solve over the row solutions.
+solve_ivp's BDF then integrates it with a finite-difference Jacobian on the
+known sparsity pattern. It is slow and exists to check the fast stepper (tests
+and ``benchmarks/bench_orbit.py``).
 
 Under top-foil lift-off the film holds no sub-ambient pressure: here as the
 projected dynamics of that constraint, independent of the fast stepper's
@@ -60,6 +64,36 @@ def _row_rates(
     return free * (b - P * (a * m)[:, None]) / H[:, None] + held * rate
 
 
+def _film_rates(
+    sim: OrbitSimulation,
+    b: FloatArray,
+    a: FloatArray,
+    P: FloatArray,
+    H: FloatArray,
+    held: FloatArray,
+    rate: FloatArray,
+) -> FloatArray:
+    """dP/dt of each cell from ``H dP/dt + P (a mean_row(dP/dt) + Σ_n lobe_n ξ_n) = b``.
+
+    ``ξ_n = dD_n/dt = gain_n · lobe_rows_n @ mean_row(dP/dt)``, the rate of the lobes
+    that follow their stacks; without such lobes this is :func:`_row_rates`. The
+    row solve is affine in b, so ξ solves ``(I + G M R(P lobe)) ξ = G M R(b)`` with R
+    the row solve of the held cells' rates removed (:func:`_row_rates`), M the mean at
+    the stingers and G the gains.
+    """
+    dp = _row_rates(b, a, P, H, held, rate)
+    sys_ = sim.system
+    if sys_.n_lobe == 0:
+        return dp
+    gain = sys_.lobe_gain(P)
+    zero = np.zeros_like(P)
+    cols = [_row_rates(P * lobe[:, None], a, P, H, held, zero) for lobe in sys_.lobes]
+    at_stingers = gain[:, None] * sys_.lobe_rows  # ξ = at_stingers @ mean_row(dP/dt)
+    small = np.eye(sys_.n_lobe) + np.column_stack([at_stingers @ c.mean(axis=1) for c in cols])
+    xi = np.linalg.solve(small, at_stingers @ dp.mean(axis=1))
+    return dp - sum((x * c for x, c in zip(xi, cols, strict=True)), np.zeros_like(P))
+
+
 def _derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArray:
     sys_ = sim.system
     g = sys_.grid
@@ -81,12 +115,12 @@ def _derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArray:
     a = sys_.c_act * active  # coefficient of P times the row mean of dP/dt
     h_row = H[:, 0]
     no_hold = np.zeros_like(P)
-    dp = _row_rates(b, a, P, h_row, no_hold, no_hold)
+    dp = _film_rates(sim, b, a, P, h_row, no_hold, no_hold)
     if sys_.lift_off:
         relax = (1.0 - P) / HOLD_TIME
         held = (relax > dp).astype(float)
         for _ in range(8):  # holding cells changes the others' rates through the foil
-            dp = _row_rates(b, a, P, h_row, held, relax)
+            dp = _film_rates(sim, b, a, P, h_row, held, relax)
             more = ((relax > dp) & (held == 0.0)).astype(float)
             if not more.any():
                 break
@@ -106,6 +140,10 @@ def _sparsity(sim: OrbitSimulation) -> sp.csr_matrix:
     pp = sp.kron(blocks, np.ones((nz, nz)))
     pu = sp.kron(blocks, np.ones((nz, 1)))
     up = sp.kron(sp.eye(nt), np.ones((1, nz)))
+    if sys_.n_lobe:  # a lobe's cells follow the pressure at its stinger
+        lobe_cells = np.repeat(sys_.lobes != 0.0, nz, axis=1).T.astype(float)  # (n, n_lobe)
+        stinger_cells = np.repeat(sys_.lobe_rows != 0.0, nz, axis=1).astype(float)
+        pp = pp + sp.csr_matrix(lobe_cells @ stinger_cells)
     dense_cols = sp.csr_matrix(np.ones((n, 4)))
     top = sp.hstack([pp, pu, dense_cols])
     mid = sp.hstack([up, sp.eye(nt), sp.csr_matrix((nt, 4))])

@@ -64,14 +64,6 @@ class OrbitSimulation:
                 raise InputError("a voltage program needs a case with [actuators]")
             voltage.check(act.max_voltage, self.n_act)
         held = act is not None and act.dynamics == "held"
-        if act is not None and (act.preload_response, act.dynamics) == ("lobe", "compliant"):
-            raise InputError(
-                "actuators.preload_response = 'lobe' with dynamics = 'compliant': the orbit "
-                "does not integrate this reading yet (the lobes would follow the film at the "
-                "whirl's frequency); the static and linear analyses take it, the orbit takes "
-                "the other three (docs/model.md §3.8)",
-                source=case.source,
-            )
         if held and voltage is not None and voltage.observes:
             raise InputError(
                 "actuators.dynamics = 'held' with a closed-loop controller: the held stingers "
@@ -93,6 +85,10 @@ class OrbitSimulation:
             loss_factor=gamma,
             film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
             lift_off=self.model.lift_off,
+            # Lobes that follow their stacks (lobe + compliant): D_n(P) inside the film.
+            lobes=self.model.lobe_shapes if self.model.lobe and not held else None,
+            lobe_rows=self.model.actuator_rows,
+            stack_compliance=self.model.stack_compliance,
         )
         # Unit preload lobes per actuator (or shim), so r_p follows the voltages in time.
         if act is not None:

@@ -406,6 +406,10 @@ def jacobian_blocks_py(
         Lift-off branches (``d`` held, ``−d`` free, zeros without lift-off).
     clamped : ndarray of bool, shape (n,)
         Cells held at ambient (rows ``d e_k`` in B, zero rows of jh and a_pe).
+    a_pl : ndarray, shape (n, n_lobe)
+        ``jh ∂H/∂D_n``: the unit lobes that follow their stacks as film columns.
+    lobe_gain : ndarray, shape (n_lobe,)
+        ``∂D_n/∂q(θ_n)``.
     """
     P, _U, _eps, _v = system.split(y)
     H, _q = system.film(y, inputs.preload)
@@ -435,18 +439,39 @@ def jacobian_blocks_py(
     set_unit_rows(jc, rows, d[rows], g.n_theta, g.n_z)
     jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
     a_pe = jh_mat @ system.dh_de
-    return H, jp, jh, active, jc, np.asarray(a_pe), d, clamped
+    a_pl = jh_mat @ np.repeat(system.lobes.T, g.n_z, axis=0)
+    gain = system.lobe_gain(P)
+    return H, jp, jh, active, jc, np.asarray(a_pe), d, clamped, np.asarray(a_pl), gain
+
+
+def lobe_correct_py(
+    x: FloatArray, lobe: tuple[FloatArray, ...], system: TransientSystem
+) -> FloatArray:
+    """Twin of :func:`~foilbearing.reynolds._kernels.lobe_correct`: ``B'⁻¹ b`` from
+    ``x = B⁻¹ b`` (a new array), ``lobe = (B⁻¹ a_pl, (I + L B⁻¹ a_pl)⁻¹, gain, lobe_rows)``."""
+    border, inv, gain = lobe[:3]
+    if gain.size == 0:
+        return x
+    L = gain[:, None] * system.lobe_mean
+    return x - border @ (inv @ (L @ x))
 
 
 def border_py(
-    system: TransientSystem, lu: Any, a_pe: FloatArray, c0: float
+    system: TransientSystem,
+    lu: Any,
+    a_pe: FloatArray,
+    c0: float,
+    lobe: tuple[FloatArray, ...] | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """Twin of :func:`~foilbearing.reynolds._kernels.transient_border`.
 
-    ``lu`` is any LU of B with a SuperLU-like ``solve``. Returns
-    ``y_border = B⁻¹ a_pe / c0²`` (n, 2) and ``(I + s_vp y_border)⁻¹`` (2, 2).
+    ``lu`` is any LU of B with a SuperLU-like ``solve``, ``lobe`` the lobes' border
+    (:meth:`TransientSystem.lobe_border`; None: no lobes). Returns
+    ``y_border = B'⁻¹ a_pe / c0²`` (n, 2) and ``(I + s_vp y_border)⁻¹`` (2, 2).
     """
     y_border = np.asarray(lu.solve(np.ascontiguousarray(a_pe / c0**2)), dtype=np.float64)
+    if lobe is not None:
+        y_border = lobe_correct_py(y_border, lobe, system)
     small = np.eye(2) + system.s_vp @ y_border  # Woodbury: I + V^T B^-1 U, V^T = S_vp
     return y_border, np.linalg.inv(small).astype(np.float64)
 
@@ -464,6 +489,8 @@ def solve_py(factor: TransientFactor, g: FloatArray) -> FloatArray:
     # Eliminate the journal: c0 de − dv = g_e, c0 dv − S_vp dP = g_v
     rhs -= arrays.a_pe @ ((g_v + c0 * g_e) / c0**2)
     z = factor.lu.solve(rhs)  # type: ignore[attr-defined]
+    lobe = (arrays.lobe_border, arrays.lobe_inv, arrays.lobe_gain)
+    z = lobe_correct_py(z, lobe, s)
     d_p = z - arrays.y_border @ (arrays.small_inv @ (arrays.s_vp @ z))
     d_e = (arrays.s_vp @ d_p + g_v + c0 * g_e) / c0**2
     d_v = c0 * d_e - g_e

@@ -13,7 +13,7 @@ static solutions), A = ΔθΔZ, σ = 12 μ R²/(p_a C²) (unsteady term of Eq. 4
 physical time: 2Λ ∂/∂τ = σ ∂/∂t), q = max(p̄, 0) the engaged axial-mean gauge
 pressure, and the film (docs/model.md §2-3)
 
-    H = 1 + ε_X cos θ + ε_Y sin θ − r_p(θ, t)/C + U + c_a q.
+    H = 1 + ε_X cos θ + ε_Y sin θ − r_p(θ, t)/C + U + c_a q + Σ_n D_n lobe_n(θ).
 
 The bump is a spring k_b in parallel with a viscous damper c_b = γ k_b/ω (the
 loss factor's equivalent at the running speed, docs/model.md §3) in series
@@ -117,6 +117,13 @@ class TransientSystem:
         p_a R²/(m C): film force per unit Σ w(P − 1) as an acceleration of ε, 1/s².
     lift_off
         Top-foil lift-off: no sub-ambient film pressure (module docstring).
+    lobes
+        Unit preload lobes of the actuators whose compression lowers their whole lobe
+        during the motion, shape (n_lobe, n_theta); None or empty: no such lobes.
+    lobe_rows
+        Interpolation at those actuators' angles, shape (n_lobe, n_theta).
+    stack_compliance
+        c_s = p_a/(C (k_p + 4k_sp)) of those stacks, in C per unit P.
     """
 
     def __init__(
@@ -128,6 +135,9 @@ class TransientSystem:
         loss_factor: float,
         film_force_scale: float,
         lift_off: bool = False,
+        lobes: FloatArray | None = None,
+        lobe_rows: FloatArray | None = None,
+        stack_compliance: float = 0.0,
     ) -> None:
         self.grid = grid
         self.n = grid.size
@@ -145,6 +155,15 @@ class TransientSystem:
         self.w = np.vstack([w_x.ravel(), w_y.ravel()])
         self.force_scale = film_force_scale
         self.size = self.n + self.nt + 4
+        if lobes is None or len(lobes) == 0:
+            lobes = lobe_rows = np.zeros((0, self.nt))
+        assert lobe_rows is not None
+        self.lobes = np.ascontiguousarray(lobes, dtype=float)
+        self.lobe_rows = np.ascontiguousarray(lobe_rows, dtype=float)
+        self.n_lobe = self.lobes.shape[0]
+        self.c_stack = float(stack_compliance) if self.n_lobe else 0.0
+        # ∂D_n/∂P per unit gain: the interpolation at the stinger of the θ-rows' mean, (n_lobe, n)
+        self.lobe_mean = np.repeat(self.lobe_rows, grid.n_z, axis=1) / grid.n_z
         self.ws = Workspace(grid)
         self.expand = sp.kron(sp.eye(self.nt), np.ones((grid.n_z, 1)), format="csr")
         self.mean = sp.kron(sp.eye(self.nt), np.ones((1, grid.n_z)) / grid.n_z, format="csr")
@@ -174,6 +193,9 @@ class TransientSystem:
             grid.d_theta,
             grid.d_z,
             grid.n_z,
+            self.lobes,
+            self.lobe_rows,
+            self.c_stack,
         )
         self.pattern = kern.StencilPattern(self.diag_slots, self.jh_rows, self.ws.indptr)
         # ... as the plain tuples the kernels take (kernels/groups.py says why).
@@ -196,7 +218,18 @@ class TransientSystem:
         P, U, eps, _ = self.split(y)
         q = np.maximum(P.mean(axis=1) - 1.0, 0.0)
         row = 1.0 + eps[0] * self.cos_t + eps[1] * self.sin_t - preload + U + self.c_act * q
+        row = row + self.stack_compression(P) @ self.lobes
         return np.repeat(row[:, None], self.grid.n_z, axis=1), q
+
+    def stack_compression(self, P: FloatArray) -> FloatArray:
+        """D_n = c_s max(q(θ_n), 0) of the lobes that follow their stacks, in C (n_lobe,)."""
+        q_stack = self.lobe_rows @ (np.reshape(P, self.grid.shape).mean(axis=1) - 1.0)
+        return self.c_stack * np.maximum(q_stack, 0.0)
+
+    def lobe_gain(self, P: FloatArray) -> FloatArray:
+        """∂D_n/∂q(θ_n): c_s where the stack is loaded, else 0 (n_lobe,)."""
+        q_stack = self.lobe_rows @ (np.reshape(P, self.grid.shape).mean(axis=1) - 1.0)
+        return np.where(q_stack > 0.0, self.c_stack, 0.0)
 
     def storage(self, y: FloatArray, inputs: Inputs) -> FloatArray:
         """Q(y): the quantities whose time derivative the system states."""
@@ -349,6 +382,8 @@ class TransientSystem:
             jc=np.empty(self._jc.size),
             a_pe=np.empty((n, 2)),
             lift_state=np.zeros(n) if branches is None else branches.copy(),
+            a_pl=np.empty((n, self.n_lobe)),
+            lobe_gain=np.empty(self.n_lobe),
         )
         kern.transient_jacobian(
             y, tuple(step), *self.kernel_groups, self.lift_off, branches is None, tuple(blocks)
@@ -357,12 +392,13 @@ class TransientSystem:
         lu = factor_coupled(jc, self.c_indices, self.c_indptr, g.n_theta, g.n_z)
         # The compiled solves need the block cyclic factors (not the SuperLU fallback).
         fac = lu._fac if isinstance(lu, BlockCyclicLU) else None
+        lobe = self.lobe_border(lu, blocks.a_pl, blocks.lobe_gain)
         if fac is not None:
             y_border = np.empty((n, 2))
             small_inv = np.empty((2, 2))
-            kern.transient_border(fac, a_pe, self.s_vp, c0, y_border, small_inv)
+            kern.transient_border(fac, a_pe, self.s_vp, c0, lobe, y_border, small_inv)
         else:
-            y_border, small_inv = border_py(self, lu, a_pe, c0)
+            y_border, small_inv = border_py(self, lu, a_pe, c0, lobe)
         arrays = kern.FactorArrays(
             fac,  # type: ignore[arg-type]  # None for the fallback, which is not compiled
             blocks.jh,
@@ -374,10 +410,27 @@ class TransientSystem:
             step.rate,
             blocks.active,
             blocks.lift_state,
+            *lobe[:3],
         )
         factor = TransientFactor(self, lu, arrays)
         factor.coupled_data = jc
         return factor
+
+    def lobe_border(
+        self, lu: object, a_pl: FloatArray, gain: FloatArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """The lobes' Woodbury border of a factorisation (:func:`~.reynolds._kernels.lobe_correct`).
+
+        ``B' = B + a_pl L`` with ``L = gain_n · lobe_mean_n`` (∂D/∂P); returns
+        ``(B⁻¹ a_pl, (I + L B⁻¹ a_pl)⁻¹, gain, lobe_rows)``, empty without lobes.
+        ``lu`` is the LU of B (any with a ``solve`` of (n, k) right-hand sides).
+        """
+        if self.n_lobe == 0:
+            return np.zeros((self.n, 0)), np.zeros((0, 0)), gain, self.lobe_rows
+        solved = lu.solve(np.ascontiguousarray(a_pl))  # type: ignore[attr-defined]
+        border: FloatArray = np.ascontiguousarray(solved, dtype=np.float64)
+        small = np.eye(self.n_lobe) + (gain[:, None] * self.lobe_mean) @ border
+        return border, np.linalg.inv(small).astype(np.float64), gain, self.lobe_rows
 
     def min_film(self, y: FloatArray, preload: FloatArray) -> float:
         """Smallest film thickness h/C."""
@@ -403,6 +456,9 @@ class TransientSystem:
         dq_dp = sp.diags(active) @ self.mean  # (nt, n)
         # ∂H/∂P through the actuator compliance, ∂H/∂U, ∂H/∂ε (per cell)
         dh_dp = self.expand @ sp.diags(self.c_act) @ dq_dp
+        if self.n_lobe:  # the lobes follow their stacks: D_n = c_s max(q(θ_n), 0)
+            dd_dp = self.lobe_gain(P)[:, None] * self.lobe_mean  # (n_lobe, n)
+            dh_dp = dh_dp + sp.csr_matrix(np.repeat(self.lobes.T, g.n_z, axis=0) @ dd_dp)
         dh_du = self.expand
         dh_de = sp.csr_matrix(
             np.column_stack([np.repeat(self.cos_t, g.n_z), np.repeat(self.sin_t, g.n_z)])

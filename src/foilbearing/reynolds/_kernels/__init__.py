@@ -63,6 +63,7 @@ their names are all here.
 
 from foilbearing.reynolds._kernels.bdf import (
     bdf_setup,
+    lobe_correct,
     transient_border,
     transient_jacobian,
     transient_residual,
@@ -148,6 +149,7 @@ __all__ = [
     "jacobian_H",
     "jacobian_P",
     "lift_off_rows",
+    "lobe_correct",
     "newton_update",
     "residual",
     "stencil_pattern",

@@ -29,30 +29,51 @@ IntArray = NDArray[np.int64]
 
 @njit(cache=True)
 def _film_rows(
-    y: FloatArray, preload: FloatArray, model: Group, q: FloatArray, h_row: FloatArray
+    y: FloatArray,
+    preload: FloatArray,
+    model: Group,
+    q: FloatArray,
+    h_row: FloatArray,
+    q_stack: FloatArray,
 ) -> float:
     """Engaged mean gauge pressure q and film H per θ-row of a transient state.
 
-    Fills ``q[i] = max(mean_j P[i, j] − 1, 0)`` and
-    ``h_row[i] = 1 + ε_X cos θ_i + ε_Y sin θ_i − r_p,i/C + U_i + c_a,i q_i``;
+    Fills ``q[i] = max(mean_j P[i, j] − 1, 0)``,
+    ``h_row[i] = 1 + ε_X cos θ_i + ε_Y sin θ_i − r_p,i/C + U_i + c_a,i q_i
+    + Σ_n D_n lobe_n(θ_i)`` and, for each lobe that follows its stack, the gauge
+    pressure at its stinger ``q_stack[n] = lobe_rows_n @ (p̄ − 1)``, whose compression
+    is ``D_n = c_stack max(q_stack[n], 0)`` (:meth:`foilbearing.film.FilmModel.film`);
     returns ``min_i h_row[i]`` (NaN if any row is NaN).
     """
     n_theta = q.shape[0]
-    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
+    lobes, lobe_rows, c_stack = model[10:]
     n = n_theta * n_z
     e_x = y[n + n_theta]
     e_y = y[n + n_theta + 1]
-    h_min = np.inf
-    bad = False
+    n_lobe = lobes.shape[0]
     for i in range(n_theta):
         acc = 0.0
         for j in range(n_z):
             acc += y[i * n_z + j]
-        qi = acc / n_z - 1.0
+        q[i] = acc / n_z - 1.0
+    if n_lobe > 0:
+        for a in range(n_lobe):
+            acc = 0.0
+            for i in range(n_theta):
+                acc += lobe_rows[a, i] * q[i]
+            q_stack[a] = acc
+    h_min = np.inf
+    bad = False
+    for i in range(n_theta):
+        qi = q[i]
         if qi < 0.0:
             qi = 0.0
         q[i] = qi
         h = 1.0 + e_x * cos_t[i] + e_y * sin_t[i] - preload[i] + y[n + i] + c_act[i] * qi
+        for a in range(n_lobe):
+            if q_stack[a] > 0.0:
+                h += c_stack * q_stack[a] * lobes[a, i]
         h_row[i] = h
         if h != h:
             bad = True
@@ -111,12 +132,13 @@ def transient_residual(
         Minimum film ``min H`` (NaN if the film holds a NaN).
     """
     c0, hist, lam, rate, preload, force = step
-    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
+    lobes, lobe_rows, c_stack = model[10:]
     n_theta, n_z = film.shape
     n = n_theta * n_z
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
-    h_min = _film_rows(y, preload, model, q, h_row)
+    h_min = _film_rows(y, preload, model, q, h_row, np.empty(lobes.shape[0]))
     for i in range(n_theta):
         for j in range(n_z):
             film[i, j] = h_row[i]
@@ -175,10 +197,11 @@ def transient_storage(y: FloatArray, preload: FloatArray, model: Group, out: Flo
         Minimum film ``min H`` (NaN if the film holds a NaN).
     """
     n_theta = preload.shape[0]
-    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
+    lobes, lobe_rows, c_stack = model[10:]
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
-    h_min = _film_rows(y, preload, model, q, h_row)
+    h_min = _film_rows(y, preload, model, q, h_row, np.empty(lobes.shape[0]))
     for i in range(n_theta):
         h = h_row[i]
         for j in range(n_z):
@@ -187,6 +210,62 @@ def transient_storage(y: FloatArray, preload: FloatArray, model: Group, out: Flo
     for k in range(n_theta * n_z, y.shape[0]):
         out[k] = y[k]
     return h_min
+
+
+@njit(cache=True, nogil=True)
+def lobe_correct(
+    x: FloatArray,
+    lobe_border: FloatArray,
+    lobe_inv: FloatArray,
+    lobe_gain: FloatArray,
+    lobe_rows: FloatArray,
+) -> None:
+    """Turn ``x = B⁻¹ b`` into ``B'⁻¹ b`` in place, ``B' = B + a_pl L`` (the lobes' border).
+
+    Woodbury: ``B'⁻¹ b = x − Y (I + L Y)⁻¹ L x`` with ``Y = B⁻¹ a_pl``
+    (``lobe_border``), ``(I + L Y)⁻¹`` (``lobe_inv``) and
+    ``L x = lobe_gain_n · lobe_rows_n @ mean_row(x)``: the change of each lobe's
+    compression D_n with the pressures (:class:`~.groups.FactorArrays`). Nothing to do
+    without lobes. Twin: :func:`foilbearing.reynolds.reference.lobe_correct_py`.
+
+    Parameters
+    ----------
+    x : ndarray, shape (n, k)
+        Solutions with B, corrected in place.
+    lobe_border, lobe_inv, lobe_gain : ndarray
+        As :class:`~.groups.FactorArrays`.
+    lobe_rows : ndarray, shape (n_lobe, n_theta)
+        Interpolation at the stingers (:class:`~.groups.FilmConstants`).
+    """
+    n_lobe = lobe_gain.shape[0]
+    if n_lobe == 0:
+        return
+    n_theta = lobe_rows.shape[1]
+    n = x.shape[0]
+    n_z = n // n_theta
+    t = np.empty(n_lobe)
+    u = np.empty(n_lobe)
+    for c in range(x.shape[1]):
+        for a in range(n_lobe):
+            acc = 0.0
+            for i in range(n_theta):
+                wt = lobe_rows[a, i]
+                if wt != 0.0:
+                    row = 0.0
+                    for j in range(n_z):
+                        row += x[i * n_z + j, c]
+                    acc += wt * row
+            t[a] = lobe_gain[a] * acc / n_z
+        for a in range(n_lobe):
+            acc = 0.0
+            for b in range(n_lobe):
+                acc += lobe_inv[a, b] * t[b]
+            u[a] = acc
+        for r in range(n):
+            acc = 0.0
+            for a in range(n_lobe):
+                acc += lobe_border[r, a] * u[a]
+            x[r, c] -= acc
 
 
 @njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
@@ -201,8 +280,8 @@ def transient_solve(
     """Newton update ``Δy`` with ``J Δy = g`` by block elimination (factors of the transient matrix).
 
     Eliminates the bump states U and the journal (ε, v), solves the pressure
-    block with :func:`block_cyclic_solve` and applies the rank-2 Woodbury
-    correction of the film force. Twin:
+    block with :func:`block_cyclic_solve` (and the lobes' border, :func:`lobe_correct`)
+    and applies the rank-2 Woodbury correction of the film force. Twin:
     :func:`foilbearing.reynolds.reference.solve_py` (same result
     up to rounding).
 
@@ -225,8 +304,10 @@ def transient_solve(
     out : ndarray, shape (n + n_theta + 4,)
         Filled with Δy.
     """
-    fac, jh_data, a_pe, s_vp, y_border, small_inv, c0, rate, active, lift_state = factor
-    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    fac, jh_data, a_pe, s_vp, y_border, small_inv, c0, rate, active, lift_state = factor[:10]
+    lobe_border, lobe_inv, lobe_gain = factor[10:]
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
+    lobes, lobe_rows, c_stack = model[10:]
     diag_slots, jh_rows, jh_indptr = pattern
     n_theta = active.shape[0]
     n = work.shape[0]
@@ -245,6 +326,7 @@ def transient_solve(
             acc += jh_data[s] * g_u[jh_rows[s]]
         work[r, 0] = g[r] - acc - (a_pe[r, 0] * b0 + a_pe[r, 1] * b1)
     block_cyclic_solve(fac, work, work)
+    lobe_correct(work, lobe_border, lobe_inv, lobe_gain, lobe_rows)
     t0 = 0.0
     t1 = 0.0
     for r in range(n):
@@ -286,8 +368,10 @@ def transient_jacobian(
     Fills the film, the row-scaled Reynolds Jacobians ``c0·diag(H) − ∂R/∂P/(Aσ)``
     and ``c0·diag(P) − ∂R/∂H/(Aσ)`` (pattern :func:`stencil_pattern`), the
     engaged rows, the pressure block B on :func:`coupled_pattern` (bump and
-    actuator eliminated, :func:`coupled_jacobian`) and the border
-    ``a_pe = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂ε``. Twin:
+    actuator eliminated, :func:`coupled_jacobian`), the border
+    ``a_pe = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂ε`` and, for lobes that follow their
+    stacks, the lobes' border ``a_pl = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂D_n`` with
+    ``∂D_n/∂q(θ_n)`` (``lobe_gain``). Twin:
     :func:`foilbearing.reynolds.reference.jacobian_blocks_py`
     (same result up to rounding: the axial means are summed in another order).
 
@@ -321,15 +405,20 @@ def transient_jacobian(
     int
         Number of cells held at ambient (0 without lift-off).
     """
-    H, jp, jh, active, jc, a_pe, lift_state = blocks
+    H, jp, jh, active, jc, a_pe, lift_state, a_pl, lobe_gain = blocks
     c0, hist, lam, rate, preload, force = step
-    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model
+    cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
+    lobes, lobe_rows, c_stack = model[10:]
     diag_slots, jh_rows, jh_indptr = pattern
     n_theta, n_z = H.shape
     n = n_theta * n_z
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
-    _film_rows(y, preload, model, q, h_row)
+    n_lobe = lobes.shape[0]
+    q_stack = np.empty(n_lobe)
+    _film_rows(y, preload, model, q, h_row, q_stack)
+    for a in range(n_lobe):
+        lobe_gain[a] = c_stack if q_stack[a] > 0.0 else 0.0
     for i in range(n_theta):
         for j in range(n_z):
             H[i, j] = h_row[i]
@@ -389,6 +478,11 @@ def transient_jacobian(
             a1 += jh[k] * sin_t[row]
         a_pe[r, 0] = a0
         a_pe[r, 1] = a1
+        for a in range(n_lobe):
+            acc = 0.0
+            for k in range(jh_indptr[r], jh_indptr[r + 1]):
+                acc += jh[k] * lobes[a, jh_rows[k]]
+            a_pl[r, a] = acc
     return n_clamped
 
 
@@ -398,14 +492,15 @@ def transient_border(
     a_pe: FloatArray,
     s_vp: FloatArray,
     c0: float,
+    lobe: Group,
     y_border: FloatArray,
     small_inv: FloatArray,
 ) -> None:
     """Border solve and 2×2 Woodbury inverse of the transient Newton matrix.
 
-    ``y_border = B⁻¹ a_pe / c0²`` with the factors of :func:`block_cyclic_factor`
-    and ``small_inv = (I + s_vp y_border)⁻¹`` in closed form. Twin:
-    :func:`foilbearing.reynolds.reference.border_py`.
+    ``y_border = B'⁻¹ a_pe / c0²`` with the factors of :func:`block_cyclic_factor`
+    (and the lobes' border, :func:`lobe_correct`) and ``small_inv = (I + s_vp
+    y_border)⁻¹`` in closed form. Twin: :func:`foilbearing.reynolds.reference.border_py`.
 
     Parameters
     ----------
@@ -417,17 +512,21 @@ def transient_border(
         Film force per unit P as an acceleration, 1/s².
     c0 : float
         BDF leading coefficient, 1/s.
+    lobe : tuple
+        ``(lobe_border, lobe_inv, lobe_gain, lobe_rows)`` (:func:`lobe_correct`).
     y_border : ndarray, shape (n, 2)
-        Filled with ``B⁻¹ a_pe / c0²``.
+        Filled with ``B'⁻¹ a_pe / c0²``.
     small_inv : ndarray, shape (2, 2)
         Filled with the inverse of the Woodbury matrix.
     """
+    lobe_border, lobe_inv, lobe_gain, lobe_rows = lobe
     n = a_pe.shape[0]
     c2 = c0**2
     for r in range(n):
         y_border[r, 0] = a_pe[r, 0] / c2
         y_border[r, 1] = a_pe[r, 1] / c2
     block_cyclic_solve(fac, y_border, y_border)
+    lobe_correct(y_border, lobe_border, lobe_inv, lobe_gain, lobe_rows)
     m00 = 1.0
     m01 = 0.0
     m10 = 0.0

@@ -66,6 +66,16 @@ class FilmConstants(NamedTuple):
         Cell sizes Δθ, ΔZ.
     n_z : int
         Cells per θ-row.
+    lobes : ndarray, shape (n_lobe, n_theta)
+        The unit preload lobe of each actuator whose compression lowers its whole lobe
+        during the motion (``preload_response = "lobe"``, ``dynamics = "compliant"``);
+        ``n_lobe = 0`` under every other reading.
+    lobe_rows : ndarray, shape (n_lobe, n_theta)
+        Periodic linear interpolation at each such actuator's angle: ``lobe_rows @ f``
+        is a θ-row field f at θ_n.
+    c_stack : float
+        The stack's compliance ``p_a/(C (k_p + 4k_sp))``: the compression
+        ``D_n = c_stack max(lobe_rows_n @ (p̄ − 1), 0)`` in units of C (0 without lobes).
     """
 
     cos_t: FloatArray
@@ -78,6 +88,9 @@ class FilmConstants(NamedTuple):
     d_theta: float
     d_z: float
     n_z: int
+    lobes: FloatArray
+    lobe_rows: FloatArray
+    c_stack: float
 
 
 class StencilPattern(NamedTuple):
@@ -139,7 +152,7 @@ class FactorArrays(NamedTuple):
     s_vp : ndarray, shape (2, n)
         Film force per unit P as an acceleration, 1/s².
     y_border : ndarray, shape (n, 2)
-        ``B⁻¹ a_pe / c0²``.
+        ``B'⁻¹ a_pe / c0²``, B' the pressure block with the lobes' border (below).
     small_inv : ndarray, shape (2, 2)
         Inverse of the Woodbury matrix ``I + s_vp y_border``.
     c0, rate : float
@@ -150,6 +163,14 @@ class FactorArrays(NamedTuple):
         Branch of each pressure cell under lift-off: ``d > 0`` held at ambient,
         ``−d < 0`` free (d the diagonal of its Newton row, 1/s), 0 where the
         film may hold sub-ambient pressure; moved by the Newton iterations.
+    lobe_border : ndarray, shape (n, n_lobe)
+        ``B⁻¹ a_pl``, ``a_pl = jh ∂H/∂D_n`` (the unit lobes as film columns): the
+        pressure block with lobes following their stacks is ``B' = B + a_pl L``,
+        ``L = ∂D/∂P`` (rank n_lobe, applied by Woodbury: :func:`.bdf.lobe_correct`).
+    lobe_inv : ndarray, shape (n_lobe, n_lobe)
+        Inverse of ``I + L lobe_border``.
+    lobe_gain : ndarray, shape (n_lobe,)
+        ``∂D_n/∂q(θ_n)``: ``c_stack`` where the stack is loaded, else 0.
     """
 
     fac: FloatArray
@@ -162,6 +183,9 @@ class FactorArrays(NamedTuple):
     rate: float
     active: FloatArray
     lift_state: FloatArray
+    lobe_border: FloatArray
+    lobe_inv: FloatArray
+    lobe_gain: FloatArray
 
 
 class JacobianBlocks(NamedTuple):
@@ -181,6 +205,10 @@ class JacobianBlocks(NamedTuple):
         The border ``jh ∂H/∂ε``.
     lift_state : ndarray, shape (n,)
         The branch of each cell (as :class:`FactorArrays`).
+    a_pl : ndarray, shape (n, n_lobe)
+        The lobes' border ``jh ∂H/∂D_n``.
+    lobe_gain : ndarray, shape (n_lobe,)
+        ``∂D_n/∂q(θ_n)`` (as :class:`FactorArrays`).
     """
 
     film: FloatArray
@@ -190,6 +218,8 @@ class JacobianBlocks(NamedTuple):
     jc: FloatArray
     a_pe: FloatArray
     lift_state: FloatArray
+    a_pl: FloatArray
+    lobe_gain: FloatArray
 
 
 class NewtonBuffers(NamedTuple):

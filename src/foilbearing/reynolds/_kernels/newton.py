@@ -51,7 +51,9 @@ def transient_newton_step(
         Smallest pressure after the update (NaN if not updated).
     """
     film, res, g, slack, work, dy, _q_out = buf
-    fac, jh_data, a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, lift_state = factor
+    fac, jh_data, a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, lift_state = factor[
+        :10
+    ]
     h_min = transient_residual(y, step, model, lift_state, film, res, g, slack)
     if h_min <= 0.0:
         return h_min, np.nan, np.nan
@@ -157,7 +159,9 @@ def transient_newton_solve(
         Minimum film of the converged y (NaN otherwise).
     """
     newton_tol, newton_fraction, max_newton = controls
-    fac, jh_data, a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, lift_state = factor
+    fac, jh_data, a_pe, s_vp, y_border, small_inv, fac_c0, fac_rate, active, lift_state = factor[
+        :10
+    ]
     film, res, g, slack, work, dy, q_out = buf
     c0, hist, lam, rate, preload, force = step
     prev = np.inf
