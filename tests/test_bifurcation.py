@@ -226,6 +226,43 @@ def test_the_bearing_whirl_branch_from_its_linear_onset() -> None:
     assert extent == pytest.approx(wb.amplitude[-1], rel=0.02)
 
 
+def test_under_lift_off_the_0V_onset_is_subcritical_as_transients_confirm() -> None:
+    """The default C-GFB at 0 V under top-foil lift-off, on 32 x 4, its monodromy from the
+    stepper's variational equations: the branch starts at the linear onset of the same grid
+    (0.5 %), and its first cycles lie below the onset and are unstable: subcritical. The
+    orbit itself confirms it at the second cycle's speed (0.98 of the onset): a transient
+    started at 0.6 times that cycle's distance from the equilibrium decays, one started at
+    1.5 times grows (measured 1.22 -> 0.64 µm and 3.16 -> 5.40 µm in 60 whirl periods)."""
+    from dataclasses import replace
+
+    from foilbearing.bifurcation.bearing import bearing_flow, whirl_branch
+    from foilbearing.case import Grid, default_case
+
+    rpm = np.pi / 30.0
+    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4))
+    wb = whirl_branch(case, scan=[r * rpm for r in range(40000, 50001, 2500)], steps=0)
+    head = wb.headline()
+    assert head["bifurcation_type"] == "subcritical"
+    assert head["speeds_rpm"][0] * rpm == pytest.approx(wb.hopf_speed, rel=5e-3)
+    assert head["speeds_rpm"][1] * rpm < 0.99 * wb.hopf_speed
+    assert not any(head["stable"])
+    orbit = wb.branch.orbits[1]
+    _flow, parts = bearing_flow(case, wb.whirl_frequency, 1e-4)
+    y_e = parts.equilibrium(orbit.parameter)
+
+    def extent_after(factor: float) -> tuple[float, float]:
+        y = y_e + factor * (orbit.state - y_e)
+        start = parts.run(y, orbit.period, orbit.parameter)
+        later = parts.advance(y, 60 * orbit.period, orbit.parameter)
+        end = parts.run(later, orbit.period, orbit.parameter)
+        size = [max(np.ptp(r.e_x), np.ptp(r.e_y)) / 2.0 for r in (start, end)]
+        return size[0], size[1]
+
+    inside, outside = extent_after(0.6), extent_after(1.5)
+    assert inside[1] < 0.7 * inside[0]  # decays towards the equilibrium
+    assert outside[1] > 1.3 * outside[0]  # grows away from the unstable cycle
+
+
 def test_the_bifurcation_command(write_case, capsys, tmp_path) -> None:
     """``foilbearing bifurcation --json`` gives the issue's keys, with the branch's cycles
     the API's; its figure is written; a scan with no onset in it exits 0 with the linear

@@ -112,6 +112,11 @@ def test_solve_matches_twin_and_jacobian(setup) -> None:
     assert dy is out
     assert _rel(dy, reference.solve_py(factor, rhs)) < 1e-12
     assert _rel(dy, spsolve(sys_.jacobian(y, inp, c0, hist), rhs)) < 1e-9
+    # A block of right-hand sides in one solve equals the column-by-column solves.
+    block = np.column_stack([rhs, np.random.default_rng(8).standard_normal(sys_.size)])
+    both = factor.solve_block(block)
+    assert _rel(both[:, 0], dy) < 1e-12
+    assert _rel(both[:, 1], factor.solve(np.ascontiguousarray(block[:, 1]))) < 1e-12
 
 
 def test_newton_matrix_is_the_derivative_of_the_bdf_residual(setup) -> None:

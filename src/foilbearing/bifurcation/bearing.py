@@ -13,9 +13,13 @@ on the same grid.
 
 The state is scaled for shooting: pressures in p_a, bump deflections and ε in C,
 the journal's velocity in C·ω_H (so that each part of a whirl is of order its
-amplitude). The flow's derivatives are finite differences of stepper runs with a
-tight Newton tolerance (``SHOOTING_SETTINGS``); under top-foil lift-off the flow
-is only piecewise smooth, so its differences need a larger step (``fd_step``).
+amplitude). The flow's derivative with respect to the state, the monodromy of
+shooting, is exact: the variational equations of the stepper's own BDF steps
+(:mod:`foilbearing.orbit.tangent`), one run factored per (state, period, speed) and
+applied to any number of directions. Finite differences of stepper runs with a
+tight Newton tolerance (``SHOOTING_SETTINGS``) remain for the derivatives in the
+period and the speed; under top-foil lift-off the flow is only piecewise smooth,
+so those need a larger step (``fd_step``).
 """
 
 from __future__ import annotations
@@ -51,6 +55,10 @@ SHOOTING_SETTINGS: dict[str, Any] = {
 #: Speeds whose simulations :class:`BearingFlow` keeps (a Newton step needs two or three).
 _KEPT_SPEEDS = 8
 
+#: Largest state whose monodromy shooting forms densely (exact columns, one block solve a
+#: step); larger ones take GMRES and Arnoldi on exact products.
+DENSE_STATES = 600
+
 
 @dataclass
 class BearingFlow:
@@ -63,6 +71,8 @@ class BearingFlow:
     #: Simulations and their static equilibria by speed, the most recent last.
     _sims: dict[float, Any] = field(default_factory=dict)
     _equilibria: dict[float, FloatArray] = field(default_factory=dict)
+    #: The last run factored for its derivative: (state bytes, period, speed) and it.
+    _tangent: tuple[tuple[bytes, float, float], Any] | None = None
 
     def simulation(self, speed: float) -> Any:
         from foilbearing.control import constant_speed
@@ -94,6 +104,24 @@ class BearingFlow:
         if res.status not in ("stopped", "completed"):
             return np.full(self.scale.size, np.nan)  # contact or failure: no flow there
         return np.asarray(res.checkpoint["y"], float) / self.scale
+
+    def tangent(
+        self, y_scaled: FloatArray, duration: float, speed: float, v: FloatArray
+    ) -> FloatArray:
+        """∂φ/∂y₀ · v of the scaled flow, exact (:func:`~foilbearing.orbit.tangent.run_tangent`);
+        v of shape (n,) or (n, m). NaN where the run does not end (contact)."""
+        from foilbearing.orbit.tangent import run_tangent
+
+        y = np.asarray(y_scaled, float)
+        key = (y.tobytes(), float(duration), float(speed))
+        if self._tangent is None or self._tangent[0] != key:
+            self._tangent = (key, run_tangent(self.simulation(speed), y * self.scale, duration))
+        rt = self._tangent[1]
+        v = np.asarray(v, float)
+        if rt is None:
+            return np.full(v.shape, np.nan)
+        grow = self.scale if v.ndim == 1 else self.scale[:, None]
+        return rt.apply(v * grow) / grow
 
     def field(self, y_scaled: FloatArray, speed: float) -> FloatArray:
         """dy/dt by a run over 1/96 of a revolution (the section's normal and ∂φ/∂T)."""
@@ -130,17 +158,26 @@ def bearing_flow(case: Case, whirl: float, fd_step: float) -> tuple[FlowMap, Bea
     flow = FlowMap(
         advance=parts.advance,
         field=parts.field,
+        tangent=parts.tangent,
         fd_step=fd_step,
-        dense_max=0,
+        dense_max=DENSE_STATES,
         krylov_rtol=1e-6,
         krylov_accept=0.1,
+        tangent_blocks=True,
     )
     return flow, parts
 
 
 def _hopf_eigenvector(parts: BearingFlow, speed: float, whirl: float) -> tuple[complex, Any]:
     """The eigenvalue of the semi-discrete system nearest i·whirl at the equilibrium, and
-    its eigenvector (scaled state): ``(∂f/∂y) q = λ (∂Q/∂y) q``."""
+    its eigenvector (scaled state): ``(∂f/∂y) q = λ (∂Q/∂y) q``.
+
+    Under lift-off one set of branches, decided once at the equilibrium, serves both
+    matrices: the held cells' rows (``d (P − 1) = 0``) have no storage, algebraic
+    constraints of the eigenproblem. (Deciding them apart for each matrix let a cell on
+    the lift-off boundary, P = 1 with no net flow, fall on either side and gave spurious
+    eigenvalues: an unstable 38 Hz pair at the 150 V onset on 32 × 4.)
+    """
     import scipy.linalg as sla
 
     sim = parts.simulation(speed)
@@ -148,9 +185,11 @@ def _hopf_eigenvector(parts: BearingFlow, speed: float, whirl: float) -> tuple[c
     y = np.asarray(sim.initial_state(), float)
     inputs = sim.inputs(0.0, sim.volts(0.0), imbalance=False)
     zero = np.zeros(system.size)
-    with_storage = system.jacobian(y, inputs, 1.0, zero).toarray()
-    without = system.jacobian(y, inputs, 0.0, zero).toarray()
-    values, vectors = sla.eig(-without, with_storage - without)
+    branches = system.lift_state(y, inputs, 0.0, zero)
+    storage = system.storage_jacobian(y, inputs.preload).toarray()
+    storage[: system.n][branches > 0.0] = 0.0
+    without = system.jacobian(y, inputs, 0.0, zero, lift_state=branches).toarray()
+    values, vectors = sla.eig(-without, storage)
     finite = np.isfinite(values)
     k = int(np.argmin(np.where(finite, np.abs(values - 1j * whirl), np.inf)))
     return complex(values[k]), vectors[:, k] / parts.scale

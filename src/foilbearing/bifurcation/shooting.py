@@ -68,6 +68,8 @@ class FlowMap:
     krylov_accept
         The relative residual a GMRES step must reach to be taken (an inexact Newton
         step: convergence is judged on the orbit's own residual); above it, an error.
+    tangent_blocks
+        ``tangent`` also takes a block of directions V, shape (n, m), in one call.
     """
 
     advance: Callable[[FloatArray, float, float], FloatArray]
@@ -77,6 +79,7 @@ class FlowMap:
     dense_max: int = 64
     krylov_rtol: float = 1e-8
     krylov_accept: float = 1e-3
+    tangent_blocks: bool = False
 
     def apply(
         self, y0: FloatArray, period: float, p: float, v: FloatArray, end: FloatArray
@@ -89,6 +92,14 @@ class FlowMap:
             return np.zeros_like(v)
         h = self.fd_step * (1.0 + float(np.linalg.norm(y0))) / norm
         return (self.advance(y0 + h * v, period, p) - end) / h
+
+    def apply_block(
+        self, y0: FloatArray, period: float, p: float, block: FloatArray, end: FloatArray
+    ) -> FloatArray:
+        """M V for the columns of V (n, m): one call of a block ``tangent``, else by columns."""
+        if self.tangent is not None and self.tangent_blocks:
+            return np.asarray(self.tangent(y0, period, p, block), float).reshape(block.shape)
+        return np.column_stack([self.apply(y0, period, p, c, end) for c in block.T])
 
 
 @dataclass(frozen=True)
@@ -145,8 +156,7 @@ def floquet_multipliers(
     end = flow.advance(y0, period, p)
     n = y0.size
     if n <= flow.dense_max:
-        mono = np.column_stack([flow.apply(y0, period, p, e, end) for e in np.eye(n)])
-        values = np.linalg.eigvals(mono)
+        values = np.linalg.eigvals(flow.apply_block(y0, period, p, np.eye(n), end))
     else:
         op = LinearOperator((n, n), matvec=lambda v: flow.apply(y0, period, p, np.ravel(v), end))
         values = eigs(op, k=min(count, n - 2), which="LM", return_eigenvectors=False)
@@ -184,7 +194,9 @@ def bordered_solve(
         return np.concatenate([top, rows @ x[:n] + corner @ x[n:]])
 
     if n <= flow.dense_max:
-        mat = np.column_stack([matvec(e) for e in np.eye(n + k)])
+        mat = np.block(
+            [[flow.apply_block(y0, period, p, np.eye(n), end) - np.eye(n), cols], [rows, corner]]
+        )
         x = np.asarray(np.linalg.solve(mat, rhs), float)
         return np.concatenate([x[:n], x[n:] * col_scale])
     op = LinearOperator((n + k, n + k), matvec=matvec)

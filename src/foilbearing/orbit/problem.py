@@ -132,6 +132,11 @@ class StepperProblem:
     make_result
         ``make_result(out, status, message, stats)``: the result of the run from
         its output ``out`` (:class:`~foilbearing.orbit.result.OrbitResult`).
+    on_step
+        ``on_step(t, y, order)``: called after each accepted step with its time, state
+        and the BDF order it took (the start-up's included); None: not called. The
+        run's derivative with respect to its start reads the steps so
+        (:mod:`foilbearing.orbit.tangent`).
     """
 
     size: int
@@ -148,3 +153,4 @@ class StepperProblem:
     observe: Callable[[float, float], None] | None
     program_checkpoint: Callable[[], dict[str, Any]]
     make_result: Callable[[Samples, RunStatus, str, RunStats], OrbitResult]
+    on_step: Callable[[float, FloatArray, int], None] | None = None

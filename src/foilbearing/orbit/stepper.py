@@ -159,6 +159,7 @@ def run(
     status, message, contact = RunStatus.COMPLETED, "", None
     # A closed-loop program reads the displacement samples as they are produced.
     observe = problem.observe
+    on_step = problem.on_step
 
     def result(status: RunStatus, message: str) -> OrbitResult:
         st.past = [(float(times[j] - times[j + 1]), ys[j + 1].copy()) for j in range(count - 1)]
@@ -210,6 +211,8 @@ def run(
                 if h < 1e-9:
                     raise FloatingPointError(f"time step collapsed at t = {t:.6f} s")
             counters[0] += 1
+            if on_step is not None:
+                on_step(t_new, y_new, min(order, count))
             lift_s = [_lift_coordinate(lu, problem.lift_slack), lift_s[0], lift_s[1]]
             if newton.refresh_after is not None and its > newton.refresh_after:
                 lu = None  # a slow step: the next one takes a fresh factor at its predictor

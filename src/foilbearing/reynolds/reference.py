@@ -478,14 +478,18 @@ def border_py(
 
 def solve_py(factor: TransientFactor, g: FloatArray) -> FloatArray:
     """Twin of :func:`~foilbearing.reynolds._kernels.transient_solve` (of
-    ``TransientFactor.solve``): Δy with J Δy = g (any LU with a SuperLU-like ``solve``)."""
+    ``TransientFactor.solve``): Δy with J Δy = g (any LU with a SuperLU-like ``solve``).
+
+    ``g`` may also be a block of right-hand sides, shape (size, m): one solve of the
+    pressure block for all of them (:meth:`TransientFactor.solve_block`)."""
     s = factor.sys
     n, nt, nz = s.n, s.nt, s.grid.n_z
     arrays = factor.arrays
     c0, rate = arrays.c0, arrays.rate
-    g_p, g_u, g_e, g_v = g[:n], g[n : n + nt], g[n + nt : n + nt + 2], g[-2:]
+    g2 = g.reshape(g.shape[0], -1)
+    g_p, g_u, g_e, g_v = g2[:n], g2[n : n + nt], g2[n + nt : n + nt + 2], g2[-2:]
     # Eliminate U: (c0 + rate) dU − rate c_b q'(dP) = g_u
-    rhs = g_p - factor.jh @ np.repeat(g_u / (c0 + rate), nz)
+    rhs = g_p - factor.jh @ np.repeat(g_u / (c0 + rate), nz, axis=0)
     # Eliminate the journal: c0 de − dv = g_e, c0 dv − S_vp dP = g_v
     rhs -= arrays.a_pe @ ((g_v + c0 * g_e) / c0**2)
     z = factor.lu.solve(rhs)  # type: ignore[attr-defined]
@@ -494,9 +498,9 @@ def solve_py(factor: TransientFactor, g: FloatArray) -> FloatArray:
     d_p = z - arrays.y_border @ (arrays.small_inv @ (arrays.s_vp @ z))
     d_e = (arrays.s_vp @ d_p + g_v + c0 * g_e) / c0**2
     d_v = c0 * d_e - g_e
-    dq = arrays.active * d_p.reshape(nt, nz).mean(axis=1)
-    d_u = (g_u + rate * s.c_bump * dq) / (c0 + rate)
-    return np.concatenate([d_p, d_u, d_e, d_v])
+    dq = arrays.active[:, None] * d_p.reshape(nt, nz, -1).mean(axis=1)
+    d_u = (g_u + rate * s.c_bump[:, None] * dq) / (c0 + rate)
+    return np.concatenate([d_p, d_u, d_e, d_v]).reshape(g.shape)
 
 
 def newton_solve_py(

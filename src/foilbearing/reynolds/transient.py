@@ -43,6 +43,7 @@ The branches are the ``lift_state`` of the factor: ``d`` held, ``−d`` free,
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -437,11 +438,73 @@ class TransientSystem:
         return float(self.film(y, preload)[0].min())
 
     # --------------------------------------------------------------- Jacobian
-    def jacobian(self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray) -> sp.csc_matrix:
+    def _film_derivatives(self, P: FloatArray) -> tuple[Any, Any, Any, Any]:
+        """∂q/∂P (n_theta, n) and ∂H/∂P, ∂H/∂U, ∂H/∂ε per cell, sparse, at pressures P."""
+        g = self.grid
+        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+        dq_dp = sp.diags(active) @ self.mean  # (nt, n)
+        # ∂H/∂P through the actuator compliance (and the lobes that follow their stacks)
+        dh_dp = self.expand @ sp.diags(self.c_act) @ dq_dp
+        if self.n_lobe:  # D_n = c_s max(q(θ_n), 0)
+            dd_dp = self.lobe_gain(P)[:, None] * self.lobe_mean  # (n_lobe, n)
+            dh_dp = dh_dp + sp.csr_matrix(np.repeat(self.lobes.T, g.n_z, axis=0) @ dd_dp)
+        return dq_dp, dh_dp, self.expand, sp.csr_matrix(self.dh_de)
+
+    def storage_jacobian(self, y: FloatArray, preload: FloatArray) -> sp.csr_matrix:
+        """∂Q/∂y at y (sparse CSR): ``∂(PH)/∂y`` on the pressure rows, the identity on U, ε, v."""
+        P = self.split(y)[0]
+        H, _q = self.film(y, preload)
+        _dq_dp, dh_dp, dh_du, dh_de = self._film_derivatives(P)
+        p_diag = sp.diags(P.ravel())
+        n, rest = self.n, self.size - self.n
+        top = sp.hstack(
+            [
+                sp.diags(H.ravel()) + p_diag @ dh_dp,
+                p_diag @ dh_du,
+                p_diag @ dh_de,
+                sp.csr_matrix((n, 2)),
+            ]
+        )
+        bottom = sp.hstack([sp.csr_matrix((rest, n)), sp.eye(rest)])
+        return sp.vstack([top, bottom], format="csr")
+
+    def storage_product(self, y: FloatArray, preload: FloatArray, dy: FloatArray) -> FloatArray:
+        """``(∂Q/∂y) dy`` at y for a block of directions dy, shape (size, m); dense and
+        vectorised (:meth:`storage_jacobian` is the same matrix, sparse)."""
+        g = self.grid
+        n, nt, nz = self.n, self.nt, g.n_z
+        m = dy.shape[1]
+        P = self.split(y)[0]
+        h_row = self.film(y, preload)[0][:, 0]
+        d_p = dy[:n].reshape(nt, nz, m)
+        mean = d_p.mean(axis=1)  # (nt, m)
+        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+        d_h = (
+            self.cos_t[:, None] * dy[n + nt]
+            + self.sin_t[:, None] * dy[n + nt + 1]
+            + dy[n : n + nt]
+            + (self.c_act * active)[:, None] * mean
+        )
+        if self.n_lobe:
+            d_h = d_h + self.lobes.T @ (self.lobe_gain(P)[:, None] * (self.lobe_rows @ mean))
+        out = np.empty_like(dy)
+        out[:n] = (h_row[:, None, None] * d_p + P[:, :, None] * d_h[:, None, :]).reshape(n, m)
+        out[n:] = dy[n:]
+        return out
+
+    def jacobian(
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        lift_state: FloatArray | None = None,
+    ) -> sp.csc_matrix:
         """∂/∂y of c0·Q(y) − f(y, t) (the BDF Newton matrix, c0 = α₀/Δt), sparse CSC.
 
         Under lift-off the rows of the cells held at ambient (decided with
-        ``hist``) are ``d e_k`` (the generalised derivative of ``min(d (P − 1), G)``).
+        ``hist``, or given by ``lift_state``, a :meth:`lift_state`) are ``d e_k`` (the
+        generalised derivative of ``min(d (P − 1), G)``).
         """
         P, _U, _eps, _v = self.split(y)
         H, _q = self.film(y, inputs.preload)
@@ -452,17 +515,7 @@ class TransientSystem:
         n = self.n
         j_p = sp.csr_matrix((self.ws.jp, self.ws.indices, self.ws.indptr), shape=(n, n))
         j_h = sp.csr_matrix((self.ws.jh, self.ws.indices, self.ws.indptr), shape=(n, n))
-        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
-        dq_dp = sp.diags(active) @ self.mean  # (nt, n)
-        # ∂H/∂P through the actuator compliance, ∂H/∂U, ∂H/∂ε (per cell)
-        dh_dp = self.expand @ sp.diags(self.c_act) @ dq_dp
-        if self.n_lobe:  # the lobes follow their stacks: D_n = c_s max(q(θ_n), 0)
-            dd_dp = self.lobe_gain(P)[:, None] * self.lobe_mean  # (n_lobe, n)
-            dh_dp = dh_dp + sp.csr_matrix(np.repeat(self.lobes.T, g.n_z, axis=0) @ dd_dp)
-        dh_du = self.expand
-        dh_de = sp.csr_matrix(
-            np.column_stack([np.repeat(self.cos_t, g.n_z), np.repeat(self.sin_t, g.n_z)])
-        )
+        dq_dp, dh_dp, dh_du, dh_de = self._film_derivatives(P)
         scale = 1.0 / (self.area * self.sigma)
         p_diag = sp.diags(P.ravel())
         # Reynolds rows: c0 ∂(PH)/∂y − ∂R/∂y /(Aσ)
@@ -492,7 +545,9 @@ class TransientSystem:
         full = sp.bmat(blocks, format="csr")
         if self.lift_off:
             d = np.zeros(self.size)
-            d[:n] = np.maximum(self.lift_state(y, inputs, c0, hist), 0.0)
+            if lift_state is None:
+                lift_state = self.lift_state(y, inputs, c0, hist)
+            d[:n] = np.maximum(lift_state, 0.0)
             held = (d > 0.0).astype(float)
             full = sp.diags(1.0 - held) @ full + sp.diags(d)
         return sp.csc_matrix(full)

@@ -186,6 +186,12 @@ class TransientFactor:
         )
         return int(outcome), int(its), float(first), float(h_min)
 
+    def solve_block(self, g: FloatArray) -> FloatArray:
+        """ΔY with J ΔY = G for a block of right-hand sides G, shape (size, m): one solve of
+        the pressure block for all columns (:func:`~foilbearing.reynolds.reference.solve_py`
+        on blocks; equal to :meth:`solve` column by column)."""
+        return solve_py(self, np.asarray(g, float))
+
     def solve(self, g: FloatArray, out: FloatArray | None = None) -> FloatArray:
         """Δy with J Δy = g (J the Newton matrix at factorisation).
 
