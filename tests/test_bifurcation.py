@@ -14,6 +14,9 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp, trapezoid
@@ -285,3 +288,31 @@ def test_the_bifurcation_command(write_case, capsys, tmp_path) -> None:
     assert stable["bifurcation_type"] is None and "no Hopf point" in stable["message"]
     assert main([*base, "--voltage", "0,150V"]) == 2
     assert "one voltage" in capsys.readouterr().err
+
+
+def test_the_study_stage_runs_each_reading_as_a_dask_sweep(tmp_path) -> None:
+    """The study's stage (issue 31): at 150 V, under the case's reading and the paper's,
+    each branch a point of a Dask sweep whose file is written beside it; each row is the
+    API's branch (its linear onset and type), the figure is written, and the report's
+    section names the readings and the grid."""
+    from foilbearing.bifurcation.bearing import whirl_branch_headline
+    from foilbearing.case import Grid, default_case
+    from foilbearing.output.report.sections import _TABLES
+    from foilbearing.study.bifurcation import READINGS, SCAN, bifurcation_stage
+    from foilbearing.units import parse_quantity
+
+    case = default_case()
+    lines: list[str] = []
+    out = bifurcation_stage(case, tmp_path, lines.append, voltages=(150.0,), steps=0, grid=(32, 4))
+    assert [r["reading"] for r in out["rows"]] == ["local + compliant", "lobe + held"]
+    assert all(r["status"] == "ok" and r["cycles"] == 2 for r in out["rows"])
+    start, stop, step = (parse_quantity(s, "speed", field="scan") for s in SCAN)
+    scan = list(np.arange(start, stop + 0.5 * step, step))
+    coarse = replace(case, grid=Grid(32, 4)).with_voltages(150.0)
+    for row, reading in zip(out["rows"], READINGS, strict=True):
+        direct, _ = whirl_branch_headline(coarse.with_actuator_reading(*reading), scan, 0)
+        assert row["hopf_speed_rpm"] == pytest.approx(direct["hopf_speed_rpm"], rel=1e-6)
+        assert row["bifurcation_type"] == direct["bifurcation_type"]
+    assert all(Path(f).exists() for f in out["sweep_files"] + out["figures"])
+    html = _TABLES["bifurcation"](out, {})
+    assert "lobe + held" in html and "32 × 4" in html and "foilbearing sweep" in html

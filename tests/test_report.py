@@ -313,7 +313,9 @@ def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
     from foilbearing.study.paper import run_study_result
 
     out = tmp_path_factory.mktemp("study")
-    result = run_study_result(default_case(), out, progress=False, orbits=False, uncertainty="none")
+    result = run_study_result(
+        default_case(), out, progress=False, orbits=False, uncertainty="none", bifurcation=False
+    )
     assert {p.name for ps in result.figures.values() for p in ps} == {
         p.name for p in out.glob("*.png")
     }  # every figure the study wrote is in its record

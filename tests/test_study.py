@@ -14,6 +14,7 @@ from foilbearing.cli.main import main
 @pytest.mark.slow
 def test_study_writes_figures_results_and_comparison(tmp_path: Path, capsys) -> None:
     argv = ["study", "--out", str(tmp_path), "--orbits", "none", "--uncertainty", "none"]
+    argv += ["--bifurcation", "none"]
     argv += ["--schedule", "none"]
     assert main([*argv, "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)

@@ -56,6 +56,8 @@ def _direct(n_theta: int, n_z: int, speed: str, voltage: str, **bearing: str) ->
 
 
 def test_example_sweep_file_is_valid() -> None:
+    bif = load_sweep(EXAMPLE.with_name("sweep_bifurcation.toml"))
+    assert bif.analysis == "bifurcation" and bif.n_points == 8
     spec = load_sweep(EXAMPLE)
     assert spec.analysis == "static"
     assert spec.n_points == math.prod(spec.shape) > 1
@@ -241,6 +243,52 @@ def test_dataset_dims_coords_and_values(tmp_path: Path, client) -> None:
     for key in NUMERIC:
         assert float(point[key]) == direct[key], key
     assert point["preload_um"].values.tolist() == direct["preload_um"]
+
+
+def test_a_bifurcation_sweep_runs_branches_on_dask_as_the_api_does(tmp_path: Path, client) -> None:
+    # Each point a branch of limit cycles (issue 31), the reading of the actuator a swept
+    # choice: the Dataset holds the API's branch, cycle by cycle, and the readings as words.
+    from foilbearing.bifurcation.bearing import whirl_branch_headline
+
+    path = _write(
+        tmp_path,
+        """
+        analysis = "bifurcation"
+        [set]
+        grid.n_theta = 32
+        grid.n_z = 4
+        "foil.subambient" = "retained"
+        [bifurcation]
+        speed_range = ["5000 rpm", "30000 rpm", "2500 rpm"]
+        steps = 0
+        [parameters]
+        "actuators.dynamics" = ["compliant", "held"]
+        """,
+    )
+    spec = load_sweep(path)
+    summary = run_sweep(spec, tmp_path / "res", client=client)
+    assert summary["n_ok"] == summary["n_points"] == 2
+    ds = xr.load_dataset(tmp_path / "res.nc")
+    assert ds["actuators_dynamics"].values.tolist() == ["compliant", "held"]
+    assert ds["amplitude_um"].dims == ("actuators_dynamics", "cycle")
+    case = replace(default_case(), grid=Grid(32, 4)).with_subambient("retained")
+    scan = spec.options["speeds_rad_s"]
+    for dynamics in ("compliant", "held"):
+        direct, _ = whirl_branch_headline(case.with_actuator_reading(dynamics=dynamics), scan, 0)
+        point = ds.sel(actuators_dynamics=dynamics)
+        assert str(point["bifurcation_type"].values) == direct["bifurcation_type"]
+        # to the shooting's own convergence (a worker's single-thread BLAS rounds otherwise)
+        np.testing.assert_allclose(point["amplitude_um"].values, direct["amplitude_um"], rtol=1e-4)
+        assert float(point["hopf_speed_rpm"]) == pytest.approx(direct["hopf_speed_rpm"], rel=1e-12)
+
+
+def test_a_swept_choice_must_be_a_word_the_case_allows(tmp_path: Path) -> None:
+    bad = _write(tmp_path, '[parameters]\n"actuators.dynamics" = ["compliant", "frozen"]\n')
+    with pytest.raises(InputError, match=r"dynamics = 'frozen': expected one of"):
+        load_sweep(bad)
+    number = _write(tmp_path, '[parameters]\n"foil.subambient" = [1.0]\n', "n.toml")
+    with pytest.raises(InputError, match=r"expected a word"):
+        load_sweep(number)
 
 
 @pytest.mark.slow

@@ -38,7 +38,13 @@ from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 
-__all__ = ["SHOOTING_SETTINGS", "WhirlBranch", "bearing_flow", "whirl_branch"]
+__all__ = [
+    "SHOOTING_SETTINGS",
+    "WhirlBranch",
+    "bearing_flow",
+    "whirl_branch",
+    "whirl_branch_headline",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -225,10 +231,19 @@ class WhirlBranch:
 
     @property
     def speed_limit(self) -> float | None:
-        """The fold speed of a subcritical branch, else None (rad/s): below the onset, a
-        large enough disturbance already throws the journal beyond the unstable cycle."""
-        if self.branch.bifurcation_type == "subcritical" and self.branch.folds:
-            return float(min(self.branch.folds))
+        """Where the whirl stops being safe, rad/s, or None where the branch ended first.
+
+        A subcritical branch: its lowest fold (below the onset a large enough
+        disturbance already throws the journal beyond the unstable cycle). Otherwise the
+        first fold (past it no bounded cycle is left: the whirl jumps away), or the speed
+        of a cycle whose film closed (contact)."""
+        folds = self.branch.folds
+        if self.branch.bifurcation_type == "subcritical":
+            return float(min(folds)) if folds else None
+        if folds:
+            return float(folds[0])
+        if "contact" in self.branch.message and self.branch.orbits:
+            return float(self.branch.orbits[-1].parameter)
         return None
 
     def headline(self) -> dict[str, Any]:
@@ -349,3 +364,42 @@ def whirl_branch(
     return WhirlBranch(
         parts.case, onset.onset_speed, onset.whirl_frequency, value, branch, amp, film
     )
+
+
+def whirl_branch_headline(
+    case: Case,
+    scan: list[float],
+    steps: int,
+    progress: Callable[[str], None] | None = None,
+) -> tuple[dict[str, Any], WhirlBranch | None]:
+    """The branch's headline (:meth:`WhirlBranch.headline`), or the linear readouts when the
+    scan holds no Hopf point (stable throughout, or unstable from its start), with
+    ``bifurcation_type`` None (``onset_speed_rpm``, ``linear_whirl_frequency_Hz``,
+    ``whirl_ratio``, ``message``); and the branch (None without a Hopf point).
+
+    The linear onset is found once, on the case's orbit grid. Raises
+    :class:`~foilbearing.bifurcation.shooting.ShootingError` when the first cycles from
+    the onset do not converge (its message says how far it got).
+    """
+    from foilbearing.stability import onset_speed
+
+    onset = onset_speed(case.orbit_case(), scan)
+    if onset.onset_speed is None or onset.onset_speed <= scan[0]:
+        linear = onset.headline()
+        out: dict[str, Any] = {
+            "bifurcation_type": None,
+            "onset_speed_rpm": linear["onset_speed_rpm"],
+            "linear_whirl_frequency_Hz": linear["whirl_frequency_Hz"],
+            "whirl_ratio": linear["whirl_ratio"],
+            "message": f"no Hopf point in {scan[0] / RPM:.0f}-{scan[-1] / RPM:.0f} rpm: "
+            + ("unstable from its start" if onset.onset_speed else onset.message),
+        }
+        return out, None
+    from foilbearing.bifurcation.shooting import ShootingError
+
+    try:
+        wb = whirl_branch(case, onset=onset, steps=steps, progress=progress)
+    except ShootingError as exc:
+        at = f"{onset.onset_speed / RPM:.0f} rpm"
+        raise ShootingError(f"the first cycles from the linear onset at {at}: {exc}") from exc
+    return wb.headline(), wb

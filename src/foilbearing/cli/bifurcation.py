@@ -46,11 +46,9 @@ def register(sub: Any) -> argparse.ArgumentParser:
 def cmd_bifurcation(args: argparse.Namespace) -> int:
     """Run ``bifurcation``; returns 0, or 3 when the shooting fails at the Hopf start."""
     from foilbearing.bifurcation import ShootingError
-    from foilbearing.bifurcation.bearing import whirl_branch
+    from foilbearing.bifurcation.bearing import whirl_branch_headline
     from foilbearing.case import load_case
     from foilbearing.cli.common import voltage_list
-    from foilbearing.constants import RPM
-    from foilbearing.stability import onset_speed
     from foilbearing.units import parse_speed_range
 
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
@@ -62,28 +60,19 @@ def cmd_bifurcation(args: argparse.Namespace) -> int:
     if args.steps < 0:
         raise InputError(f"--steps {args.steps}: a count >= 0")
     scan = list(parse_speed_range(args.speed_range, field="--speed-range"))
-    onset = onset_speed(case.orbit_case(), scan)
-    no_hopf = onset.onset_speed is None or onset.onset_speed <= scan[0]
-    if no_hopf:  # stable throughout, or unstable from the start: the linear readouts
-        out: dict[str, Any] = {"bifurcation_type": None, **onset.headline()}
-        out["message"] = f"no Hopf point in {args.speed_range}: " + (
-            "unstable from its start" if onset.onset_speed else onset.message
-        )
-        return _report(out, args)
     try:
-        wb = whirl_branch(
-            case, onset=onset, steps=args.steps, progress=None if args.json else _progress
+        out, wb = whirl_branch_headline(
+            case, scan, args.steps, progress=None if args.json else _progress
         )
     except ShootingError as exc:
-        rpm = float(onset.onset_speed or 0.0) / RPM
         print(
-            f"foilbearing: solver failed: the first limit cycles from the onset at "
-            f"{rpm:.0f} rpm did not converge ({exc}); "
-            "try a finer orbit grid or the suction-retained film",
+            f"foilbearing: solver failed: shooting did not converge ({exc}); try a finer "
+            "orbit grid or the suction-retained film",
             file=sys.stderr,
         )
         return 3
-    out = wb.headline()
+    if wb is None:  # stable throughout, or unstable from the start: the linear readouts
+        return _report(out, args)
     if args.plot is not None:
         from foilbearing.io import save_figure
         from foilbearing.output.plots.bifurcation import plot_whirl_branch

@@ -41,6 +41,7 @@ def run_study(
     uncertainty: str = "quick",
     schedule: bool = True,
     paper_reading: bool = False,
+    bifurcation: bool = True,
 ) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
 
@@ -58,6 +59,7 @@ def run_study(
         uncertainty=uncertainty,
         schedule=schedule,
         paper_reading=paper_reading,
+        bifurcation=bifurcation,
     ).summary
 
 
@@ -70,6 +72,7 @@ def run_study_result(
     uncertainty: str = "quick",
     schedule: bool = True,
     paper_reading: bool = False,
+    bifurcation: bool = True,
 ) -> StudyResult:
     """Run every stage available on ``case``; write ``out/summary.json`` and the report.
 
@@ -95,6 +98,10 @@ def run_study_result(
     paper_reading
         With ``orbits``, also run the protocol under the paper's reading of the actuator
         (lobe + held, 1 g·mm; :func:`paper_reading_orbits`), about 25 minutes more.
+    bifurcation
+        Is the whirl past the onset bounded? The Hopf type and the branch of limit
+        cycles at each voltage under the case's reading and the paper's, on Dask
+        (the paper's case; :func:`~foilbearing.study.bifurcation.bifurcation_stage`).
 
     Returns
     -------
@@ -173,6 +180,11 @@ def run_study_result(
     onsets = _stability_stage(case, out, results, stage)
     if case.actuators is not None:
         results["actuator_design"] = _design_stage(case, out, stage)
+        if bifurcation:
+            from foilbearing.study.bifurcation import bifurcation_stage
+
+            results["bifurcation"] = bifurcation_stage(case, out, stage)
+            write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     if uncertainty != "none":
         results["uncertainty"] = _uncertainty_stage(out, uncertainty, stage)

@@ -26,13 +26,18 @@ def value_list(raw: Any, kind: str, where: str, src: str) -> tuple[Any, ...]:
     """A list of values in a sweep file, in SI.
 
     ``kind`` is a quantity kind of :data:`~foilbearing.units.SI_UNITS` or
-    ``"integer"``; ``where`` names the key for messages.
+    ``"integer"`` or ``"choice"`` (a word such as ``"lobe"``, checked where the case is
+    built); ``where`` names the key for messages.
     """
     if not isinstance(raw, list):
         raise InputError(f"{where} = {raw!r}: expected a list", source=src)
     out: list[Any] = []
     for k, v in enumerate(raw):
-        if kind == "integer":
+        if kind == "choice":
+            if not isinstance(v, str):
+                raise InputError(f"{where}[{k}] = {v!r}: expected a word, e.g. 'lobe'", source=src)
+            out.append(v)
+        elif kind == "integer":
             if isinstance(v, bool) or not isinstance(v, int):
                 raise InputError(f"{where}[{k}] = {v!r}: expected an integer", source=src)
             out.append(v)
@@ -165,9 +170,54 @@ def speed_scan(raw: Any, where: str, source: str) -> list[float]:
     return [start + k * step for k in range(n)]
 
 
+def _bifurcation(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
+    from foilbearing.bifurcation import ShootingError
+    from foilbearing.bifurcation.bearing import whirl_branch_headline
+
+    try:
+        out, _branch = whirl_branch_headline(case, options["speeds_rad_s"], options["steps"])
+    except ShootingError as exc:
+        return {"converged": False, "message": f"shooting did not converge ({exc})"}
+    return out
+
+
+def _bifurcation_options(table: Mapping[str, Any], source: str) -> dict[str, Any]:
+    if set(table) - {"speed_range", "steps"}:
+        raise InputError(
+            f"[bifurcation] {sorted(table)}: the options are speed_range and steps", source=source
+        )
+    raw = table.get("speed_range", ["5000 rpm", "150000 rpm", "2500 rpm"])
+    steps = table.get("steps", 4)
+    if isinstance(steps, bool) or not isinstance(steps, int) or not 0 <= steps <= 100:
+        raise InputError(
+            f"bifurcation.steps = {steps!r}: cycles after the two first, 0 to 100", source=source
+        )
+    return {"speeds_rad_s": speed_scan(raw, "bifurcation.speed_range", source), "steps": steps}
+
+
+#: List-valued results of a branch, one value a cycle.
+_CYCLE_KEYS = (
+    "speeds_rpm",
+    "amplitude_um",
+    "min_film_um",
+    "whirl_frequency_Hz",
+    "stable",
+    "largest_multiplier",
+)
+
+
+def _bifurcation_layout(options: Mapping[str, Any]) -> tuple[dict[str, str], dict[str, Any]]:
+    dims = dict.fromkeys(_CYCLE_KEYS, "cycle") | {"grid": "grid_axis"}
+    cycles = list(range(options["steps"] + 2))
+    return dims, {"cycle": (cycles, ""), "grid_axis": (["n_theta", "n_z"], "")}
+
+
 #: Analysis kinds by name. Add a kind (e.g. ``"orbit"``) with one more entry.
 ANALYSES: dict[str, Analysis] = {
     "static": Analysis(_static, layout=_static_layout),
     "coefficients": Analysis(_coefficients, _coefficient_options, _coefficient_layout),
     "stability": Analysis(_stability, _stability_options, fixed=("operation.speed",)),
+    "bifurcation": Analysis(
+        _bifurcation, _bifurcation_options, _bifurcation_layout, fixed=("operation.speed",)
+    ),
 }

@@ -47,6 +47,8 @@ _KINDS_FIELDS = {
     "mass_length": "rotor.imbalance",
     "force": "operation.load",
     "speed": "operation.speed",
+    # a stated modelling choice, one of its allowed words (checked as in a case file)
+    "choice": "actuators.preload_response actuators.dynamics foil.subambient",
 }
 #: Sweepable case fields (dotted TOML path) and the kind of quantity each takes.
 FIELD_KINDS: dict[str, str] = {f: k for k, fs in _KINDS_FIELDS.items() for f in fs.split()}
@@ -270,6 +272,8 @@ def _coordinates(raw: list[Any], values: tuple[Any, ...], kind: str) -> tuple[st
     """Coordinate values in the unit of the first value as written (SI for plain numbers)."""
     if kind in ("integer", "dimensionless"):
         return "1", values
+    if kind == "choice":
+        return "", values
     si = SI_UNITS[kind]
     first = raw[0]
     unit = _NUMBER.sub("", first, count=1).strip() if isinstance(first, str) else ""

@@ -281,7 +281,11 @@ def _inputs(table: Any, base: dict[str, Any], src: str) -> tuple[UncertainInput,
             'high = "120 um" }',
             source=src,
         )
-    allowed = [f for f, k in FIELD_KINDS.items() if k != "integer" and f not in _SET_BY_OUTPUTS]
+    allowed = [
+        f
+        for f, k in FIELD_KINDS.items()
+        if k not in ("integer", "choice") and f not in _SET_BY_OUTPUTS
+    ]
     out = []
     for name, spec in _flatten_inputs(table):
         if name not in allowed:
@@ -289,6 +293,8 @@ def _inputs(table: Any, base: dict[str, Any], src: str) -> tuple[UncertainInput,
                 "set by the outputs (their speeds and voltages)"
                 if name in _SET_BY_OUTPUTS
                 else "an integer (grid) field"
+                if FIELD_KINDS.get(name) == "integer"
+                else "a modelling choice, not a quantity (set it in the case)"
                 if name in FIELD_KINDS
                 else "unknown field"
             )

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["plot_whirl_branch"]
+__all__ = ["plot_whirl_branch", "plot_whirl_branches"]
 
 
 def plot_whirl_branch(head: dict[str, Any], title: str = "") -> Figure:
@@ -31,7 +31,7 @@ def plot_whirl_branch(head: dict[str, Any], title: str = "") -> Figure:
         ax.plot(speed[~stable], y[~stable], "o", mfc="none", color="C0", ms=4, label="unstable")
         ax.axvline(head["hopf_speed_rpm"] / 1e3, color="0.4", ls=":", label="linear onset")
         if head.get("speed_limit_rpm"):
-            ax.axvline(head["speed_limit_rpm"] / 1e3, color="C3", ls="-.", label="fold")
+            ax.axvline(head["speed_limit_rpm"] / 1e3, color="C3", ls="-.", label="speed limit")
         ax.set_xlabel("rotor speed (krpm)")
         ax.grid(alpha=0.3)
     ax_a.set_ylabel("limit-cycle amplitude, half extent of e_X, e_Y (µm)")
@@ -42,4 +42,39 @@ def plot_whirl_branch(head: dict[str, Any], title: str = "") -> Figure:
         if title
         else head["bifurcation_type"]
     )
+    return fig
+
+
+def plot_whirl_branches(branches: dict[str, dict[str, dict[str, Any]]]) -> Figure:
+    """Each reading's branches in a panel: cycle amplitude (µm) against speed over the
+    linear onset, one colour a voltage, stable cycles solid and filled, unstable dashed
+    and open.
+
+    ``branches``: ``{reading: {voltage: headline}}`` (a headline without a Hopf point,
+    or a failed one, draws nothing).
+    """
+    fig = Figure(figsize=(5.2 * max(len(branches), 1), 4.4), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(1, max(len(branches), 1), sharey=True))
+    for ax, (reading, per_volt) in zip(axes, branches.items(), strict=False):
+        for c, (volts, head) in enumerate(per_volt.items()):
+            if not head.get("speeds_rpm") or not head.get("hopf_speed_rpm"):
+                continue
+            ratio = np.asarray(head["speeds_rpm"], float) / float(head["hopf_speed_rpm"])
+            amp = np.asarray(head["amplitude_um"], float)
+            stable = np.asarray(head["stable"], bool)
+            colour = f"C{c}"
+            for k in range(ratio.size - 1):
+                style = "-" if stable[k] and stable[k + 1] else "--"
+                ax.plot(ratio[k : k + 2], amp[k : k + 2], style, color=colour)
+            kind = head.get("bifurcation_type") or ""
+            ax.plot(ratio[stable], amp[stable], "o", color=colour, ms=4,
+                    label=f"{volts} V: {kind}")  # fmt: skip
+            ax.plot(ratio[~stable], amp[~stable], "o", mfc="none", color=colour, ms=4)
+        ax.axvline(1.0, color="0.4", ls=":")
+        ax.set_title(reading.replace("+", " + "))
+        ax.set_xlabel("rotor speed / linear onset")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[0].set_ylabel("limit-cycle amplitude, half extent of e_X, e_Y (µm)")
+    fig.suptitle("Whirl limit cycles from the linear onset: filled stable, open unstable")
     return fig

@@ -41,6 +41,7 @@ STAGES: tuple[tuple[str, str], ...] = (
     ("coefficients", "Dynamic force coefficients"),
     ("stability", "Linear stability"),
     ("actuator_design", "What the stack's stiffness buys (the paper's conclusion)"),
+    ("bifurcation", "Is the whirl past the onset bounded? Limit cycles (beyond the paper)"),
     ("orbits", "Speed-up orbits (Figs. 13-15)"),
     (
         "orbits_paper_reading",
@@ -309,6 +310,39 @@ def _actuator_design(d: dict[str, Any], case: dict[str, Any]) -> str:
         f"{target:.0%} of the shimmed onset:</p><ul>{items}</ul>"
     )
     return note + _records(d.get("table", []), cols)
+
+
+def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [
+        ("reading of the actuator", _key("reading"), ""),
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("Hopf bifurcation", _key("bifurcation_type"), ""),
+        ("linear onset (krpm)", _krpm("hopf_speed_rpm"), ".1f"),
+        ("whirl (Hz)", _key("linear_whirl_frequency_Hz"), ".0f"),
+        ("speed limit (krpm)", _krpm("speed_limit_rpm"), ".1f"),
+        ("largest stable cycle (µm)", _key("largest_stable_cycle_um"), ".1f"),
+        ("cycles", _key("cycles"), "d"),
+        ("status", _key("status"), ""),
+    ]
+    grid = d.get("grid") or ["?", "?"]
+    files = ", ".join(f"<code>{escape(Path(f).name)}</code>" for f in d.get("sweep_files", []))
+    note = (
+        '<p class="note">Past a <b>supercritical</b> Hopf bifurcation the whirl grows into a '
+        "stable, bounded limit cycle as the speed passes the linear onset; past a "
+        "<b>subcritical</b> one the small cycles are unstable and lie below the onset, so a "
+        "large enough disturbance throws the journal into a growing whirl before it "
+        "(docs/bifurcation.md). Each branch is continued from the linear onset by shooting "
+        "on the orbit's own stepper, its stability from Floquet multipliers of the exact "
+        "monodromy. Speed limit: the lowest fold of a subcritical branch, the first fold "
+        "of a supercritical one (past it no bounded cycle is left), or contact. "
+        f"Grid {grid[0]} × {grid[1]} (the speed-ups'), {d.get('steps', 0) + 2} cycles a "
+        "branch for this stage's time. Under top-foil lift-off the type near the onset "
+        "is sensitive to the grid (the lift-off boundary moves cell by cell): "
+        "docs/bifurcation.md measures it from 32 × 4 to 128 × 16. "
+        f"Each reading is a Dask sweep: rerun or extend {files} with "
+        "<code>foilbearing sweep FILE --out RESULT</code>.</p>"
+    )
+    return note + _records(d.get("rows", []), cols)
 
 
 def _scaled(name: str, factor: float) -> Callable[[dict[str, Any]], Any]:
@@ -607,6 +641,7 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "coefficients": _coefficients,
     "stability": _stability,
     "actuator_design": _actuator_design,
+    "bifurcation": _bifurcation,
     "orbits": _orbits,
     "orbits_paper_reading": _orbits,
     "uncertainty": _uncertainty,
