@@ -2,7 +2,7 @@
 (issue 31). Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_bifurcation.py [GRID ...] [--volts V] [--steps N]
-     [--retained] [--reading RESPONSE+DYNAMICS]
+     [--retained] [--reading RESPONSE+DYNAMICS] [--steps-per-rev K]
 
 For each grid (default 32x4), the default case at the voltage given (default 0 V), under
 top-foil lift-off (``--retained``: suction retained as well), under the case's reading of
@@ -13,7 +13,8 @@ flow runs it took and its wall time. For a subcritical branch, transients at the
 of its second cycle, started at 0.6 and 1.5 times that cycle's distance from the
 equilibrium, say whether a small kick decays and a large one grows; for a branch of stable
 cycles past the onset, transients from 0.5 and 1.5 times a stable cycle settle on it (the
-type confirmed by the orbit itself). About 1-2 minutes a grid at 32 x 4.
+type confirmed by the orbit itself). ``--steps-per-rev K``: the stepper's time step (step
+convergence; default 24). About 1-2 minutes a grid at 32 x 4 or 96 x 12.
 """
 
 from __future__ import annotations
@@ -39,7 +40,12 @@ def _extent(parts, y, period: float, speed: float) -> float:  # type: ignore[no-
 
 
 def one(
-    grid: tuple[int, int], volts: float, subambient: str, steps: int, reading: str | None
+    grid: tuple[int, int],
+    volts: float,
+    subambient: str,
+    steps: int,
+    reading: str | None,
+    per_rev: int | None = None,
 ) -> None:
     case = replace(default_case().with_voltages(volts), grid=Grid(*grid)).with_subambient(
         subambient
@@ -49,11 +55,12 @@ def one(
     start = 5000 if volts == 0.0 else 15000  # a 150 V C-GFB cannot carry 5 krpm on 32 x 4
     scan = [r * RPM for r in range(start, 120001, 2500)]
     t0 = time.perf_counter()
-    wb = whirl_branch(case, scan=scan, steps=steps)
+    wb = whirl_branch(case, scan=scan, steps=steps, steps_per_rev=per_rev)
     wall = time.perf_counter() - t0
     head = wb.headline()
     print(
-        f"{grid[0]} x {grid[1]}, {volts:g} V, {subambient}, {reading or 'the case reading'}: "
+        f"{grid[0]} x {grid[1]}, {volts:g} V, {subambient}, {reading or 'the case reading'}, "
+        f"{per_rev or 24} steps a revolution: "
         "linear onset "
         f"{head['hopf_speed_rpm']:.0f} rpm at {head['linear_whirl_frequency_Hz']:.2f} Hz; "
         f"semi-discrete eigenvalue there {wb.eigenvalue.real:+.3g} {wb.eigenvalue.imag:+.5g}i "
@@ -73,7 +80,7 @@ def one(
         )
     if len(wb.branch.orbits) < 2:
         return
-    _flow, parts = bearing_flow(case, wb.whirl_frequency, 1e-4)
+    _flow, parts = bearing_flow(case, wb.whirl_frequency, 1e-4, per_rev)
     if head["bifurcation_type"] == "subcritical":
         # below the onset: a kick inside the unstable cycle decays, one outside it grows
         orbit, factors, periods = wb.branch.orbits[1], (0.6, 1.5), 60
@@ -107,8 +114,9 @@ if __name__ == "__main__":
     volts = float(args[args.index("--volts") + 1]) if "--volts" in args else 0.0
     steps = int(args[args.index("--steps") + 1]) if "--steps" in args else 4
     reading = args[args.index("--reading") + 1] if "--reading" in args else None
+    per_rev = int(args[args.index("--steps-per-rev") + 1]) if "--steps-per-rev" in args else None
     grids = [tuple(int(x) for x in a.split("x")) for a in args if "x" in a and a[0].isdigit()]
     for g in grids or [(32, 4)]:
-        one(g, volts, "lift-off", steps, reading)  # type: ignore[arg-type]
+        one(g, volts, "lift-off", steps, reading, per_rev)  # type: ignore[arg-type]
         if "--retained" in args:
-            one(g, volts, "retained", steps, reading)  # type: ignore[arg-type]
+            one(g, volts, "retained", steps, reading, per_rev)  # type: ignore[arg-type]

@@ -144,17 +144,21 @@ class BearingFlow:
         return self._equilibria[key]
 
 
-def bearing_flow(case: Case, whirl: float, fd_step: float) -> tuple[FlowMap, BearingFlow]:
+def bearing_flow(
+    case: Case, whirl: float, fd_step: float, steps_per_rev: int | None = None
+) -> tuple[FlowMap, BearingFlow]:
     """The case's autonomous orbit system as a :class:`FlowMap` (and its parts).
 
     ``case`` is put on its orbit grid, without imbalance or disturbance; ``whirl``
-    (rad/s) scales the journal's velocity.
+    (rad/s) scales the journal's velocity; ``steps_per_rev`` sets the stepper's time step
+    (default the orbit's, 24 a revolution).
     """
     from foilbearing.orbit import OrbitSettings
 
     case = case.orbit_case()
     case = replace(case, rotor=replace(case.rotor, imbalance=0.0), disturbance=None)
-    settings = OrbitSettings(**SHOOTING_SETTINGS)
+    step = {} if steps_per_rev is None else {"steps_per_rev": steps_per_rev}
+    settings = OrbitSettings(**SHOOTING_SETTINGS, **step)
     probe = BearingFlow(case, np.ones(1), 0, settings)
     system = probe.simulation(case.operation.speed).system
     scale = np.ones(system.size)
@@ -233,15 +237,18 @@ class WhirlBranch:
     def speed_limit(self) -> float | None:
         """Where the whirl stops being safe, rad/s, or None where the branch ended first.
 
-        A subcritical branch: its lowest fold (below the onset a large enough
-        disturbance already throws the journal beyond the unstable cycle). Otherwise the
-        first fold (past it no bounded cycle is left: the whirl jumps away), or the speed
-        of a cycle whose film closed (contact)."""
+        A subcritical branch: its lowest fold below the onset (below the onset a large
+        enough disturbance already throws the journal beyond the unstable cycle).
+        Otherwise, or without such a fold, the first fold above the onset (past it no
+        bounded cycle is left: the whirl jumps away), or the speed of a cycle whose film
+        closed (contact)."""
         folds = self.branch.folds
-        if self.branch.bifurcation_type == "subcritical":
-            return float(min(folds)) if folds else None
-        if folds:
-            return float(folds[0])
+        below = [f for f in folds if f < self.hopf_speed]
+        above = [f for f in folds if f >= self.hopf_speed]
+        if self.branch.bifurcation_type == "subcritical" and below:
+            return float(min(below))
+        if above:
+            return float(above[0])
         if "contact" in self.branch.message and self.branch.orbits:
             return float(self.branch.orbits[-1].parameter)
         return None
@@ -277,6 +284,7 @@ def whirl_branch(
     fd_step: float | None = None,
     tol: float = 1e-7,
     progress: Callable[[str], None] | None = None,
+    steps_per_rev: int | None = None,
 ) -> WhirlBranch:
     """The whirl's limit cycles from the linear onset of ``case`` (its voltages held).
 
@@ -303,6 +311,9 @@ def whirl_branch(
         Shooting tolerance on ``‖φ_T(y₀) − y₀‖/(1 + ‖y₀‖)``.
     progress
         Called with a line per orbit.
+    steps_per_rev
+        The stepper's time steps a revolution (default the orbit's; a step convergence
+        check takes more).
 
     Raises
     ------
@@ -323,7 +334,7 @@ def whirl_branch(
         )
     lift = case.foil is not None and case.foil.lift_off
     step = fd_step if fd_step is not None else (1e-4 if lift else 1e-5)
-    flow, parts = bearing_flow(on_grid, onset.whirl_frequency, step)
+    flow, parts = bearing_flow(on_grid, onset.whirl_frequency, step, steps_per_rev)
     value, vector = _hopf_eigenvector(parts, onset.onset_speed, onset.whirl_frequency)
     hopf = HopfPoint(onset.onset_speed, abs(value.imag), vector, 1)
     paths: dict[int, tuple[float, float]] = {}

@@ -77,7 +77,8 @@ class Branch:
         Parameters where the branch turns back (between two orbits, linearly).
     bifurcation_type
         ``"supercritical"`` (small cycles on the unstable side, born stable),
-        ``"subcritical"`` or ``"degenerate"`` (p(a) − p_H below the resolution).
+        ``"subcritical"`` or ``"degenerate"`` (p(2a) − p(a) below the resolution: 10
+        finite-difference steps, or 1e-5 of p_H with the flow's exact derivative).
     message
         Why the branch ended.
     """
@@ -244,9 +245,12 @@ def hopf_branch(
     # The direction of p(a) between the two first orbits (p − p_H ≈ c a²): it does not
     # depend on how closely p_H itself is known.
     shift = second.parameter - first.parameter
+    # Resolution of a cycle's parameter: the finite differences' step, or, with the
+    # flow's exact derivative (``tangent``), the shooting's own convergence.
+    resolution = (10.0 * fd if flow.tangent is None else 1e-5) * (1.0 + abs(p_h))
     kind = (
         "degenerate"
-        if abs(shift) <= 10.0 * fd * (1.0 + abs(p_h))
+        if abs(shift) <= resolution
         else "supercritical"
         if np.sign(shift) == hopf.unstable_side
         else "subcritical"

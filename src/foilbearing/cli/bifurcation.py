@@ -38,6 +38,13 @@ def register(sub: Any) -> argparse.ArgumentParser:
     add_subambient_arg(p)
     add_reading_args(p)
     p.add_argument("--plot", metavar="DIR", type=Path, help="write the branch's figure to DIR")
+    p.add_argument(
+        "--overlay",
+        metavar="ORBIT.nc",
+        type=Path,
+        help="lay a speed-up's sub-synchronous amplitude (an `orbit --out` file) over the "
+        "figure's amplitudes (needs --plot)",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_bifurcation)
     return p
@@ -59,6 +66,13 @@ def cmd_bifurcation(args: argparse.Namespace) -> int:
         case = case.with_voltages(volts[0])
     if args.steps < 0:
         raise InputError(f"--steps {args.steps}: a count >= 0")
+    envelope = None
+    if args.overlay is not None:
+        if args.plot is None:
+            raise InputError(f"--overlay {args.overlay}: needs --plot DIR (it draws on the figure)")
+        from foilbearing.orbit.netcdf import read_subsync_envelope
+
+        envelope = read_subsync_envelope(args.overlay)
     scan = list(parse_speed_range(args.speed_range, field="--speed-range"))
     try:
         out, wb = whirl_branch_headline(
@@ -79,7 +93,9 @@ def cmd_bifurcation(args: argparse.Namespace) -> int:
 
         args.plot.mkdir(parents=True, exist_ok=True)
         out["figure"] = str(
-            save_figure(plot_whirl_branch(out, case.title), args.plot / "whirl_branch.png")
+            save_figure(
+                plot_whirl_branch(out, case.title, envelope), args.plot / "whirl_branch.png"
+            )
         )
     return _report(out, args)
 

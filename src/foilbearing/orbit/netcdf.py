@@ -100,3 +100,40 @@ def load_orbit(path: Path) -> tuple[Any, RunSpec]:
             f"the run already ended ({result.message}): nothing to resume", source=str(path)
         )
     return result, spec
+
+
+def read_subsync_envelope(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """The sub-synchronous amplitude of a saved run against its speed: (rpm, m).
+
+    Any orbit file, finished or not (:func:`foilbearing.signals.subsynchronous_amplitude`
+    on its e_X, with the 1X removed by order tracking), for laying a speed-up's whirl
+    over a branch of limit cycles.
+
+    Raises
+    ------
+    InputError
+        Not an orbit file, or a run too short for the analysis' 0.25 s windows.
+    """
+    import xarray as xr
+
+    from foilbearing.signals import subsynchronous_amplitude
+
+    try:
+        ds = xr.load_dataset(path)
+    except (OSError, ValueError) as exc:
+        raise InputError(
+            f"cannot read it as a run ({exc.__class__.__name__}): give an `orbit --out` "
+            "NetCDF file",
+            source=str(path),
+        ) from None
+    if not {"e_x", "speed", "phase"} <= set(map(str, ds.data_vars)):
+        raise InputError("not a foilbearing orbit file (no e_x, speed, phase)", source=str(path))
+    t = ds.time.values
+    if t.size < 8 or t[-1] - t[0] < 1.0:
+        raise InputError(
+            f"the run lasts {t[-1] - t[0] if t.size else 0.0:.3g} s: too short for the "
+            "sub-synchronous envelope (0.25 s windows); run a speed-up of 1 s or more",
+            source=str(path),
+        )
+    sub = subsynchronous_amplitude(t, _si(ds, "e_x"), _si(ds, "speed"), ds.phase.values)
+    return np.asarray(sub.speeds_rpm, float), np.asarray(sub.amplitude, float)

@@ -22,7 +22,7 @@ from foilbearing.case import Case
 __all__ = ["BIFURCATION_STEPS", "READINGS", "bifurcation_stage"]
 
 #: Cycles of each branch after the two first ones (which decide the type).
-BIFURCATION_STEPS = 3
+BIFURCATION_STEPS = 2
 #: The readings of the actuator the stage compares: the case's default and the paper's.
 READINGS = (("local", "compliant"), ("lobe", "held"))
 #: The onset scan: a 150 V C-GFB cannot carry the load at 5 krpm on the coarse grid.
@@ -99,7 +99,7 @@ def bifurcation_stage(
             )
             files.append(str(path))
             spec = load_sweep(path)
-            summary = run_sweep(spec, out / tag, client=client)
+            summary = run_sweep(spec, out / tag, client=client, resume=_resumable(spec, out / tag))
             stage(
                 f"  {name}: {summary['n_ok']} of {summary['n_points']} branches "
                 f"({summary['wall_time_s']:.0f} s)"
@@ -120,6 +120,27 @@ def bifurcation_stage(
         "sweep_files": files,
         "figures": [str(fig)],
     }
+
+
+def _resumable(spec: Any, out: Path) -> bool:
+    """Whether the stage's results folder holds this very sweep (an interrupted study's:
+    continue it); one of another plan is the study's own older output, removed."""
+    import json
+    import shutil
+
+    from foilbearing.sweep.runner import output_paths
+
+    folder = output_paths(out)[0]
+    if not folder.exists():
+        return False
+    try:
+        stored = json.loads((folder / "sweep.json").read_text(encoding="utf-8"))["fingerprint"]
+    except (OSError, ValueError, KeyError):
+        stored = None
+    if stored == spec.fingerprint():
+        return True
+    shutil.rmtree(folder)
+    return False
 
 
 def _row(reading: str, volts: float, rec: dict[str, Any], head: dict[str, Any]) -> dict[str, Any]:

@@ -10,11 +10,17 @@ from matplotlib.figure import Figure
 __all__ = ["plot_whirl_branch", "plot_whirl_branches"]
 
 
-def plot_whirl_branch(head: dict[str, Any], title: str = "") -> Figure:
+def plot_whirl_branch(
+    head: dict[str, Any],
+    title: str = "",
+    envelope: tuple[np.ndarray, np.ndarray] | None = None,
+) -> Figure:
     """Amplitude (µm) and whirl frequency (Hz) against speed (krpm) of a branch's cycles.
 
     ``head``: :meth:`foilbearing.bifurcation.bearing.WhirlBranch.headline`. Stable cycles
     solid, unstable dashed (in the branch's order); the linear onset dotted.
+    ``envelope``: a speed-up's sub-synchronous amplitude, (rpm, m), laid over the
+    amplitudes over the branch's speeds and 10 % around them.
     """
     speed = np.asarray(head["speeds_rpm"], float) / 1e3
     amp = np.asarray(head["amplitude_um"], float)
@@ -34,6 +40,11 @@ def plot_whirl_branch(head: dict[str, Any], title: str = "") -> Figure:
             ax.axvline(head["speed_limit_rpm"] / 1e3, color="C3", ls="-.", label="speed limit")
         ax.set_xlabel("rotor speed (krpm)")
         ax.grid(alpha=0.3)
+    if envelope is not None and speed.size:
+        rpm, amp_m = (np.asarray(a, float) for a in envelope)
+        near = (rpm >= 0.9e3 * speed.min()) & (rpm <= 1.1e3 * speed.max())
+        ax_a.plot(rpm[near] / 1e3, amp_m[near] * 1e6, color="0.45", lw=1.2,
+                  label="speed-up: sub-synchronous amplitude")  # fmt: skip
     ax_a.set_ylabel("limit-cycle amplitude, half extent of e_X, e_Y (µm)")
     ax_f.set_ylabel("whirl frequency (Hz)")
     ax_a.legend(fontsize=8)
