@@ -235,8 +235,12 @@ def test_free_whirl_matches_the_linear_eigenvalue(response: str, dynamics: str) 
     assert dec == pytest.approx(mode.log_decrement, rel=0.1)
 
 
-@pytest.mark.parametrize("dynamics", ["held", "compliant"])
-def test_lobes_follow_a_voltage_ramp_as_the_reference_integrator_does(dynamics: str) -> None:
+@pytest.mark.parametrize(
+    ("response", "dynamics"), [("local", "held"), ("lobe", "held"), ("lobe", "compliant")]
+)
+def test_the_stingers_follow_a_voltage_ramp_as_the_reference_integrator_does(
+    response: str, dynamics: str
+) -> None:
     # The held input moves with the voltage, and compliant lobes move with the voltage and
     # the film: the fast stepper and solve_ivp's BDF (the projected-dynamics reference, its
     # own elimination of the lobes' rates) must give the same orbit while the voltage
@@ -246,7 +250,7 @@ def test_lobes_follow_a_voltage_ramp_as_the_reference_integrator_does(dynamics: 
     from foilbearing.orbit import OrbitSettings, OrbitSimulation, simulate
     from foilbearing.orbit.reference import reference_orbit
 
-    case = orbit_case("lobe", dynamics, volts=100.0, imbalance=1e-6)
+    case = orbit_case(response, dynamics, volts=100.0, imbalance=1e-6)
     prof = constant_speed(20e3 * RPM, 0.01)
     ramp = voltage_ramp(0.002, 0.008, 150.0, initial=100.0)
     settings = OrbitSettings(steps_per_rev=96, sample_rate=20_000)
@@ -257,7 +261,7 @@ def test_lobes_follow_a_voltage_ramp_as_the_reference_integrator_does(dynamics: 
     if dynamics == "held":
         assert sim.held is not None and len(sim.held.times) > 10  # knots along the ramp
     else:
-        assert sim.held is None and sim.system.n_lobe == 3
+        assert sim.held is None and sim.system.n_lobe == 3  # the lobes' border
     for ours, theirs in ((fast.e_x, ref["e_x"]), (fast.e_y, ref["e_y"])):
         assert np.max(np.abs(ours - theirs)) < 0.01 * np.ptp(theirs)
 
