@@ -57,7 +57,8 @@ def test_run_derivative_equals_central_differences_of_the_run() -> None:
     rng = np.random.default_rng(1)
     block = rng.standard_normal((y0.size, 3))
     exact = tangent.apply(block)
-    np.testing.assert_allclose(tangent.apply(block[:, 0]), exact[:, 0], rtol=1e-12)
+    # one direction (the compiled solve) and a block (one block solve) agree to round-off
+    np.testing.assert_allclose(tangent.apply(block[:, 0]), exact[:, 0], rtol=1e-9, atol=1e-12)
     # The block products of the storage Jacobian are the sparse matrix's.
     y_mid = tangent.result.checkpoint["y"]
     inputs = sim.inputs(0.0, sim.volts(0.0), imbalance=False)

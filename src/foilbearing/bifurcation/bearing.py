@@ -188,7 +188,8 @@ def _hopf_eigenvector(parts: BearingFlow, speed: float, whirl: float) -> tuple[c
     the lift-off boundary, P = 1 with no net flow, fall on either side and gave spurious
     eigenvalues: an unstable 38 Hz pair at the 150 V onset on 32 × 4.)
     """
-    import scipy.linalg as sla
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
 
     sim = parts.simulation(speed)
     system = sim.system
@@ -196,13 +197,21 @@ def _hopf_eigenvector(parts: BearingFlow, speed: float, whirl: float) -> tuple[c
     inputs = sim.inputs(0.0, sim.volts(0.0), imbalance=False)
     zero = np.zeros(system.size)
     branches = system.lift_state(y, inputs, 0.0, zero)
-    storage = system.storage_jacobian(y, inputs.preload).toarray()
-    storage[: system.n][branches > 0.0] = 0.0
-    without = system.jacobian(y, inputs, 0.0, zero, lift_state=branches).toarray()
-    values, vectors = sla.eig(-without, storage)
-    finite = np.isfinite(values)
-    k = int(np.argmin(np.where(finite, np.abs(values - 1j * whirl), np.inf)))
-    return complex(values[k]), vectors[:, k] / parts.scale
+    held = np.zeros(system.size)
+    held[: system.n] = branches > 0.0
+    storage = sp.diags(1.0 - held) @ system.storage_jacobian(y, inputs.preload)
+    stiffness = -system.jacobian(y, inputs, 0.0, zero, lift_state=branches)
+    # Shift-invert about i·whirl: the eigenvalues ν of (A − σM)⁻¹M are 1/(λ − σ), the
+    # largest the λ nearest σ (sparse; the dense problem took 6 s on 96 × 12).
+    sigma = 1j * whirl
+    lu = spla.splu(sp.csc_matrix(stiffness - sigma * storage, dtype=complex))
+    op = spla.LinearOperator(
+        stiffness.shape, matvec=lambda v: lu.solve(storage @ np.asarray(v)), dtype=complex
+    )
+    # A fixed start vector: ARPACK's default is random, and the branch's first section
+    # (along the eigenvector) should not change from run to run.
+    nu, vectors = spla.eigs(op, k=1, which="LM", v0=np.ones(system.size, dtype=complex))
+    return complex(sigma + 1.0 / nu[0]), vectors[:, 0] / parts.scale
 
 
 @dataclass(frozen=True)

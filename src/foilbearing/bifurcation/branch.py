@@ -101,12 +101,16 @@ class Branch:
 
 def _turned(q: NDArray[np.complex128]) -> tuple[FloatArray, FloatArray]:
     """(Re q̂, Im q̂): q turned so that its real and imaginary parts are orthogonal, the real
-    part the longer one and of unit length."""
+    part the longer one and of unit length, and its largest component positive (an
+    eigenvector's phase is arbitrary: the turn makes the section the same whatever
+    phase the eigensolver returned)."""
     u, w = q.real, q.imag
     alpha = 0.5 * np.arctan2(-2.0 * (u @ w), u @ u - w @ w)
     turned = q * np.exp(1j * alpha)
     if np.linalg.norm(turned.imag) > np.linalg.norm(turned.real):
         turned = turned * 1j
+    if turned.real[np.argmax(np.abs(turned.real))] < 0.0:
+        turned = -turned
     scale = np.linalg.norm(turned.real)
     return turned.real / scale, turned.imag / scale
 

@@ -85,7 +85,10 @@ class RunTangent:
         for i, step in enumerate(self.steps):
             rhs = -sum(w * q for w, q in zip(step.weights, past, strict=False))
             rhs[step.held] = 0.0
-            dy = step.factor.solve_block(rhs)
+            if rhs.shape[1] == 1:  # one direction (a Krylov product): the compiled solve
+                dy = step.factor.solve(np.ascontiguousarray(rhs[:, 0]))[:, None]
+            else:
+                dy = step.factor.solve_block(rhs)
             past = [self.storage(i + 1, dy), *past][:_KEEP]
         return dy.reshape(v.shape)
 
@@ -152,7 +155,11 @@ def run_tangent(sim: Any, y0: FloatArray, duration: float) -> RunTangent | None:
         held[: system.n] = factor.lift_state > 0.0
         steps.append(_Step(factor, held, w))
 
+    products = [
+        system.storage_operator(y, inp.preload) for y, inp in zip(states, inputs, strict=True)
+    ]
+
     def storage_at(i: int, dy: FloatArray) -> FloatArray:
-        return system.storage_product(states[i], inputs[i].preload, dy)
+        return products[i](dy)
 
     return RunTangent(result, states[-1], tuple(steps), storage_at)

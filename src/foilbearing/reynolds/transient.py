@@ -471,26 +471,35 @@ class TransientSystem:
     def storage_product(self, y: FloatArray, preload: FloatArray, dy: FloatArray) -> FloatArray:
         """``(∂Q/∂y) dy`` at y for a block of directions dy, shape (size, m); dense and
         vectorised (:meth:`storage_jacobian` is the same matrix, sparse)."""
+        return self.storage_operator(y, preload)(dy)
+
+    def storage_operator(self, y: FloatArray, preload: FloatArray) -> Any:
+        """``dy -> (∂Q/∂y) dy`` at y, its state-dependent parts computed once (a run's
+        derivative applies it at every step for every block of directions)."""
         g = self.grid
         n, nt, nz = self.n, self.nt, g.n_z
-        m = dy.shape[1]
-        P = self.split(y)[0]
+        P = np.array(self.split(y)[0])
         h_row = self.film(y, preload)[0][:, 0]
-        d_p = dy[:n].reshape(nt, nz, m)
-        mean = d_p.mean(axis=1)  # (nt, m)
         active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
-        d_h = (
-            self.cos_t[:, None] * dy[n + nt]
-            + self.sin_t[:, None] * dy[n + nt + 1]
-            + dy[n : n + nt]
-            + (self.c_act * active)[:, None] * mean
+        c_eff = (self.c_act * active)[:, None]
+        lobe_at = (
+            self.lobes.T @ (self.lobe_gain(P)[:, None] * self.lobe_rows) if self.n_lobe else None
         )
-        if self.n_lobe:
-            d_h = d_h + self.lobes.T @ (self.lobe_gain(P)[:, None] * (self.lobe_rows @ mean))
-        out = np.empty_like(dy)
-        out[:n] = (h_row[:, None, None] * d_p + P[:, :, None] * d_h[:, None, :]).reshape(n, m)
-        out[n:] = dy[n:]
-        return out
+        cos_t, sin_t = self.cos_t[:, None], self.sin_t[:, None]
+
+        def apply(dy: FloatArray) -> FloatArray:
+            m = dy.shape[1]
+            d_p = dy[:n].reshape(nt, nz, m)
+            mean = d_p.mean(axis=1)  # (nt, m)
+            d_h = cos_t * dy[n + nt] + sin_t * dy[n + nt + 1] + dy[n : n + nt] + c_eff * mean
+            if lobe_at is not None:
+                d_h = d_h + lobe_at @ mean
+            out = np.empty_like(dy)
+            out[:n] = (h_row[:, None, None] * d_p + P[:, :, None] * d_h[:, None, :]).reshape(n, m)
+            out[n:] = dy[n:]
+            return out
+
+        return apply
 
     def jacobian(
         self,

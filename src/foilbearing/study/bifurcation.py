@@ -22,7 +22,7 @@ from foilbearing.case import Case
 __all__ = ["BIFURCATION_STEPS", "READINGS", "bifurcation_stage"]
 
 #: Cycles of each branch after the two first ones (which decide the type).
-BIFURCATION_STEPS = 2
+BIFURCATION_STEPS = 3
 #: The readings of the actuator the stage compares: the case's default and the paper's.
 READINGS = (("local", "compliant"), ("lobe", "held"))
 #: The onset scan: a 150 V C-GFB cannot carry the load at 5 krpm on the coarse grid.
