@@ -98,3 +98,16 @@ def test_monodromy_at_rest_is_the_exponential_of_the_whirl_eigenvalue(subambient
     assert abs(nearest - expected) < 5e-4 * abs(expected)
     # ... and the largest multiplier is the whirl's: stable at rest below the onset or not
     assert np.max(np.abs(multipliers)) == pytest.approx(abs(nearest), rel=1e-9)
+
+
+def test_step_weights_are_the_bdf_formulas() -> None:
+    # The variational equation takes the stepper's own coefficients: constant-step BDF2,
+    # (3 Q_{n+1} − 4 Q_n + Q_{n−1}) / (2h) = f, and BDF1, (Q_{n+1} − Q_n) / h = f.
+    from foilbearing.orbit.tangent import _weights
+
+    h = 1e-4
+    c0, w = _weights(1.0, [1.0 - h, 1.0 - 2 * h])
+    assert c0 == pytest.approx(1.5 / h, rel=1e-9)
+    np.testing.assert_allclose(w, [-2.0 / h, 0.5 / h], rtol=1e-9)
+    c0, w = _weights(1.0, [1.0 - h])
+    assert c0 == pytest.approx(1.0 / h, rel=1e-9) and w[0] == pytest.approx(-1.0 / h, rel=1e-9)

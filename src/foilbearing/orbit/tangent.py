@@ -94,22 +94,18 @@ class RunTangent:
 
 
 def _weights(t_new: float, times: list[float]) -> tuple[float, FloatArray]:
-    """c0 and the history weights w_j of a variable-step BDF step (as ``bdf_setup``).
+    """c0 and the history weights w_j of a variable-step BDF step, newest first.
 
-    ``times`` are the past states' times, newest first (k of them):
-    ``c0 = Σ_i 1/(t_new − t_i)``, ``w_j = l'_j(t_new)`` of the Lagrange basis on
-    (t_new, t_0, …, t_{k−1}).
+    The stepper's own formula (:func:`~foilbearing.reynolds._kernels.bdf_setup`), read off
+    by giving it unit storages: its history ``Σ_j w_j Q_j`` is then the weights.
     """
+    from foilbearing.reynolds.transient import bdf_setup
+
     k = len(times)
-    c0 = sum(1.0 / (t_new - t) for t in times)
-    w = np.empty(k)
-    for j in range(k):
-        num = 1.0 / (times[j] - t_new)
-        for i in range(k):
-            if i != j:
-                num *= (t_new - times[i]) / (times[j] - times[i])
-        w[j] = num
-    return float(c0), w
+    out = np.empty(k), np.empty(k), np.empty(k)  # predictor, history, error weights
+    past = (np.array(times, float), np.zeros((k, k)), np.eye(k), k)
+    c0 = bdf_setup(t_new, past, k, np.ones(k), 0.0, *out)
+    return float(c0), out[1].copy()
 
 
 def run_tangent(sim: Any, y0: FloatArray, duration: float) -> RunTangent | None:
