@@ -282,6 +282,21 @@ def test_a_bifurcation_sweep_runs_branches_on_dask_as_the_api_does(tmp_path: Pat
         assert float(point["hopf_speed_rpm"]) == pytest.approx(direct["hopf_speed_rpm"], rel=1e-12)
 
 
+def test_bad_bifurcation_options_are_one_line_errors(tmp_path: Path) -> None:
+    head = 'analysis = "bifurcation"\n[parameters]\nvoltage = ["0 V"]\n[bifurcation]\n'
+    for body, match in (
+        ("steps = -1\n", r"bifurcation.steps = -1: cycles after the two first, 0 to 100"),
+        ("steps = 2.5\n", r"bifurcation.steps = 2.5"),
+        ("order = 3\n", r"the options are speed_range and steps"),
+        ('speed_range = ["5000 rpm"]\n', r"expected \[START, STOP, STEP\]"),
+    ):
+        with pytest.raises(InputError, match=match):
+            load_sweep(_write(tmp_path, head + body))
+    speed = 'analysis = "bifurcation"\n[parameters]\nspeed = ["10000 rpm"]\n'
+    with pytest.raises(InputError, match="set by this analysis"):
+        load_sweep(_write(tmp_path, speed, "speed.toml"))
+
+
 def test_a_swept_choice_must_be_a_word_the_case_allows(tmp_path: Path) -> None:
     bad = _write(tmp_path, '[parameters]\n"actuators.dynamics" = ["compliant", "frozen"]\n')
     with pytest.raises(InputError, match=r"dynamics = 'frozen': expected one of"):
