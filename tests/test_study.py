@@ -83,3 +83,16 @@ def test_paper_speed_ups_on_a_short_plan(tmp_path: Path) -> None:
         assert built.profile.duration == pytest.approx(87000 * np.pi / 30 / 500, rel=1e-12)
         np.testing.assert_allclose(built.program(6.25), h["voltage_V"] / 2, rtol=1e-12)
         np.testing.assert_allclose(built.program(6.0), 0.0, atol=1e-12)
+
+
+def test_the_studys_optional_stages_are_on_by_default_and_each_can_be_skipped() -> None:
+    # The main job runs the limit cycles and the protocol under the paper's reading unless
+    # told not to; a bare --paper-reading (the flag of earlier versions) still asks for it.
+    from foilbearing.cli.main import _parser
+
+    parse = _parser().parse_args
+    default = parse(["study"])
+    assert (default.bifurcation, default.paper_reading) == ("full", "full")
+    assert parse(["study", "--paper-reading"]).paper_reading == "full"
+    skipped = parse(["study", "--paper-reading", "none", "--bifurcation", "none"])
+    assert (skipped.bifurcation, skipped.paper_reading) == ("none", "none")
