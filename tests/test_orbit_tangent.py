@@ -64,7 +64,7 @@ def test_run_derivative_equals_central_differences_of_the_run() -> None:
     inputs = sim.inputs(0.0, sim.volts(0.0), imbalance=False)
     mq = sim.system.storage_jacobian(y_mid, inputs.preload)
     np.testing.assert_allclose(
-        sim.system.storage_product(y_mid, inputs.preload, block), mq @ block, rtol=1e-12
+        sim.system.storage_operator(y_mid, inputs.preload)(block), mq @ block, rtol=1e-12
     )
     for k in range(3):
         v = block[:, k] / np.linalg.norm(block[:, k])

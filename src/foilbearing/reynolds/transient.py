@@ -219,18 +219,18 @@ class TransientSystem:
         P, U, eps, _ = self.split(y)
         q = np.maximum(P.mean(axis=1) - 1.0, 0.0)
         row = 1.0 + eps[0] * self.cos_t + eps[1] * self.sin_t - preload + U + self.c_act * q
-        row = row + self.stack_compression(P) @ self.lobes
+        if self.n_lobe:
+            row = row + self.c_stack * np.maximum(self._stinger_pressure(P), 0.0) @ self.lobes
         return np.repeat(row[:, None], self.grid.n_z, axis=1), q
 
-    def stack_compression(self, P: FloatArray) -> FloatArray:
-        """D_n = c_s max(q(θ_n), 0) of the lobes that follow their stacks, in C (n_lobe,)."""
-        q_stack = self.lobe_rows @ (np.reshape(P, self.grid.shape).mean(axis=1) - 1.0)
-        return self.c_stack * np.maximum(q_stack, 0.0)
+    def _stinger_pressure(self, P: FloatArray) -> FloatArray:
+        """q(θ_n): the mean gauge pressure at the stingers of the lobes that follow their
+        stacks, whose compression is D_n = c_s max(q(θ_n), 0) in C (n_lobe,)."""
+        return self.lobe_rows @ (np.reshape(P, self.grid.shape).mean(axis=1) - 1.0)
 
     def lobe_gain(self, P: FloatArray) -> FloatArray:
         """∂D_n/∂q(θ_n): c_s where the stack is loaded, else 0 (n_lobe,)."""
-        q_stack = self.lobe_rows @ (np.reshape(P, self.grid.shape).mean(axis=1) - 1.0)
-        return np.where(q_stack > 0.0, self.c_stack, 0.0)
+        return np.where(self._stinger_pressure(P) > 0.0, self.c_stack, 0.0)
 
     def storage(self, y: FloatArray, inputs: Inputs) -> FloatArray:
         """Q(y): the quantities whose time derivative the system states."""
@@ -468,14 +468,10 @@ class TransientSystem:
         bottom = sp.hstack([sp.csr_matrix((rest, n)), sp.eye(rest)])
         return sp.vstack([top, bottom], format="csr")
 
-    def storage_product(self, y: FloatArray, preload: FloatArray, dy: FloatArray) -> FloatArray:
-        """``(∂Q/∂y) dy`` at y for a block of directions dy, shape (size, m); dense and
-        vectorised (:meth:`storage_jacobian` is the same matrix, sparse)."""
-        return self.storage_operator(y, preload)(dy)
-
     def storage_operator(self, y: FloatArray, preload: FloatArray) -> Any:
-        """``dy -> (∂Q/∂y) dy`` at y, its state-dependent parts computed once (a run's
-        derivative applies it at every step for every block of directions)."""
+        """``dy -> (∂Q/∂y) dy`` at y for blocks dy of shape (size, m), dense and vectorised
+        (:meth:`storage_jacobian` is the same matrix, sparse), its state-dependent parts
+        computed once (a run's derivative applies it at every step for every block)."""
         g = self.grid
         n, nt, nz = self.n, self.nt, g.n_z
         P = np.array(self.split(y)[0])

@@ -125,19 +125,14 @@ def bifurcation_stage(
 def _resumable(spec: Any, out: Path) -> bool:
     """Whether the stage's results folder holds this very sweep (an interrupted study's:
     continue it); one of another plan is the study's own older output, removed."""
-    import json
     import shutil
 
-    from foilbearing.sweep.runner import output_paths
+    from foilbearing.sweep.runner import output_paths, stored_fingerprint
 
     folder = output_paths(out)[0]
     if not folder.exists():
         return False
-    try:
-        stored = json.loads((folder / "sweep.json").read_text(encoding="utf-8"))["fingerprint"]
-    except (OSError, ValueError, KeyError):
-        stored = None
-    if stored == spec.fingerprint():
+    if stored_fingerprint(folder) == spec.fingerprint():
         return True
     shutil.rmtree(folder)
     return False

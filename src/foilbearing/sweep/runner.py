@@ -119,6 +119,14 @@ def done_points(folder: Path) -> dict[int, dict[str, Any]]:
     return done
 
 
+def stored_fingerprint(folder: Path) -> str | None:
+    """The fingerprint of the sweep whose results ``folder`` holds (None: none readable)."""
+    try:
+        return str(json.loads((folder / "sweep.json").read_text(encoding="utf-8"))["fingerprint"])
+    except (OSError, ValueError, KeyError):
+        return None
+
+
 def _prepare(spec: PointSet, folder: Path, resume: bool) -> dict[int, dict[str, Any]]:
     meta = folder / "sweep.json"
     if meta.exists() or (folder / "points").exists():
@@ -127,11 +135,7 @@ def _prepare(spec: PointSet, folder: Path, resume: bool) -> dict[int, dict[str, 
                 f"results folder {folder} exists: pass --resume to continue it, "
                 "or choose another --out"
             )
-        try:
-            stored = json.loads(meta.read_text(encoding="utf-8"))["fingerprint"]
-        except (OSError, ValueError, KeyError):
-            stored = None
-        if stored != spec.fingerprint():
+        if stored_fingerprint(folder) != spec.fingerprint():
             raise InputError(
                 f"results folder {folder} holds another sweep or sample (different case, analysis, "
                 "parameters or inputs): choose another --out"
