@@ -96,3 +96,53 @@ def test_the_studys_optional_stages_are_on_by_default_and_each_can_be_skipped() 
     assert parse(["study", "--paper-reading"]).paper_reading == "full"
     skipped = parse(["study", "--paper-reading", "none", "--bifurcation", "none"])
     assert (skipped.bifurcation, skipped.paper_reading) == ("none", "none")
+
+
+def test_the_study_queue_runs_a_run_two_stages_ask_for_once(tmp_path: Path) -> None:
+    """The study's one queue of speed-ups (``OrbitQueue``): the schedule's 0 V, 1 g·mm run
+    and the protocol's are the same run, run once and seen by each stage under its own
+    series; a run asked for from a callback runs before the queue drains; and the shared
+    run is, sample for sample, the direct speed-up (32 x 4, stopped at 0.02 s: the queue's plumbing, not a readout)."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from foilbearing.case import Grid, default_case
+    from foilbearing.control import linear_ramp
+    from foilbearing.orbit import simulate
+    from foilbearing.study.orbits import OrbitRun
+    from foilbearing.study.queue import OrbitQueue
+
+    # lobe + held: under the case's own reading the 32 x 4 journal touches at 3000 rpm
+    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    case = case.with_actuator_reading("lobe", "held")
+    protocol = OrbitRun(0.0, None, 1e-6, "1 g·mm")
+    schedule = OrbitRun(0.0, None, 1e-6, "schedule verification")
+    later = OrbitRun(150.0, (6.0, 6.5), 1e-6, "schedule verification")
+    seen: list[dict] = []
+    queue = OrbitQueue(2)
+
+    def then(run: dict) -> None:
+        seen.append(run)
+        if len(seen) == 1:
+            assert queue.submit(case, later, tmp_path, seen.append, stop_time=0.02)
+
+    assert queue.submit(case, protocol, tmp_path, then, stop_time=0.02)
+    assert not queue.submit(case, schedule, tmp_path, seen.append, priority=0, stop_time=0.02)
+    queue.drain()
+    assert [s["headline"]["series"] for s in seen] == [
+        "1 g·mm", "schedule verification", "schedule verification"
+    ]  # fmt: skip
+    assert seen[0]["result"] is seen[1]["result"]
+    assert seen[2]["headline"]["voltage_V"] == 150.0
+    assert sorted(p.name for p in tmp_path.glob("*.nc")) == [
+        "orbit_0V_1gmm.nc", "orbit_150V_ramp6.00s_1gmm.nc"
+    ]  # fmt: skip
+    again: list[dict] = []
+    assert not queue.submit(case, protocol, tmp_path, again.append, stop_time=0.02)
+    assert again[0]["result"] is seen[0]["result"]  # a finished run is not run again
+
+    profile = linear_ramp(3000 * np.pi / 30, 90000 * np.pi / 30, 500.0)
+    direct = simulate(replace(case, rotor=replace(case.rotor, imbalance=1e-6)), profile,
+                      stop_time=0.02)  # fmt: skip
+    np.testing.assert_array_equal(seen[0]["result"].e_x, direct.e_x)

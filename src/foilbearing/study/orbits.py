@@ -23,9 +23,7 @@ NetCDF as it finishes.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -190,14 +188,44 @@ def paper_orbit_runs(
     ``results``, if given, receives each run by its label, as :func:`run_one` returns it
     (``"result"``, ``"analysis"``, ``"headline"``), with the ``"figures"`` written of it.
     ``tag`` prefixes every run's label and file names (and Fig. 15's), so that the runs of
-    another reading of the case can share the folder.
+    another reading of the case can share the folder. The runs go on ``workers`` processes
+    (:class:`~foilbearing.study.queue.OrbitQueue`; :func:`queue_paper_orbits` puts them on
+    a queue the caller shares with other stages).
     """
-    from foilbearing.io import save_figure
+    from foilbearing.study.queue import OrbitQueue
+
+    queue = OrbitQueue(workers)
+    summary = queue_paper_orbits(
+        queue, case, out, stage, stop_time=stop_time, results=results, tag=tag
+    )
+    queue.drain()
+    return summary()
+
+
+def queue_paper_orbits(
+    queue: Any,
+    case: Case,
+    out: Path,
+    stage: Callable[[str], None],
+    *,
+    stop_time: float | None = None,
+    results: dict[str, Any] | None = None,
+    tag: str = "",
+) -> Callable[[], dict[str, Any]]:
+    """Put the protocol's speed-ups on ``queue``; returns the stage's summary, to call once
+    the queue has drained (the arguments as :func:`paper_orbit_runs`).
+
+    The 0 V run goes first; when it ends, the runs it decides are asked for (and, where
+    the 0 V run diverges before the paper's control, the 1 g·mm 0 V run, whose own
+    controlled runs follow it in turn).
+    """
     from foilbearing.orbit.analysis import write_orbit_figures
-    from foilbearing.output.plots.orbit import plot_subsync
 
     imb = case.rotor.imbalance
     done: dict[str, dict[str, Any]] = {}
+    zeros: list[str] = []  # the 0 V runs, then the controlled ones: the protocol's order
+    ramps: list[str] = []
+    notes: list[str] = []
 
     def finish(run: dict[str, Any]) -> None:
         done[run["label"]] = run
@@ -207,48 +235,63 @@ def paper_orbit_runs(
             run["result"], run["analysis"], out, f"orbit_{run['label']}"
         )
 
-    zero = OrbitRun(0.0, None, imb, "paper protocol", tag=tag)
-    finish(run_one(case, zero, out, stop_time))
-    first = done[zero.label]
-    runs: list[OrbitRun] = []
-    contact = first["result"].contact
-    if contact is None or contact["time_s"] >= RAMP[0]:
-        runs += [OrbitRun(v, RAMP, imb, "paper protocol", tag=tag) for v in PAPER_ORBITS if v > 0]
-        note = "the paper's protocol ran as published"
-    else:
+    def ask(run: OrbitRun, then: Callable[[dict[str, Any]], None] = finish) -> None:
+        (zeros if run.ramp is None else ramps).append(run.label)
+        priority = 0 if run.ramp is None else 1  # a 0 V run decides what follows it
+        queue.submit(case, run, out, then, priority=priority, stop_time=stop_time)
+
+    def after_zero(first: dict[str, Any]) -> None:
+        finish(first)
+        contact = first["result"].contact
+        if contact is None or contact["time_s"] >= RAMP[0]:
+            for v in PAPER_ORBITS[1:]:
+                ask(OrbitRun(v, RAMP, imb, "paper protocol", tag=tag))
+            notes.append("the paper's protocol ran as published")
+            return
         note = (
             f"our 0 V run diverges at {contact['time_s']:.2f} s ({contact['speed_rpm']:.0f} "
             f"rpm), before the paper's control at {RAMP[0]}-{RAMP[1]} s: the protocol's "
             "controlled runs are identical to it until then and were not run"
         )
+        notes.append(note)
         stage("  " + note)
-    if contact is not None and contact["time_s"] < RAMP[0]:
         early = _early_ramp(first)
-        runs += [
-            OrbitRun(v, early, imb, "control before our divergence", tag=tag)
-            for v in PAPER_ORBITS
-            if v > 0
-        ]
+        for v in PAPER_ORBITS[1:]:
+            ask(OrbitRun(v, early, imb, "control before our divergence", tag=tag))
         if abs(imb - SENSITIVITY_IMBALANCE) > 1e-12:
-            light = run_one(
-                case, OrbitRun(0.0, None, SENSITIVITY_IMBALANCE, "1 g·mm", tag=tag), out, stop_time
-            )
-            finish(light)
-            c_light = light["result"].contact
-            ramp = RAMP if c_light is None or c_light["time_s"] >= RAMP[0] else _early_ramp(light)
-            runs += [
-                OrbitRun(v, ramp, SENSITIVITY_IMBALANCE, "1 g·mm", tag=tag)
-                for v in PAPER_ORBITS
-                if v > 0
-            ]
-    run_first = list(done)  # the 0 V runs, one after the other
-    n = workers or (os.cpu_count() or 1)
-    with ProcessPoolExecutor(max_workers=n) as pool:
-        futures = [pool.submit(run_one, case, r, out, stop_time) for r in runs]
-        for fut in as_completed(futures):
-            finish(fut.result())
+            ask(OrbitRun(0.0, None, SENSITIVITY_IMBALANCE, "1 g·mm", tag=tag), after_light)
+
+    def after_light(light: dict[str, Any]) -> None:
+        finish(light)
+        c_light = light["result"].contact
+        ramp = RAMP if c_light is None or c_light["time_s"] >= RAMP[0] else _early_ramp(light)
+        for v in PAPER_ORBITS[1:]:
+            ask(OrbitRun(v, ramp, SENSITIVITY_IMBALANCE, "1 g·mm", tag=tag))
+
+    zero = OrbitRun(0.0, None, imb, "paper protocol", tag=tag)
+    ask(zero, after_zero)
+
+    def summary() -> dict[str, Any]:
+        return _protocol_summary(out, done, [*zeros, *ramps], zero.label, notes, results, tag)
+
+    return summary
+
+
+def _protocol_summary(
+    out: Path,
+    done: dict[str, dict[str, Any]],
+    planned: list[str],
+    zero_label: str,
+    notes: list[str],
+    results: dict[str, Any] | None,
+    tag: str,
+) -> dict[str, Any]:
+    """The protocol stage's summary and its Fig. 15, once every run has ended."""
+    from foilbearing.io import save_figure
+    from foilbearing.output.plots.orbit import plot_subsync
+
     # The protocol's order, not the order the parallel runs finished in.
-    order = list(dict.fromkeys([*run_first, *(r.label for r in runs)]))
+    order = list(dict.fromkeys(planned))
     if results is not None:
         results.update(done)
     figures = []
@@ -256,7 +299,7 @@ def paper_orbit_runs(
         keys = [
             k
             for k in order
-            if done[k]["headline"]["series"] == series or (series != "1 g·mm" and k == zero.label)
+            if done[k]["headline"]["series"] == series or (series != "1 g·mm" and k == zero_label)
         ]
         subs = {
             done[k]["headline"]["description"]: done[k]["analysis"].subsync
@@ -274,7 +317,7 @@ def paper_orbit_runs(
             figures.append(str(save_figure(plot_subsync(subs, onsets), out / f"{name}.png")))
     return {
         "runs": [done[k]["headline"] for k in order],
-        "note": note,
+        "note": notes[0],
         "paper_control_ramp_s": list(RAMP),
         "figures": figures,
     }

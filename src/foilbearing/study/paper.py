@@ -191,29 +191,51 @@ def run_study_result(
         results["uncertainty"] = _uncertainty_stage(out, uncertainty, stage)
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
-    orbit_runs: dict[str, Any] = {}  # the runs by label, for the schedule's comparison
-    if orbits:
-        from foilbearing.study.orbits import paper_orbit_runs
+    orbit_runs: dict[str, Any] = {}  # the runs by label, for the report's figures
+    _speed_ups(case, out, results, stage, orbits, paper_reading, schedule, orbit_runs)
+
+    _paper_comparison(case, out, results, sweep, onsets, progress)
+    return _finish(out, results, stage, orbit_runs)
+
+
+def _speed_ups(
+    case: Case,
+    out: Path,
+    results: dict[str, Any],
+    stage: Any,
+    orbits: bool,
+    paper_reading: bool,
+    schedule: bool,
+    orbit_runs: dict[str, Any],
+) -> None:
+    """The stages of speed-ups (the protocol, under the paper's reading, the schedule's) on
+    one queue of worker processes: each run starts as soon as a core is free, the 0 V runs
+    first, and a run two stages ask for runs once (:class:`~foilbearing.study.queue.OrbitQueue`).
+    The schedule is computed here while the workers run the first speed-ups."""
+    from foilbearing.study.queue import OrbitQueue
+
+    queue = OrbitQueue() if orbits else None
+    summaries: dict[str, Any] = {}
+    if queue is not None:
+        from foilbearing.study.orbits import queue_paper_orbits
 
         stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
-        results["orbits"] = paper_orbit_runs(case, out, stage, results=orbit_runs)
-        write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
+        summaries["orbits"] = queue_paper_orbits(queue, case, out, stage, results=orbit_runs)
         if paper_reading and case.actuators is not None:
-            results[PAPER_READING_KEY] = paper_reading_orbits(case, out, stage)
-            write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
-
+            summaries[PAPER_READING_KEY] = queue_paper_reading(queue, case, out, stage)
     if schedule:
-        from foilbearing.study.schedule import schedule_stage
+        from foilbearing.study.schedule import queue_schedule
 
         stage(
             "voltage schedule: least-drag voltages with log decrement >= 0.1, 10-90 krpm"
             + ("; verified in speed-ups" if orbits else "")
         )
-        results["schedule"] = schedule_stage(case, out, stage, previous=orbit_runs, verify=orbits)
+        summaries["schedule"] = queue_schedule(queue, case, out, stage)
+    if queue is not None:
+        queue.drain()
+    for key, summary in summaries.items():  # the stages' order
+        results[key] = summary()
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
-
-    _paper_comparison(case, out, results, sweep, onsets, progress)
-    return _finish(out, results, stage, orbit_runs)
 
 
 def _paper_comparison(
@@ -290,25 +312,43 @@ def paper_reading_orbits(
     prefix ``lobe-held_``; the stage's figures are those of its runs and its Fig. 15.
     ``stop_time`` (s) ends each run early (tests).
     """
+    from foilbearing.study.queue import OrbitQueue
+
+    queue = OrbitQueue()
+    summary = queue_paper_reading(queue, case, out, stage, stop_time)
+    queue.drain()
+    return summary()
+
+
+def queue_paper_reading(
+    queue: Any, case: Case, out: Path, stage: Any, stop_time: float | None = None
+) -> Any:
+    """:func:`paper_reading_orbits` on a shared queue; returns its summary, to call once the
+    queue has drained."""
     from dataclasses import replace
 
     from foilbearing.output.report.captions import READING_TAG
-    from foilbearing.study.orbits import SENSITIVITY_IMBALANCE, paper_orbit_runs
+    from foilbearing.study.orbits import SENSITIVITY_IMBALANCE, queue_paper_orbits
 
     stage(
         "orbits under the paper's reading of the actuator (lobe + held), 1 g·mm: 0 V, then "
-        "ramps to 50/100/150 V at 6-6.5 s (about 3 minutes on 2 cores)"
+        "ramps to 50/100/150 V at 6-6.5 s"
     )
     reading = case.with_actuator_reading("lobe", "held")
     reading = replace(reading, rotor=replace(reading.rotor, imbalance=SENSITIVITY_IMBALANCE))
     runs: dict[str, Any] = {}
-    stage_result = paper_orbit_runs(
-        reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG
+    protocol = queue_paper_orbits(
+        queue, reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG
     )
-    own = [p for run in runs.values() for p in run.get("figures", ())]
-    stage_result["figures"] = [str(p) for p in own] + list(stage_result["figures"])
-    stage_result["reading"] = "lobe + held"
-    return stage_result
+
+    def summary() -> dict[str, Any]:
+        stage_result = protocol()
+        own = [p for run in runs.values() for p in run.get("figures", ())]
+        stage_result["figures"] = [str(p) for p in own] + list(stage_result["figures"])
+        stage_result["reading"] = "lobe + held"
+        return stage_result
+
+    return summary
 
 
 def _finish(

@@ -13,9 +13,9 @@ programs on the same speed-up:
 
 All four with the 1 g·mm imbalance of the study's sensitivity series (with the
 paper's 8.5 g·mm our 0 V rotor reaches contact near 14 krpm by its imbalance
-response, before any whirl could be controlled; see ``foilbearing.study.orbits``). Runs the
-orbit stage already made are taken from it; the others are
-separate processes, one per core. Each run is read for the onset of sustained
+response, before any whirl could be controlled; see ``foilbearing.study.orbits``). The runs go
+on the study's queue of speed-ups (:class:`foilbearing.study.queue.OrbitQueue`), where the
+runs the orbit stage also asks for are run once. Each run is read for the onset of sustained
 sub-synchronous motion, its whip frequency, the divergence speed and the power
 loss averaged over the run, and over the speeds all four runs reach.
 """
@@ -23,9 +23,7 @@ loss averaged over the run, and over the speeds all four runs reach.
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -56,24 +54,37 @@ def schedule_stage(
     out: Path,
     stage: Callable[[str], None],
     *,
-    previous: dict[str, Any] | None = None,
     verify: bool = True,
     workers: int | None = None,
     speeds: list[float] | None = None,
 ) -> dict[str, Any]:
-    """Compute, write and (with ``verify``) run the schedule; returns its summary.
+    """Compute, write and (with ``verify``) run the schedule; returns its summary."""
+    from foilbearing.study.queue import OrbitQueue
 
-    ``previous`` holds the orbit stage's runs by label, as
-    :func:`foilbearing.study.orbits.run_one` returns them: those with the same
-    program and imbalance are reused, results and analyses alike.
+    queue = OrbitQueue(workers) if verify else None
+    summary = queue_schedule(queue, case, out, stage, speeds=speeds)
+    if queue is not None:
+        queue.drain()
+    return summary()
+
+
+def queue_schedule(
+    queue: Any,
+    case: Case,
+    out: Path,
+    stage: Callable[[str], None],
+    *,
+    speeds: list[float] | None = None,
+) -> Callable[[], dict[str, Any]]:
+    """Compute and write the schedule, and put its speed-ups on ``queue`` (None: none).
+
+    Returns the stage's summary, to call once the queue has drained. A run another stage
+    asked for on the same queue (the protocol's 1 g·mm runs) is run once and shared.
     """
     from foilbearing.io import save_figure, write_text
-    from foilbearing.orbit.analysis import mean_power_loss
-    from foilbearing.output.plots.orbit import plot_subsync
-    from foilbearing.output.plots.schedule import plot_run_power, plot_schedule
+    from foilbearing.output.plots.schedule import plot_schedule
     from foilbearing.schedule import voltage_schedule
     from foilbearing.schedule_file import schedule_toml
-    from foilbearing.study.orbits import run_one
 
     assert case.actuators is not None
     if speeds is None:
@@ -87,20 +98,38 @@ def schedule_stage(
         "schedule_file": str(out / "schedule.toml"),
         "figures": figures,
     }
-    if not verify:
-        return summary
+    if queue is None:
+        return lambda: summary
     plan = _runs(schedule)
-    runs: dict[str, Any] = {r.label: (previous or {}).get(r.label) for r in plan}
-    todo = [r for r in plan if runs[r.label] is None]
+    runs: dict[str, Any] = {}
+
+    def ran(result: dict[str, Any]) -> None:
+        runs[result["label"]] = result
+        head = result["headline"]
+        stage(f"  {head['description']}: {head['message']} ({head['wall_time_s']:.0f} s)")
+
     for r in plan:
-        if runs[r.label] is not None:
-            stage(f"  {r.describe()}: taken from the orbit stage")
-    with ProcessPoolExecutor(max_workers=workers or (os.cpu_count() or 1)) as pool:
-        futures = {pool.submit(run_one, case, r, out): r for r in todo}
-        for fut, r in futures.items():
-            runs[r.label] = fut.result()
-            head = runs[r.label]["headline"]
-            stage(f"  {r.describe()}: {head['message']} ({head['wall_time_s']:.0f} s)")
+        # 0 V and the schedule itself first: the longest runs, and the protocol's 0 V
+        # run decides the runs that follow it.
+        if not queue.submit(case, r, out, ran, priority=0 if r.ramp is None else 1):
+            stage(f"  {r.describe()}: shared with the orbit stage")
+
+    def verification() -> dict[str, Any]:
+        summary["verification"] = _verification(runs, plan, out, figures)
+        return summary
+
+    return verification
+
+
+def _verification(
+    runs: dict[str, Any], plan: list[Any], out: Path, figures: list[str]
+) -> dict[str, Any]:
+    """Each run's readouts, the power loss over the speeds all runs reach, and the figures."""
+    from foilbearing.io import save_figure
+    from foilbearing.orbit.analysis import mean_power_loss
+    from foilbearing.output.plots.orbit import plot_subsync
+    from foilbearing.output.plots.schedule import plot_run_power
+
     common = min(float(runs[r.label]["result"].speed[-1]) for r in plan) / RPM
     rows, subs, onsets, power = [], {}, {}, {}
     for r in plan:
@@ -129,10 +158,9 @@ def schedule_stage(
         figures.append(str(save_figure(plot_subsync(subs, onsets), out / "schedule_subsync.png")))
     if power:
         figures.append(str(save_figure(plot_run_power(power), out / "schedule_power.png")))
-    summary["verification"] = {
+    return {
         "speed_up": "3000-90000 rpm at 500 rad/s²",
         "imbalance_g_mm": VERIFY_IMBALANCE * 1e6,
         "common_range_rpm": [3000.0, common],
         "runs": rows,
     }
-    return summary
