@@ -194,6 +194,40 @@ def test_newton_update_matches_twin() -> None:
     assert math.isnan(kern.newton_update(y, dy, w, 40)[0])
 
 
+@pytest.mark.parametrize("known", [1, 2, 3])
+def test_lift_off_branch_prediction_matches_twins(known: int) -> None:
+    # The stepper's prediction of the next step's lift-off branches: the boundary
+    # coordinate of a converged step, its extrapolation, and a kept factor adopting the
+    # prediction (only when at most `most` cells move), each bit for bit its NumPy twin.
+    rng = np.random.default_rng(known)
+    n = 60
+    state = np.where(rng.random(n) < 0.4, 1.0, -1.0) * rng.uniform(0.5, 2.0, n)
+    slack = rng.uniform(0.0, 1.0, n)
+    coord, coord_py = np.empty(n), np.empty(n)
+    assert kern.lift_coordinate(state, slack, coord)
+    assert reference.lift_coordinate_py(state, slack, coord_py)
+    np.testing.assert_array_equal(coord, coord_py)
+    assert not kern.lift_coordinate(np.zeros(n), slack, coord)  # suction retained
+    s = [coord, coord + 0.1 * rng.standard_normal(n), coord + 0.2 * rng.standard_normal(n)]
+    weights = (1.7, -0.9, 0.2) if known == 3 else (0.8, 0.0, 0.0)
+    out, out_py = np.empty(n), np.empty(n)
+    kern.predict_branches(*s, known, weights, out)
+    reference.predict_branches_py(*s, known, weights, out_py)
+    np.testing.assert_array_equal(out, out_py)
+    assert set(np.unique(out)) <= {-1.0, 1.0}
+    # a prediction that moves few cells is adopted, one that moves many is not
+    for flips, most in ((3, 8), (12, 8)):
+        branches = np.where(state > 0.0, 1.0, -1.0)
+        branches[:flips] *= -1.0
+        kept, kept_py = state.copy(), state.copy()
+        moved = kern.adopt_branches(kept, branches, most)
+        assert moved == reference.adopt_branches_py(kept_py, branches, most) == flips
+        np.testing.assert_array_equal(kept, kept_py)
+        np.testing.assert_array_equal(np.abs(kept), np.abs(state))
+        adopted = np.array_equal(np.sign(kept), branches)
+        assert adopted == (flips <= most)
+
+
 def test_jacobian_blocks_match_twin(setup) -> None:
     sim, y, inp = setup
     sys_ = sim.system

@@ -26,7 +26,12 @@ from foilbearing.orbit.problem import Factor, RunStats, StepperProblem
 from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.sampling import Samples, progress_bar
 from foilbearing.orbit.settings import MAX_ORDER, NewtonRule, StepRule, StopRule
-from foilbearing.reynolds._kernels import MAX_MOVED_KEPT
+from foilbearing.reynolds._kernels import (
+    MAX_MOVED_KEPT,
+    adopt_branches,
+    lift_coordinate,
+    predict_branches,
+)
 from foilbearing.reynolds.transient import (
     NEWTON_CONVERGED,
     NEWTON_REFRESH,
@@ -154,8 +159,12 @@ def run(
     guess, hist, weights = np.empty(size), np.empty(size), np.empty(size)
     atol = problem.atol
     counters = [0, 0, 0]  # steps, factorizations, Newton iterations
-    # Lift-off boundary coordinate at the last three accepted steps (None: unknown).
-    lift_s: list[FloatArray | None] = [None, None, None]
+    # Lift-off boundary coordinate at the last three accepted steps, newest first, of
+    # which the first `known` are known; the branches predicted from them for a step.
+    cells = problem.lift_slack.shape[0]
+    lift_s = [np.empty(cells), np.empty(cells), np.empty(cells)]
+    known = 0
+    predicted = np.empty(cells)
     status, message, contact = RunStatus.COMPLETED, "", None
     # A closed-loop program reads the displacement samples as they are produced.
     observe = problem.observe
@@ -191,9 +200,8 @@ def run(
                 past = tuple(BdfHistory(times, ys, qs, count))
                 c0 = bdf_setup(t_new, past, order, atol, newton.rtol, guess, hist, weights)
                 branches = _predicted_branches(
-                    lift_s[0], lift_s[1], lift_s[2], h,
-                    t - times[1] if count > 1 else None,
-                    times[1] - times[2] if count > 2 else None,
+                    lift_s, min(known, count), h, t - times[1] if count > 1 else math.nan,
+                    times[1] - times[2] if count > 2 else math.nan, predicted,
                 )  # fmt: skip
                 ok, y_new, its, lu, lu_c0, nf, q_new, h_min = _step_newton(
                     problem, newton, guess, inp, c0, hist, weights, lu, lu_c0, work, branches
@@ -213,7 +221,11 @@ def run(
             counters[0] += 1
             if on_step is not None:
                 on_step(t_new, y_new, min(order, count))
-            lift_s = [_lift_coordinate(lu, problem.lift_slack), lift_s[0], lift_s[1]]
+            lift_s.insert(0, lift_s.pop())  # the oldest row takes the new coordinate
+            if lu is not None and lift_coordinate(lu.lift_state, problem.lift_slack, lift_s[0]):
+                known = min(known + 1, 3)
+            else:
+                known = 0
             if newton.refresh_after is not None and its > newton.refresh_after:
                 lu = None  # a slow step: the next one takes a fresh factor at its predictor
             # Shift the history by one (rows are reused: no allocation).
@@ -309,11 +321,9 @@ def _step_newton(
         y = y0.copy()
         fresh = lu is None or attempt == 1 or abs(c0 - lu_c0) > 0.2 * c0
         if not fresh and branches is not None and lu is not None:
-            moved = np.count_nonzero((lu.lift_state > 0.0) != (branches > 0.0))
-            if moved > MAX_MOVED_KEPT:
-                fresh = True  # the factor's held cells are too far from this step's
-            elif moved:
-                lu.lift_state[:] = np.where(branches > 0.0, 1.0, -1.0) * np.abs(lu.lift_state)
+            # More than MAX_MOVED_KEPT cells off: the factor's held cells are too far
+            # from this step's; fewer take the predicted branches.
+            fresh = adopt_branches(lu.lift_state, branches, MAX_MOVED_KEPT) > MAX_MOVED_KEPT
         if fresh:
             # Lift-off branches: those predicted for the step, or decided afresh at
             # the guess when the step starts over.
@@ -343,42 +353,29 @@ def _step_newton(
     return False, y0, its, None, math.nan, factorizations, np.empty(0), math.nan
 
 
-def _lift_coordinate(lu: Factor | None, slack: FloatArray) -> FloatArray | None:
-    """The signed distance of each cell from the lift-off boundary at a converged step.
-
-    ``P − 1 − G/d``: ``P − 1 >= 0`` on a free cell, ``−G/d <= 0`` on a held one
-    (the slack of the residual kernel, sign-corrected); it moves smoothly as
-    the boundary moves, so its extrapolation predicts the next step's branches.
-    None without lift-off.
-    """
-    if lu is None or not np.any(lu.lift_state):
-        return None
-    return np.where(lu.lift_state > 0.0, slack, -slack)
-
-
 def _predicted_branches(
-    s0: FloatArray | None,
-    s1: FloatArray | None,
-    s2: FloatArray | None,
-    h: float,
-    h1: float | None,
-    h2: float | None,
+    lift_s: list[FloatArray], known: int, h: float, h1: float, h2: float, out: FloatArray
 ) -> FloatArray | None:
-    """Lift-off branches predicted for a step of h: +1 held, −1 free (None: no history).
+    """Lift-off branches predicted for a step of h into ``out``: +1 held, −1 free (None:
+    no history).
 
-    Extrapolates the boundary coordinate of the last accepted steps (t_n, t_n − h1,
-    t_n − h1 − h2) to t_n + h with the predictor's Lagrange weights.
+    Extrapolates the boundary coordinate of the last ``known`` accepted steps (at t_n,
+    t_n − h1, t_n − h1 − h2; :func:`~foilbearing.reynolds._kernels.lift_coordinate`) to
+    t_n + h with the predictor's Lagrange weights
+    (:func:`~foilbearing.reynolds._kernels.predict_branches`).
     """
-    if s0 is None:
+    if known == 0:
         return None
-    if s1 is None or h1 is None:
-        pred = s0
-    elif s2 is None or h2 is None:
-        pred = s0 + (h / h1) * (s0 - s1)
+    if known == 1:
+        weights = (1.0, 0.0, 0.0)
+    elif known == 2:
+        weights = (h / h1, 0.0, 0.0)
     else:
         t1, t2 = -h1, -h1 - h2
-        l0 = (h - t1) * (h - t2) / (t1 * t2)
-        l1 = h * (h - t2) / (t1 * (t1 - t2))
-        l2 = h * (h - t1) / (t2 * (t2 - t1))
-        pred = l0 * s0 + l1 * s1 + l2 * s2
-    return np.where(pred < 0.0, 1.0, -1.0)
+        weights = (
+            (h - t1) * (h - t2) / (t1 * t2),
+            h * (h - t2) / (t1 * (t1 - t2)),
+            h * (h - t1) / (t2 * (t2 - t1)),
+        )
+    predict_branches(lift_s[0], lift_s[1], lift_s[2], known, weights, out)
+    return out

@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from foilbearing.reynolds.transient_factor import TransientFactor
 
 __all__ = [
+    "adopt_branches_py",
     "bdf_setup_py",
     "bernoulli_deriv_py",
     "bernoulli_py",
@@ -37,11 +38,13 @@ __all__ = [
     "jacobian_H_py",
     "jacobian_P_py",
     "jacobian_blocks_py",
+    "lift_coordinate_py",
     "lift_off_rows_py",
     "newton_residual_py",
     "newton_solve_py",
     "newton_step_py",
     "newton_update_py",
+    "predict_branches_py",
     "residual_py",
     "solve_py",
     "switch_branches_py",
@@ -629,3 +632,36 @@ def newton_update_py(
     """Twin of :func:`~foilbearing.reynolds._kernels.newton_update`."""
     y -= dy
     return float(np.max(np.abs(dy) * weights)), float(y[:n].min())
+
+
+def lift_coordinate_py(lift_state: FloatArray, slack: FloatArray, out: FloatArray) -> bool:
+    """Twin of :func:`~foilbearing.reynolds._kernels.lift_coordinate`."""
+    out[:] = np.where(lift_state > 0.0, slack, -slack)
+    return bool(np.any(lift_state))
+
+
+def predict_branches_py(
+    s0: FloatArray,
+    s1: FloatArray,
+    s2: FloatArray,
+    known: int,
+    weights: tuple[float, float, float],
+    out: FloatArray,
+) -> None:
+    """Twin of :func:`~foilbearing.reynolds._kernels.predict_branches`."""
+    l0, l1, l2 = weights
+    if known == 1:
+        pred = s0
+    elif known == 2:
+        pred = s0 + l0 * (s0 - s1)
+    else:
+        pred = l0 * s0 + l1 * s1 + l2 * s2
+    out[:] = np.where(pred < 0.0, 1.0, -1.0)
+
+
+def adopt_branches_py(lift_state: FloatArray, branches: FloatArray, most: int) -> int:
+    """Twin of :func:`~foilbearing.reynolds._kernels.adopt_branches`."""
+    moved = int(np.count_nonzero((lift_state > 0.0) != (branches > 0.0)))
+    if 0 < moved <= most:
+        lift_state[:] = np.where(branches > 0.0, 1.0, -1.0) * np.abs(lift_state)
+    return moved

@@ -95,6 +95,69 @@ def switch_branches(lift_state: FloatArray, slack: FloatArray, weights: FloatArr
     return moved
 
 
+@njit(cache=True, nogil=True)
+def lift_coordinate(lift_state: FloatArray, slack: FloatArray, out: FloatArray) -> bool:
+    """The signed distance of each cell from the lift-off boundary at a converged step.
+
+    ``out = P − 1 − G/d``: ``P − 1 >= 0`` on a free cell, ``−G/d <= 0`` on a held one (the
+    slack of the residual kernel, sign-corrected); it moves smoothly as the boundary moves,
+    so its extrapolation predicts the next step's branches (:func:`predict_branches`).
+    Returns False when no cell has a branch (suction retained: ``out`` means nothing).
+    Twin: :func:`~foilbearing.reynolds.reference.lift_coordinate_py`.
+    """
+    known = False
+    for k in range(lift_state.shape[0]):
+        d = lift_state[k]
+        if d != 0.0:
+            known = True
+        out[k] = slack[k] if d > 0.0 else -slack[k]
+    return known
+
+
+@njit(cache=True, nogil=True)
+def predict_branches(
+    s0: FloatArray,
+    s1: FloatArray,
+    s2: FloatArray,
+    known: int,
+    weights: tuple[float, float, float],
+    out: FloatArray,
+) -> None:
+    """Lift-off branches predicted for a step: ``out`` +1 held, −1 free.
+
+    The boundary coordinate of the last ``known`` accepted steps (1 to 3: s0 newest),
+    extrapolated to the new time: s0 itself (1), the line through s0 and s1 with
+    ``weights[0] = h/h1`` (2), or the parabola through all three with the predictor's
+    Lagrange weights (3). Twin: :func:`~foilbearing.reynolds.reference.predict_branches_py`.
+    """
+    l0, l1, l2 = weights
+    for k in range(s0.shape[0]):
+        if known == 1:
+            pred = s0[k]
+        elif known == 2:
+            pred = s0[k] + l0 * (s0[k] - s1[k])
+        else:
+            pred = l0 * s0[k] + l1 * s1[k] + l2 * s2[k]
+        out[k] = 1.0 if pred < 0.0 else -1.0
+
+
+@njit(cache=True, nogil=True)
+def adopt_branches(lift_state: FloatArray, branches: FloatArray, most: int) -> int:
+    """How many cells of a kept factor are off the step's predicted ``branches``; if they
+    are no more than ``most``, they take them (the factor's rows stay: the magnitude of each
+    state is kept). Twin: :func:`~foilbearing.reynolds.reference.adopt_branches_py`.
+    """
+    moved = 0
+    for k in range(lift_state.shape[0]):
+        if (lift_state[k] > 0.0) != (branches[k] > 0.0):
+            moved += 1
+    if 0 < moved <= most:
+        for k in range(lift_state.shape[0]):
+            a = abs(lift_state[k])
+            lift_state[k] = a if branches[k] > 0.0 else -a
+    return moved
+
+
 #: Outcomes of :func:`transient_newton_solve`.
 NEWTON_CONVERGED, NEWTON_FILM_CLOSED, NEWTON_NOT_FINITE, NEWTON_TOO_SLOW = 0, 1, 2, 3
 NEWTON_DIVERGED, NEWTON_REFRESH = 4, 5
