@@ -2,7 +2,7 @@
 figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
-     [--divergence] [--disturbance] [--newton] [--refresh] [--readings] [--orbit-grid G ...]
+     [--divergence] [--disturbance] [--steps] [--newton] [--refresh] [--readings] [--orbit-grid G ...]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -35,6 +35,10 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
 - ``--readings``: the orbit's cost under each reading of the actuator in the film
   (docs/model.md §3.8): the C-GFB at 150 V, 8.5 g·mm, 0.05 s at 50 krpm, ms per step,
   iterations and factorisations per step, best of 3 (about 1 minute).
+- ``--steps``: the cost of a step on a smooth orbit (C-GFB, 0 V, 1 g·mm, 30 krpm: the kind
+  of step most of a speed-up is made of) and on a large one (shimmed GFB, 150 V, 8.5 g·mm,
+  50 krpm), 0.05 s each, best of 3, with the iterations and factorisations and e_X at the
+  end (to compare two versions of the stepper: the same orbit must give the same e_X).
 - ``--newton``: the modified Newton iteration of the full speed-up's orbit at 50 krpm
   (0.05 s) under lift-off and with suction retained: calls of the compiled iteration by
   fresh/kept factor and outcome, mean iterations, and the cost per step (about 10 s).
@@ -533,6 +537,30 @@ def divergence_study(disturbed: bool) -> None:
             )
 
 
+def step_costs() -> None:
+    """ms a step on a smooth and a large orbit, best of 3 (0.05 s each, after a warm-up)."""
+    base = default_case()
+    runs = {
+        "C-GFB, 0 V, 1 g·mm, 30 krpm": (
+            replace(base, rotor=replace(base.rotor, imbalance=1e-6)),
+            30e3,
+        ),
+        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm": (base.with_voltages(150.0).shimmed(), 50e3),
+    }
+    print("cost of a step, 0.05 s of each orbit, 96 x 12, default settings, best of 3:")
+    for name, (case, rpm) in runs.items():
+        simulate(case, constant_speed(rpm * RPM, 2e-3))  # compile, warm up
+        costs = []
+        for _ in range(3):
+            res = simulate(case, constant_speed(rpm * RPM, 0.05))
+            costs.append(1e3 * res.wall_time / res.steps)
+        print(
+            f"  {name}: {min(costs):.3f} ms a step (runs {', '.join(f'{c:.3f}' for c in costs)}); "
+            f"{res.steps} steps, {res.newton_iterations} iterations, {res.factorizations} "
+            f"factorisations; e_X at the end {res.e_x[-1]:.9e} m"
+        )
+
+
 def step_profile() -> None:
     """Where a step's time goes: cProfile of the full speed-up's orbit at 50 krpm, per kernel."""
     import cProfile
@@ -585,6 +613,9 @@ if __name__ == "__main__":
         sys.exit(0)
     if "--refresh" in sys.argv:
         refresh_policy()
+        sys.exit(0)
+    if "--steps" in sys.argv:
+        step_costs()
         sys.exit(0)
     if "--newton" in sys.argv:
         newton_statistics()

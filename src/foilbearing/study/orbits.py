@@ -17,8 +17,9 @@ study says so. Two labelled variants then keep what the protocol was for:
   a lighter imbalance; if our 0 V run diverges before 6 s with it too, the
   ramps are placed as in the first variant.
 
-Runs after the first are separate processes (one per core); each writes its
-NetCDF as it finishes.
+The runs go on worker processes, one per core, through the study's queue
+(:class:`foilbearing.study.queue.OrbitQueue`): the 0 V run first, the runs it
+decides as soon as it ends; each writes its NetCDF as it finishes.
 """
 
 from __future__ import annotations
