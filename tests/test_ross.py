@@ -1,9 +1,7 @@
 """Export to ROSS: coefficient tables, the frame mapping, and the onset speed of a rigid rotor.
 
-The ROSS tests need ``ross-rotordynamics >= 3.0`` (Python >= 3.13) and are
-skipped without it; run them with
-
-    bash scripts/setup_ross_env.sh && .venv-ross/bin/python -m pytest -q tests/test_ross.py
+The ROSS tests need ``ross-rotordynamics >= 3.0`` (the ``ross`` extra, which ``make test``
+installs in the project's one environment, Python >= 3.13) and are skipped without it.
 
 Frame mapping under test (``foilbearing.export.ross``): x_ROSS = Y, y_ROSS = −X,
 i.e. ``K_ROSS = T K Tᵀ`` with ``T = [[0, 1], [−1, 0]]``. It is proved three

@@ -48,8 +48,8 @@ __all__ = ["coefficient_table", "ross_coefficients", "to_ross_bearing"]
 
 ROSS_MIN_VERSION = (3, 0)
 _INSTALL_HINT = (
-    "pip install 'foilbearing[ross]' (ross-rotordynamics >= 3.0, which needs Python >= 3.13; "
-    "`bash scripts/setup_ross_env.sh` builds such an environment in .venv-ross)"
+    "pip install 'foilbearing[ross]' (ross-rotordynamics >= 3.0; `make test` and `make run` "
+    "install it in the project's .venv)"
 )
 
 

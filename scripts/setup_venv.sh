@@ -1,25 +1,27 @@
 #!/usr/bin/env bash
-# Create .venv-ross (Python 3.13) with foilbearing[ross,dev] installed, for tests/test_ross.py.
+# Create .venv (Python >= 3.13) with foilbearing[dev,ross] installed: the one environment of
+# `make run`, `make test` and the ROSS export.
 #
-# ROSS >= 3.0 (ross-rotordynamics) needs Python >= 3.13, newer than the main venv's.
-# Idempotent: a stamp file records the install; it is redone when pyproject.toml is newer.
-# Python 3.13 is looked for, in order, in: $PYTHON313, `pyenv prefix 3.13*`,
-# /root/.pyenv/versions/3.13.*/bin/python3.13, and python3.13 on PATH.
+# ROSS >= 3.0 (ross-rotordynamics, an ordinary extra) needs Python >= 3.13, and so does the
+# project. Idempotent: a stamp file records the install; it is redone when pyproject.toml or
+# the lock file is newer, and the venv is made afresh when its Python is older than 3.13.
+# Python 3.13 or newer is looked for, in order, in: $PYTHON313, $PYTHON, `pyenv prefix 3.13*`,
+# ~/.pyenv/versions/3.13*/bin/python3.13, and python3.13 or python3 on PATH.
 #
-# The versions come from constraints-ross.txt (the ones CI passed); `--lock` resolves them
-# afresh from pyproject's ranges in a new venv and rewrites that file (`make lock`).
+# The versions come from constraints.txt (the ones CI passed); `--lock` resolves them afresh
+# from pyproject's ranges in a new venv and rewrites that file (`make lock`).
 #
-# Usage: bash scripts/setup_ross_env.sh [--lock]   (from anywhere; works in the repository root)
+# Usage: bash scripts/setup_venv.sh [--lock]   (from anywhere; works in the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-VENV=.venv-ross
+VENV=.venv
 STAMP="$VENV/.installed"
-LOCK=constraints-ross.txt
+LOCK=constraints.txt
 relock=0
 [ "${1:-}" = "--lock" ] && relock=1
 
-say() { printf 'setup_ross_env: %s\n' "$*"; }
+say() { printf 'setup_venv: %s\n' "$*"; }
 
 # The installed version, read from the package metadata: importing ross prints CoolProp noise.
 ross_version() {
@@ -33,10 +35,12 @@ is_py313() {
 
 find_python() {
     local cand
-    if is_py313 "${PYTHON313:-}"; then
-        echo "$PYTHON313"
-        return 0
-    fi
+    for cand in "${PYTHON313:-}" "$(command -v "${PYTHON:-}" 2>/dev/null || true)"; do
+        if is_py313 "$cand"; then
+            echo "$cand"
+            return 0
+        fi
+    done
     if command -v pyenv >/dev/null 2>&1; then
         for v in $(pyenv versions --bare 2>/dev/null | grep -E '^3\.13(\.[0-9]+)?$' | sort -rV); do
             cand="$(pyenv prefix "$v" 2>/dev/null)/bin/python3.13"
@@ -52,11 +56,13 @@ find_python() {
             return 0
         fi
     done
-    cand="$(command -v python3.13 2>/dev/null || true)"
-    if is_py313 "$cand"; then
-        echo "$cand"
-        return 0
-    fi
+    for name in python3.13 python3; do
+        cand="$(command -v "$name" 2>/dev/null || true)"
+        if is_py313 "$cand"; then
+            echo "$cand"
+            return 0
+        fi
+    done
     return 1
 }
 
@@ -69,8 +75,8 @@ fi
 
 if ! is_py313 "$VENV/bin/python"; then
     if ! PY="$(find_python)"; then
-        say "no Python 3.13 found (ROSS >= 3.0 needs Python >= 3.13)." >&2
-        say "looked in \$PYTHON313, pyenv, ~/.pyenv/versions/3.13*, and python3.13 on PATH;" >&2
+        say "no Python >= 3.13 found (foilbearing and ROSS >= 3.0 need it)." >&2
+        say "looked in \$PYTHON313, \$PYTHON, pyenv, ~/.pyenv/versions/3.13*, python3.13 and python3;" >&2
         say "install one (e.g. 'pyenv install 3.13') or set PYTHON313=/path/to/python3.13." >&2
         exit 1
     fi
@@ -79,15 +85,15 @@ if ! is_py313 "$VENV/bin/python"; then
     "$PY" -m venv "$VENV"
 fi
 
-say "installing -e '.[ross,dev]' into $VENV (first time: a few minutes)"
+say "installing -e '.[dev,ross]' into $VENV (first time: a few minutes)"
 "$VENV/bin/python" -m pip install --quiet --upgrade pip
 if [ "$relock" = 1 ]; then
-    "$VENV/bin/python" -m pip install --quiet -e '.[ross,dev]'
-    { echo "# The versions CI passed for the ROSS venv, $("$VENV/bin/python" -V). Refresh: make lock, then .ci/run."
+    "$VENV/bin/python" -m pip install --quiet -e '.[dev,ross]'
+    { echo "# The versions CI passed, for $("$VENV/bin/python" -V). Refresh: make lock, then .ci/run."
       "$VENV/bin/python" -m pip freeze --exclude-editable; } > "$LOCK"
     say "wrote $LOCK"
 else
-    "$VENV/bin/python" -m pip install --quiet -c "$LOCK" -e '.[ross,dev]'
+    "$VENV/bin/python" -m pip install --quiet -c "$LOCK" -e '.[dev,ross]'
 fi
 touch "$STAMP"
 say "done: $(ross_version) in $VENV"
