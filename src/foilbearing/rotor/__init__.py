@@ -1,0 +1,25 @@
+"""Rotors on foil bearings: a shaft of beam elements with disks, on two C-GFBs.
+
+- :mod:`.model`: the rotor (:class:`RotorCase`) and the weight each bearing carries;
+- :mod:`.toml`: the rotor file (:func:`load_rotor`);
+- :mod:`.linear`: modes, log decrements and the onset speed on ROSS with matched whirl
+  (:func:`rotor_modes`, :func:`rotor_onset`; ROSS is the ``ross`` extra).
+"""
+
+from foilbearing.rotor.linear import RotorModes, ross_rotor, rotor_modes, rotor_onset
+from foilbearing.rotor.model import BearingSite, Disk, Material, RotorCase, ShaftElement
+from foilbearing.rotor.toml import load_rotor, rotor_from_dict
+
+__all__ = [
+    "BearingSite",
+    "Disk",
+    "Material",
+    "RotorCase",
+    "RotorModes",
+    "ShaftElement",
+    "load_rotor",
+    "ross_rotor",
+    "rotor_from_dict",
+    "rotor_modes",
+    "rotor_onset",
+]

@@ -1,0 +1,120 @@
+"""Rotors on foil bearings (issue 32): the rotor file, the weight each bearing carries, and
+the rigid limit of the linear analysis on ROSS against our single-bearing ``stability``."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from foilbearing.errors import InputError
+from foilbearing.rotor import load_rotor, rotor_from_dict
+
+RPM = math.pi / 30.0
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "rotor_rigid_symmetric.toml"
+
+
+def _rotor(**changes):  # type: ignore[no-untyped-def]
+    data = {
+        "title": "offset disk",
+        "material": {"density": "7850 kg/m**3", "youngs_modulus": "211 GPa", "poisson_ratio": 0.29},
+        "shaft": {"lengths": ["40 mm", "60 mm", "50 mm"], "outer_diameters": ["30 mm"] * 3},
+        "disks": [
+            {"node": 1, "mass": "2 kg", "polar_inertia": "1e-3 kg*m**2",
+             "diametral_inertia": "5e-4 kg*m**2"},
+        ],
+        "bearings": [{"node": 0}, {"node": 2}],
+    }  # fmt: skip
+    data.update(changes)
+    return rotor_from_dict(data, source="rotor.toml")
+
+
+def test_two_bearings_carry_the_weight_by_the_balance_of_moments() -> None:
+    # A disk 40 mm from bearing A on a 100 mm span, a shaft overhanging 50 mm past B: the
+    # reactions balance the forces and the moments about either bearing, so an offset disk
+    # loads the bearings unequally.
+    rotor = _rotor()
+    at, w = rotor.weights()
+    ra, rb = rotor.bearing_loads()
+    assert ra + rb == pytest.approx(w.sum(), rel=1e-12)
+    assert rb * 0.1 == pytest.approx(np.sum(w * at), rel=1e-12)  # moments about A
+    disk = 2.0 * rotor.gravity
+    assert ra > disk * 0.6 - 1e-9 and rb > disk * 0.4  # the disk's share by the lever rule
+    cases = rotor.loaded_cases()
+    assert [c.operation.load for c in cases] == [ra, rb]
+    assert rotor.mass == pytest.approx(2.0 + 7850 * math.pi / 4 * 0.03**2 * 0.15, rel=1e-12)
+
+
+def test_bad_rotor_input_is_one_line_naming_the_file_and_field(tmp_path: Path) -> None:
+    with pytest.raises(
+        InputError, match=r"rotor.toml: bearings\[1\].node = 7: the shaft has nodes 0 to 3"
+    ):
+        _rotor(bearings=[{"node": 0}, {"node": 7}])
+    with pytest.raises(InputError, match=r"unknown field 'colour' in \[disks\[0\]\]"):
+        _rotor(disks=[{"node": 1, "mass": "2 kg", "polar_inertia": "0 kg*m**2",
+                       "diametral_inertia": "0 kg*m**2", "colour": "red"}])  # fmt: skip
+    with pytest.raises(InputError, match=r"material.youngs_modulus"):
+        _rotor(material={"density": "7850 kg/m**3", "youngs_modulus": "211 kg",
+                         "poisson_ratio": 0.29})  # fmt: skip
+    with pytest.raises(InputError, match=r"case file not found"):
+        rotor_from_dict({**_rotor_data_min(), "bearings": [{"node": 0, "case": "nope.toml"}]},
+                        source="rotor.toml", folder=tmp_path)  # fmt: skip
+    with pytest.raises(InputError, match=r"centre of mass lies outside the bearings"):
+        # all the weight beyond bearing B: bearing A would have to pull the shaft down
+        _rotor(bearings=[{"node": 0}, {"node": 1}],
+               disks=[{"node": 3, "mass": "5 kg", "polar_inertia": "0 kg*m**2",
+                       "diametral_inertia": "0 kg*m**2"}]).loaded_cases()  # fmt: skip
+    with pytest.raises(InputError, match=r"rotor file not found"):
+        load_rotor(tmp_path / "missing.toml")
+
+
+def _rotor_data_min() -> dict:
+    return {
+        "material": {"density": "7850 kg/m**3", "youngs_modulus": "211 GPa", "poisson_ratio": 0.3},
+        "shaft": {"lengths": ["50 mm"], "outer_diameters": ["30 mm"]},
+    }
+
+
+@pytest.mark.slow
+def test_rigid_symmetric_rotor_is_the_single_bearing_model() -> None:
+    """The rigid limit (examples/rotor_rigid_symmetric.toml): a stiff, symmetric rotor on two
+    copies of the built-in bearing at 0 V, each carrying the single-bearing model's mass.
+
+    - Its cylindrical mode's onset and whirl frequency, from ROSS with matched whirl on
+      tables 0.5 krpm apart, equal our single-bearing ``stability`` within 1 % (measured:
+      0.1 %; the rest is ROSS's interpolation between the table's speeds).
+    - The forward conical mode whirls at the frequency of the rigid body's tilt,
+      Id ω² − Ip Ω ω − k_θ = 0, with k_θ = 2 k a² from the cylindrical mode's stiffness
+      k = M ω_c²/2: within 3 % (the film is stiffer at the conical mode's frequency than at
+      the cylindrical one's, and the formula leaves out its damping).
+    """
+    pytest.importorskip("ross", minversion="3.0")
+    from foilbearing.rotor import rotor_onset
+    from foilbearing.stability import onset_speed
+
+    rotor = load_rotor(EXAMPLE)
+    speeds = list(np.arange(40e3, 47.01e3, 500.0) * RPM)
+    onset, whirl, modes = rotor_onset(rotor, speeds)
+    ours = onset_speed(rotor.loaded_cases()[0], speeds)
+    assert onset is not None and ours.onset_speed is not None and ours.whirl_frequency is not None
+    assert onset == pytest.approx(ours.onset_speed, rel=0.01)
+    assert whirl == pytest.approx(ours.whirl_frequency / (2 * math.pi), rel=0.01)
+
+    # The conical mode at the lowest speed: the highest forward mode of the four.
+    k = 0
+    forward = np.flatnonzero(modes.forward[k])
+    cyl, con = (2 * math.pi * modes.frequency[k, i] for i in (forward[0], forward[-1]))
+    shaft = rotor.shaft[0]
+    m_shaft = 2 * shaft.mass(rotor.material)
+    r = shaft.outer_diameter / 2
+    disk = rotor.disks[0]
+    span = 2 * shaft.length
+    i_d = disk.diametral_inertia + m_shaft * (span**2 / 12 + r**2 / 4)
+    i_p = disk.polar_inertia + m_shaft * r**2 / 2
+    k_film = rotor.mass * cyl**2 / 2
+    k_tilt = 2 * k_film * (span / 2) ** 2
+    g = i_p * modes.speeds[k]
+    tilt = (g + math.sqrt(g * g + 4 * i_d * k_tilt)) / (2 * i_d)
+    assert con == pytest.approx(tilt, rel=0.03)
