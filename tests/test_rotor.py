@@ -102,10 +102,11 @@ def test_rigid_symmetric_rotor_is_the_single_bearing_model() -> None:
     assert onset == pytest.approx(ours.onset_speed, rel=0.01)
     assert whirl == pytest.approx(ours.whirl_frequency / (2 * math.pi), rel=0.01)
 
-    # The conical mode at the lowest speed: the highest forward mode of the four.
+    # At the lowest speed, the cylindrical forward whirl is the second mode of the four and
+    # the forward conical mode, stiffened by the gyroscopic moment, the highest.
     k = 0
-    forward = np.flatnonzero(modes.forward[k])
-    cyl, con = (2 * math.pi * modes.frequency[k, i] for i in (forward[0], forward[-1]))
+    assert modes.forward[k, 1]
+    cyl, con = (2 * math.pi * modes.frequency[k, i] for i in (1, -1))
     shaft = rotor.shaft[0]
     m_shaft = 2 * shaft.mass(rotor.material)
     r = shaft.outer_diameter / 2
@@ -118,3 +119,28 @@ def test_rigid_symmetric_rotor_is_the_single_bearing_model() -> None:
     g = i_p * modes.speeds[k]
     tilt = (g + math.sqrt(g * g + 4 * i_d * k_tilt)) / (2 * i_d)
     assert con == pytest.approx(tilt, rel=0.03)
+
+
+@pytest.mark.slow
+def test_rotor_command_prints_modes_onset_and_campbell(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
+    # `foilbearing rotor ... --json`: one JSON object on stdout (ROSS's import noise kept
+    # off it), each mode with its speed, frequency, log decrement and whirl, and the onset
+    # read on tables 2 krpm apart: within 1 % of our stability (0.5 % measured).
+    import json
+
+    from foilbearing.cli.main import main
+    from foilbearing.stability import onset_speed
+
+    pytest.importorskip("ross", minversion="3.0")
+    argv = ["rotor", str(EXAMPLE), "--speed-range", "40000rpm:46000rpm:2000rpm"]
+    assert main([*argv, "--json", "--plot", str(tmp_path)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert {"speed_rpm", "frequency_Hz", "log_decrement", "whirl"} <= set(out["modes"][0])
+    assert len(out["modes"]) == 4 * 4
+    rotor = load_rotor(EXAMPLE)
+    ours = onset_speed(rotor.loaded_cases()[0], list(np.arange(40e3, 46.01e3, 2e3) * RPM))
+    assert out["onset_speed_rpm"] == pytest.approx(ours.onset_speed / RPM, rel=0.01)
+    assert sum(b["load_N"] for b in out["bearings"]) == pytest.approx(rotor.mass * 9.80665)
+    assert (tmp_path / "campbell.png").stat().st_size > 10_000
+    assert main(["rotor", str(tmp_path / "none.toml")]) == 2
+    assert "rotor file not found" in capsys.readouterr().err

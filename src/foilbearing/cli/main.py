@@ -26,6 +26,7 @@ from foilbearing.cli import (
     identify,
     optimize,
     orbit,
+    rotor,
     schedule,
     stability,
     static,
@@ -107,6 +108,7 @@ def _parser() -> argparse.ArgumentParser:
         uncertainty,
         optimize,
         schedule,
+        rotor,
         study,
     ):
         module.register(sub)

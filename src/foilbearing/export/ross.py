@@ -275,7 +275,7 @@ def to_ross_bearing(
 def _import_ross() -> Any:
     """ROSS, or an InputError saying how to install it."""
     try:
-        import ross
+        ross = _quiet_import("ross")
     except ImportError as exc:
         raise InputError(f"the ROSS export needs ROSS: {_INSTALL_HINT}") from exc
     version = getattr(ross, "__version__", "0")
@@ -285,6 +285,32 @@ def _import_ross() -> Any:
             f"ROSS {version} is too old for 2-D speed × frequency tables: {_INSTALL_HINT}"
         )
     return ross
+
+
+def _quiet_import(name: str) -> Any:
+    """Import ``name`` with its output to stdout dropped, Python's and the C libraries': ROSS's
+    property libraries announce at import that REFPROP is missing, which would break the
+    one JSON object a ``--json`` command prints."""
+    import contextlib
+    import importlib
+    import io
+    import os
+    import sys
+
+    if name in sys.modules:
+        return importlib.import_module(name)
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as null, contextlib.redirect_stdout(io.StringIO()):
+            os.dup2(null.fileno(), 1)
+            try:
+                return importlib.import_module(name)
+            finally:
+                sys.stdout.flush()
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
 
 
 def _axis(values: Any, name: str, *, sort: bool) -> NDArray[np.float64]:

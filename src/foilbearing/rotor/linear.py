@@ -63,10 +63,10 @@ class RotorModes:
     forward: NDArray[np.bool_]
 
     def least_stable(self) -> FloatArray:
-        """The lowest log decrement of a forward mode at each speed (NaN: none)."""
-        dec = np.where(self.forward, self.log_decrement, np.inf)
-        low = dec.min(axis=1)
-        return np.where(np.isfinite(low), low, np.nan)
+        """The lowest log decrement at each speed, over every mode kept. (Not over the
+        forward ones only: ROSS reads a mode's whirl direction from its orbits, which a
+        conical mode barely has at the rotor's middle, and its label can flip with speed.)"""
+        return np.asarray(self.log_decrement.min(axis=1), float)
 
     def headline(self) -> list[dict[str, Any]]:
         """The modes by speed, unit-named keys (``--json``)."""
@@ -171,7 +171,7 @@ def rotor_onset(
     num_modes: int = 4,
     progress: Callable[[str], None] | None = None,
 ) -> tuple[float | None, float | None, RotorModes]:
-    """The lowest speed (rad/s) where a forward mode's log decrement turns negative, its whirl
+    """The lowest speed (rad/s) where a mode's log decrement turns negative, its whirl
     frequency (Hz), and the modes on ``speeds``; (None, None, modes) if stable over them.
 
     Bracketed on ``speeds`` (the bearings' table speeds) and refined by Brent's method
@@ -191,10 +191,9 @@ def rotor_onset(
         )
 
     def least(w: float) -> float:
-        _wd, dec, fw = _modes_at(model, w, num_modes)
-        return float(np.min(np.where(fw, dec, np.inf)))
+        return float(np.min(_modes_at(model, w, num_modes)[1]))
 
     onset = float(brentq(least, float(speeds[k - 1]), float(speeds[k]), rtol=1e-7))
-    wd, dec, fw = _modes_at(model, onset, num_modes)
-    i = int(np.argmin(np.where(fw, dec, np.inf)))
+    wd, dec, _fw = _modes_at(model, onset, num_modes)
+    i = int(np.argmin(dec))
     return onset, float(wd[i] / (2.0 * math.pi)), modes
