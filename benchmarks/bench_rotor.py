@@ -1,14 +1,19 @@
 """Benchmark of the rotor's linear analysis (issue 32). Prints its figures.
 
-Run: .venv/bin/python benchmarks/bench_rotor.py
+Run: .venv/bin/python benchmarks/bench_rotor.py [--reduction]
 
 The Campbell diagram of examples/rotor_rigid_symmetric.toml over 20 speeds (30-68 krpm,
 2 krpm apart; 4 modes with matched whirl): the wall time of the two bearings' coefficient
 tables (20 speeds x 12 frequencies each) and of ROSS's modal analyses. Target: <= 60 s.
+
+``--reduction``: the onset of examples/rotor_two_disk.toml (flexible, two C-GFBs at 150 V)
+on the Craig-Bampton rotor (:mod:`foilbearing.rotor.reduced`) against the number of shaft
+modes kept, beside ROSS's full beam model; tables 2 krpm apart, 40-56 krpm.
 """
 
 from __future__ import annotations
 
+import sys
 import time
 from pathlib import Path
 
@@ -16,11 +21,35 @@ import numpy as np
 
 from foilbearing.constants import RPM
 from foilbearing.rotor import load_rotor, ross_rotor, rotor_modes
+from foilbearing.rotor.linear import _modes_at, refine_onset
+from foilbearing.rotor.reduced import reduced_onset
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "rotor_rigid_symmetric.toml"
 
 
+def reduction() -> None:
+    rotor = load_rotor(EXAMPLE.with_name("rotor_two_disk.toml"))
+    speeds = list(np.arange(40e3, 56.01e3, 2e3) * RPM)
+    model = ross_rotor(rotor, speeds)
+    full = rotor_modes(rotor, speeds, model=model)
+    onset, whirl = refine_onset(full, lambda w: _modes_at(model, w, 4))
+    assert onset is not None and whirl is not None
+    print(f"ROSS's full model: onset {onset / RPM:,.0f} rpm, whirl {whirl:.2f} Hz")
+    print("shaft modes kept | onset, rpm | error | whirl, Hz | wall, s")
+    nodes = [b.node for b in rotor.bearings]
+    for n in (0, 1, 2, 4, 6, 8, 12, 16):
+        clock = time.perf_counter()
+        reduced, reduced_whirl, _ = reduced_onset(model, nodes, speeds, n_modes=n)
+        wall = time.perf_counter() - clock
+        assert reduced is not None and reduced_whirl is not None
+        print(f"{n} | {reduced / RPM:,.0f} | {100 * (reduced / onset - 1):+.4f} % | "
+              f"{reduced_whirl:.2f} | {wall:.2f}")  # fmt: skip
+
+
 def main() -> None:
+    if "--reduction" in sys.argv[1:]:
+        reduction()
+        return
     rotor = load_rotor(EXAMPLE)
     speeds = list(np.arange(30e3, 68.01e3, 2e3) * RPM)
     clock = time.perf_counter()

@@ -3,21 +3,28 @@
 - :mod:`.model`: the rotor (:class:`RotorCase`) and the weight each bearing carries;
 - :mod:`.toml`: the rotor file (:func:`load_rotor`);
 - :mod:`.linear`: modes, log decrements and the onset speed on ROSS with matched whirl
-  (:func:`rotor_modes`, :func:`rotor_onset`; ROSS is the ``ross`` extra).
+  (:func:`rotor_modes`, :func:`rotor_onset`; ROSS is the ``ross`` extra);
+- :mod:`.reduced`: the rotor reduced to its journals and a few shaft modes (Craig-Bampton),
+  the basis of the nonlinear rotor (:func:`reduce_rotor`, :func:`reduced_onset`).
 """
 
 from foilbearing.rotor.linear import RotorModes, ross_rotor, rotor_modes, rotor_onset
 from foilbearing.rotor.model import BearingSite, Disk, Material, RotorCase, ShaftElement
+from foilbearing.rotor.reduced import ReducedRotor, reduce_rotor, reduced_modes, reduced_onset
 from foilbearing.rotor.toml import load_rotor, rotor_from_dict
 
 __all__ = [
     "BearingSite",
     "Disk",
     "Material",
+    "ReducedRotor",
     "RotorCase",
     "RotorModes",
     "ShaftElement",
     "load_rotor",
+    "reduce_rotor",
+    "reduced_modes",
+    "reduced_onset",
     "ross_rotor",
     "rotor_from_dict",
     "rotor_modes",

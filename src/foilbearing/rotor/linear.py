@@ -32,7 +32,14 @@ from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.rotor.model import RotorCase
 
-__all__ = ["DEFAULT_FREQUENCIES", "RotorModes", "ross_rotor", "rotor_modes", "rotor_onset"]
+__all__ = [
+    "DEFAULT_FREQUENCIES",
+    "RotorModes",
+    "refine_onset",
+    "ross_rotor",
+    "rotor_modes",
+    "rotor_onset",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -179,10 +186,25 @@ def rotor_onset(
     """
     model = ross_rotor(rotor, speeds, frequencies, progress)
     modes = rotor_modes(rotor, speeds, num_modes=num_modes, model=model)
+    onset, whirl = refine_onset(modes, lambda w: _modes_at(model, w, num_modes))
+    return onset, whirl, modes
+
+
+def refine_onset(
+    modes: RotorModes,
+    modes_at: Callable[[float], tuple[FloatArray, FloatArray, Any]],
+) -> tuple[float | None, float | None]:
+    """The lowest speed (rad/s) where the least stable of ``modes`` turns unstable, and its
+    whirl frequency (Hz); (None, None) if none does on ``modes.speeds``.
+
+    Bracketed on ``modes.speeds`` and refined by Brent's method on ``modes_at(speed)``,
+    which gives (whirl frequencies rad/s, log decrements, forward) of the modes at a speed.
+    """
+    speeds = modes.speeds
     low = modes.least_stable()
     unstable = np.flatnonzero(low < 0.0)
     if unstable.size == 0:
-        return None, None, modes
+        return None, None
     k = int(unstable[0])
     if k == 0:
         raise InputError(
@@ -191,9 +213,9 @@ def rotor_onset(
         )
 
     def least(w: float) -> float:
-        return float(np.min(_modes_at(model, w, num_modes)[1]))
+        return float(np.min(modes_at(w)[1]))
 
     onset = float(brentq(least, float(speeds[k - 1]), float(speeds[k]), rtol=1e-7))
-    wd, dec, _fw = _modes_at(model, onset, num_modes)
+    wd, dec, _fw = modes_at(onset)
     i = int(np.argmin(dec))
-    return onset, float(wd[i] / (2.0 * math.pi)), modes
+    return onset, float(wd[i] / (2.0 * math.pi))
