@@ -39,7 +39,7 @@ from scipy.integrate import solve_ivp
 
 from foilbearing.orbit import OrbitSimulation
 
-__all__ = ["reference_orbit"]
+__all__ = ["reference_orbit", "state_derivative", "state_sparsity"]
 
 FloatArray = NDArray[np.float64]
 
@@ -94,7 +94,7 @@ def _film_rates(
     return dp - sum((x * c for x, c in zip(xi, cols, strict=True)), np.zeros_like(P))
 
 
-def _derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArray:
+def state_derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArray:
     sys_ = sim.system
     g = sys_.grid
     nt, nz = g.n_theta, g.n_z
@@ -128,7 +128,7 @@ def _derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArray:
     return np.concatenate([dp.ravel(), du, f[n + nt :]])
 
 
-def _sparsity(sim: OrbitSimulation) -> sp.csr_matrix:
+def state_sparsity(sim: OrbitSimulation) -> sp.csr_matrix:
     sys_ = sim.system
     g = sys_.grid
     nt, nz, n = g.n_theta, g.n_z, sys_.n
@@ -173,14 +173,14 @@ def reference_orbit(
     times = np.arange(0.0, t_end + 1e-12, 1.0 / sim.settings.sample_rate)
     clock = time.perf_counter()
     sol = solve_ivp(
-        lambda t, y: _derivative(sim, t, y),
+        lambda t, y: state_derivative(sim, t, y),
         (0.0, t_end),
         y_start,
         method="BDF",
         t_eval=times,
         rtol=rtol,
         atol=atol,
-        jac_sparsity=_sparsity(sim),
+        jac_sparsity=state_sparsity(sim),
     )
     wall = time.perf_counter() - clock
     k = sim.system.n + sim.system.nt

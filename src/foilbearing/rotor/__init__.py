@@ -5,7 +5,9 @@
 - :mod:`.linear`: modes, log decrements and the onset speed on ROSS with matched whirl
   (:func:`rotor_modes`, :func:`rotor_onset`; ROSS is the ``ross`` extra);
 - :mod:`.reduced`: the rotor reduced to its journals and a few shaft modes (Craig-Bampton),
-  the basis of the nonlinear rotor (:func:`reduce_rotor`, :func:`reduced_onset`).
+  the basis of the nonlinear rotor (:func:`reduce_rotor`, :func:`reduced_onset`);
+- :mod:`.nonlinear`: the nonlinear rotor, both bearings' films integrated with the reduced
+  rotor (``RotorOrbitSystem``; imported from there, it brings the orbit's kernels).
 """
 
 from foilbearing.rotor.linear import RotorModes, ross_rotor, rotor_modes, rotor_onset

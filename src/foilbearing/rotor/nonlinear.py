@@ -1,0 +1,300 @@
+"""The nonlinear rotor: every bearing's film and foil integrated with the reduced rotor.
+
+The state is each bearing's film and foil (the states of :mod:`foilbearing.orbit`, less its
+journal) and the reduced rotor's coordinates and their rates
+(:func:`foilbearing.rotor.reduce_rotor`: the journals' x, y in ROSS's frame, then N shaft
+modes):
+
+    y = [P_1, U_1, P_2, U_2, ..., q, q̇],
+
+    M q̈ + Ω(t) G q̇ + K q = Σ_b B_bᵀ F_b(P_b) + f_gravity + f_unbalance(t).
+
+Each bearing's film sees its journal ``ε_X = −y_b/C, ε_Y = x_b/C`` (ROSS's x = Y,
+y = −X; :mod:`foilbearing.export.ross`) and gives the film force F_b = p_a R² Σ w (P − 1)
+back, turned into ROSS's frame. Gravity is ROSS's −y: each bearing's +X, its load. The
+films' rates are those of the single-bearing reference (:func:`foilbearing.orbit.reference.
+state_derivative`: the same semi-discrete film, foil, actuators and lift-off law). The
+rotor's angular acceleration enters only through the unbalance force (ROSS's Ksdt, the
+shaft's own, is left out).
+
+This first form integrates the whole system with ``scipy.integrate.solve_ivp`` (BDF, a
+finite-difference Jacobian on the known sparsity): slow, and the reference the compiled
+stepper will be checked against. At small amplitude its free whirl is the linear analysis'
+mode (``tests/test_rotor_nonlinear.py``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.integrate import solve_ivp
+
+from foilbearing.control import SpeedProfile, VoltageProgram
+from foilbearing.errors import InputError, SolverError
+from foilbearing.orbit import OrbitSimulation
+from foilbearing.orbit.reference import state_derivative, state_sparsity
+from foilbearing.orbit.settings import OrbitSettings
+from foilbearing.rotor.model import RotorCase
+from foilbearing.rotor.reduced import ReducedRotor, reduce_rotor
+
+__all__ = ["RotorOrbit", "RotorOrbitSystem", "Unbalance"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Unbalance:
+    """An unbalance at a node: magnitude (kg·m) and phase (rad) at rotation angle 0."""
+
+    node: int
+    magnitude: float
+    phase: float = 0.0
+
+
+@dataclass(frozen=True)
+class RotorOrbit:
+    """A nonlinear rotor run.
+
+    Attributes
+    ----------
+    time
+        s, shape (k,).
+    journals
+        Each bearing's journal displacement in its own frame (X along its load, Y), m,
+        shape (n_bearings, 2, k), from the rotor's axis at rest.
+    nodes
+        Every node's lateral displacement in ROSS's frame (x, y), m, shape (n_nodes, 2, k).
+    labels
+        The bearings' labels.
+    wall_time
+        s.
+    message
+        The integrator's.
+    """
+
+    time: FloatArray
+    journals: FloatArray
+    nodes: FloatArray
+    labels: tuple[str, ...]
+    wall_time: float
+    message: str
+
+
+class RotorOrbitSystem:
+    """The rotor on its bearings as one semi-discrete system (module docstring).
+
+    Parameters
+    ----------
+    rotor
+        The rotor; each bearing runs on its case's orbit grid
+        (:meth:`foilbearing.case.Case.orbit_case`) at the load the rotor puts on it.
+    model
+        Its ROSS rotor (:func:`foilbearing.rotor.ross_rotor`); only the shaft and disks are
+        used, not the bearings' tables.
+    speed
+        The speed profile.
+    n_modes
+        Shaft modes kept in the reduction (``tests/test_rotor.py`` shows the convergence).
+    voltages
+        One voltage program per bearing (None: the case's voltages held).
+    unbalances
+        Unbalances at nodes.
+    settings
+        The bearings' orbit settings (their tolerances are used).
+    """
+
+    def __init__(
+        self,
+        rotor: RotorCase,
+        model: Any,
+        speed: SpeedProfile,
+        *,
+        n_modes: int = 8,
+        voltages: Sequence[VoltageProgram | None] | None = None,
+        unbalances: Sequence[Unbalance] = (),
+        settings: OrbitSettings | None = None,
+    ) -> None:
+        if voltages is None:
+            voltages = [None] * len(rotor.bearings)
+        if len(voltages) != len(rotor.bearings):
+            raise InputError(
+                f"voltages: {len(voltages)} programs for {len(rotor.bearings)} bearings"
+            )
+        n_nodes = len(rotor.shaft) + 1
+        for u in unbalances:
+            if not 0 <= u.node < n_nodes:
+                raise InputError(
+                    f"unbalance at node {u.node}: the shaft has nodes 0 to {n_nodes - 1}",
+                    source=rotor.source,
+                )
+        self.rotor, self.speed = rotor, speed
+        self.labels = tuple(b.label for b in rotor.bearings)
+        self.reduced: ReducedRotor = reduce_rotor(model, [b.node for b in rotor.bearings], n_modes)
+        self.sims = [
+            OrbitSimulation(case, speed, program, settings)
+            for case, program in zip(rotor.loaded_cases(), voltages, strict=True)
+        ]
+        self.film_sizes = [s.system.n + s.system.nt for s in self.sims]
+        self.offsets = np.concatenate([[0], np.cumsum(self.film_sizes)]).astype(int)
+        self.n_film = int(self.offsets[-1])
+        self.m = self.reduced.size
+        self.size = self.n_film + 2 * self.m
+        self.mass_inv = np.linalg.inv(self.reduced.mass)
+        self.unbalances = tuple(unbalances)
+        # Gravity along ROSS's −y on the consistent mass: each node's share of the weight.
+        n_lat = self.reduced.basis.shape[0]
+        accel = np.zeros(n_lat)
+        accel[1::4] = -rotor.gravity
+        lateral = np.array([6 * n + k for n in range(n_nodes) for k in (0, 1, 3, 4)])
+        m_lat = np.asarray(model.M0, float)[np.ix_(lateral, lateral)]
+        self.gravity = self.reduced.basis.T @ (m_lat @ accel)
+        self.force_per_pressure = [
+            s.case.gas.ambient_pressure * s.case.bearing.radius**2 * s.system.w for s in self.sims
+        ]
+
+    # ------------------------------------------------------------------ pieces
+    def _journal_state(self, b: int, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Bearing b's ε (units of C) and dε/dt (1/s), in its frame, from q and q̇."""
+        c = self.sims[b].case.bearing.clearance
+        q = y[self.n_film : self.n_film + self.m]
+        qd = y[self.n_film + self.m :]
+        x, yy = q[2 * b], q[2 * b + 1]
+        vx, vy = qd[2 * b], qd[2 * b + 1]
+        return np.array([-yy, x]) / c, np.array([-vy, vx]) / c
+
+    def unbalance_force(self, t: float) -> FloatArray:
+        """The unbalances' force on the reduced coordinates at t, N."""
+        if not self.unbalances:
+            return np.zeros(self.m)
+        w, wd, phi = self.speed.state(t)
+        f = np.zeros(self.reduced.basis.shape[0])
+        for u in self.unbalances:
+            angle = phi + u.phase
+            c, s = math.cos(angle), math.sin(angle)
+            f[4 * u.node] += u.magnitude * (w * w * c + wd * s)
+            f[4 * u.node + 1] += u.magnitude * (w * w * s - wd * c)
+        return np.asarray(self.reduced.basis.T @ f, float)
+
+    def derivative(self, t: float, y: FloatArray) -> FloatArray:
+        """dy/dt of the whole system (module docstring)."""
+        out = np.empty_like(y)
+        force = self.gravity + self.unbalance_force(t)
+        for b, sim in enumerate(self.sims):
+            lo, hi = self.offsets[b], self.offsets[b + 1]
+            eps, vel = self._journal_state(b, y)
+            y_b = np.concatenate([y[lo:hi], eps, vel])
+            out[lo:hi] = state_derivative(sim, t, y_b)[: hi - lo]
+            P = y[lo : lo + sim.system.n]
+            f_x, f_y = self.force_per_pressure[b] @ (P - 1.0)  # ours: X, Y
+            force[2 * b] += f_y  # ROSS x = Y
+            force[2 * b + 1] -= f_x  # ROSS y = −X
+        q = y[self.n_film : self.n_film + self.m]
+        qd = y[self.n_film + self.m :]
+        omega = self.speed.omega(t)
+        red = self.reduced
+        out[self.n_film : self.n_film + self.m] = qd
+        out[self.n_film + self.m :] = self.mass_inv @ (
+            force - red.stiffness @ q - omega * red.gyroscopic @ qd
+        )
+        return out
+
+    def sparsity(self) -> sp.csr_matrix:
+        """The Jacobian's sparsity: each film on its own journal's x, y and rates; the rotor
+        on every film's pressure and on itself."""
+        m, nf = self.m, self.n_film
+        rows: list[sp.spmatrix] = []
+        for b, sim in enumerate(self.sims):
+            single = state_sparsity(sim)
+            k = self.film_sizes[b]
+            film = single[:k, :k]
+            journal = single[:k, k : k + 4]  # ε_X, ε_Y, v_X, v_Y
+            cols = sp.lil_matrix((k, 2 * m))
+            for j, c in enumerate((2 * b + 1, 2 * b, m + 2 * b + 1, m + 2 * b)):
+                cols[:, c] = journal[:, j].toarray()
+            blocks = [
+                film if a == b else sp.csr_matrix((k, self.film_sizes[a]))
+                for a in range(len(self.sims))
+            ]
+            rows.append(sp.hstack([*blocks, cols.tocsr()]))
+        top = sp.hstack([sp.csr_matrix((m, nf)), sp.csr_matrix((m, m)), sp.eye(m)])
+        pressure = np.zeros(nf)
+        for b, sim in enumerate(self.sims):
+            pressure[self.offsets[b] : self.offsets[b] + sim.system.n] = 1.0
+        bottom = sp.hstack(
+            [sp.csr_matrix(np.outer(np.ones(m), pressure)), sp.csr_matrix(np.ones((m, 2 * m)))]
+        )
+        return sp.vstack([*rows, top, bottom]).tocsr()
+
+    def initial_state(self) -> FloatArray:
+        """Each bearing's static equilibrium at the start, the shaft bent by its weight."""
+        y = np.zeros(self.size)
+        q = np.zeros(self.m)
+        for b, sim in enumerate(self.sims):
+            single = sim.initial_state()
+            k = self.film_sizes[b]
+            y[self.offsets[b] : self.offsets[b + 1]] = single[:k]
+            c = sim.case.bearing.clearance
+            eps_x, eps_y = single[k], single[k + 1]
+            q[2 * b], q[2 * b + 1] = eps_y * c, -eps_x * c
+        nb = 2 * len(self.sims)
+        red = self.reduced
+        # The shaft modes' rows are uncoupled from the journals' in K (Craig-Bampton).
+        q[nb:] = np.linalg.solve(red.stiffness[nb:, nb:], self.gravity[nb:])
+        y[self.n_film : self.n_film + self.m] = q
+        return y
+
+    def atol(self) -> FloatArray:
+        """Absolute tolerances: the bearings' on their films, theirs on position (in C) on
+        the rotor's coordinates (m, and m/s times the top speed for the rates)."""
+        parts = [s.atol()[:k] for s, k in zip(self.sims, self.film_sizes, strict=True)]
+        sim = self.sims[0]
+        c = sim.case.bearing.clearance
+        pos = sim.settings.atol_position * c
+        top = max(float(self.speed.speeds.max()), 1.0)
+        return np.concatenate([*parts, np.full(self.m, pos), np.full(self.m, pos * top)])
+
+    # -------------------------------------------------------------------- run
+    def run(
+        self,
+        t_end: float,
+        *,
+        y0: FloatArray | None = None,
+        sample_rate: float = 10_000.0,
+        rtol: float = 1e-6,
+        atol_factor: float = 1.0,
+    ) -> RotorOrbit:
+        """Integrate from t = 0 (the static state, or ``y0``) to ``t_end`` (s) with
+        solve_ivp's BDF; sampled at ``sample_rate`` (Hz). The absolute tolerances are the
+        bearings' orbit settings' (:meth:`atol`) times ``atol_factor``."""
+        start = self.initial_state() if y0 is None else np.asarray(y0, float)
+        times = np.arange(0.0, t_end + 1e-12, 1.0 / sample_rate)
+        clock = time.perf_counter()
+        sol = solve_ivp(
+            self.derivative,
+            (0.0, t_end),
+            start,
+            method="BDF",
+            t_eval=times,
+            rtol=rtol,
+            atol=self.atol() * atol_factor,
+            jac_sparsity=self.sparsity(),
+        )
+        wall = time.perf_counter() - clock
+        if not sol.success:
+            raise SolverError(
+                f"the nonlinear rotor run stopped at t = {sol.t[-1]:.4g} s: {sol.message}; "
+                "try a shorter run or a coarser orbit grid"
+            )
+        q = sol.y[self.n_film : self.n_film + self.m]
+        nb = len(self.sims)
+        journals = np.stack([np.stack([-q[2 * b + 1], q[2 * b]]) for b in range(nb)])
+        lateral = self.reduced.basis @ q
+        nodes = np.stack([lateral[0::4], lateral[1::4]], axis=1)
+        return RotorOrbit(sol.t, journals, nodes, self.labels, wall, str(sol.message))
