@@ -37,6 +37,7 @@ __all__ = [
     "RotorModes",
     "refine_onset",
     "ross_rotor",
+    "ross_shaft",
     "rotor_modes",
     "rotor_onset",
 ]
@@ -91,18 +92,13 @@ class RotorModes:
         return out
 
 
-def ross_rotor(
-    rotor: RotorCase,
-    speeds: Sequence[float],
-    frequencies: Sequence[float] | None = None,
-    progress: Callable[[str], None] | None = None,
-) -> Any:
-    """The ROSS ``Rotor``: the shaft's beam elements, the disks, and each bearing's exported
-    coefficient table over ``speeds`` (rad/s) × ``frequencies`` (rad/s) at its load."""
-    from foilbearing.export.ross import _import_ross, coefficient_table, to_ross_bearing
+def ross_shaft(rotor: RotorCase, bearings: Sequence[Any] = ()) -> Any:
+    """The ROSS ``Rotor`` of the shaft's beam elements and the disks, with ``bearings``
+    (ROSS bearing elements; none: the free rotor, whose matrices the nonlinear rotor
+    reduces)."""
+    from foilbearing.export.ross import _import_ross
 
     ross = _import_ross()
-    freqs = DEFAULT_FREQUENCIES if frequencies is None else np.asarray(frequencies, float)
     m = rotor.material
     material = ross.Material(
         name="shaft", rho=m.density, E=m.youngs_modulus, Poisson=m.poisson_ratio
@@ -116,6 +112,20 @@ def ross_rotor(
         ross.DiskElement(n=d.node, m=d.mass, Id=d.diametral_inertia, Ip=d.polar_inertia)
         for d in rotor.disks
     ]
+    return ross.Rotor(shaft, disks, list(bearings))
+
+
+def ross_rotor(
+    rotor: RotorCase,
+    speeds: Sequence[float],
+    frequencies: Sequence[float] | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> Any:
+    """The ROSS ``Rotor``: the shaft's beam elements, the disks, and each bearing's exported
+    coefficient table over ``speeds`` (rad/s) × ``frequencies`` (rad/s) at its load."""
+    from foilbearing.export.ross import coefficient_table, to_ross_bearing
+
+    freqs = DEFAULT_FREQUENCIES if frequencies is None else np.asarray(frequencies, float)
     bearings = []
     for site, case in zip(rotor.bearings, rotor.loaded_cases(), strict=True):
         if progress is not None:
@@ -129,7 +139,7 @@ def ross_rotor(
                 source=rotor.source,
             )
         bearings.append(to_ross_bearing(table, site.node, tag=site.label))
-    return ross.Rotor(shaft, disks, bearings)
+    return ross_shaft(rotor, bearings)
 
 
 def _modes_at(model: Any, speed: float, num_modes: int) -> tuple[FloatArray, FloatArray, Any]:

@@ -77,6 +77,10 @@ class RotorOrbit:
         s.
     message
         The integrator's.
+    steps, factorizations, newton_iterations
+        The stepper's counts (0 from solve_ivp).
+    status
+        How the run ended (``completed``, ``contact``, ``interrupted``, ...).
     """
 
     time: FloatArray
@@ -85,6 +89,10 @@ class RotorOrbit:
     labels: tuple[str, ...]
     wall_time: float
     message: str
+    steps: int = 0
+    factorizations: int = 0
+    newton_iterations: int = 0
+    status: str = "completed"
 
 
 class RotorOrbitSystem:
@@ -97,7 +105,8 @@ class RotorOrbitSystem:
         (:meth:`foilbearing.case.Case.orbit_case`) at the load the rotor puts on it.
     model
         Its ROSS rotor (:func:`foilbearing.rotor.ross_rotor`); only the shaft and disks are
-        used, not the bearings' tables.
+        used, not the bearings' tables. None: the shaft and disks alone
+        (:func:`~foilbearing.rotor.linear.ross_shaft`).
     speed
         The speed profile.
     n_modes
@@ -113,7 +122,7 @@ class RotorOrbitSystem:
     def __init__(
         self,
         rotor: RotorCase,
-        model: Any,
+        model: Any | None,
         speed: SpeedProfile,
         *,
         n_modes: int = 8,
@@ -123,6 +132,16 @@ class RotorOrbitSystem:
     ) -> None:
         if voltages is None:
             voltages = [None] * len(rotor.bearings)
+        if any(v is not None and v.observes for v in voltages):
+            raise InputError(
+                "a closed-loop controller on a rotor's bearing: not built yet (the rotor's "
+                "stepper does not hand it the samples); use a voltage ramp or schedule",
+                source=rotor.source,
+            )
+        if model is None:
+            from foilbearing.rotor.linear import ross_shaft
+
+            model = ross_shaft(rotor)
         if len(voltages) != len(rotor.bearings):
             raise InputError(
                 f"voltages: {len(voltages)} programs for {len(rotor.bearings)} bearings"

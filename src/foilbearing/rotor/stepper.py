@@ -1,0 +1,451 @@
+"""The nonlinear rotor on the orbit's stepper: every film's compiled kernels, one rotor solve.
+
+:class:`RotorStepper` hands the rotor on its bearings to the orbit's variable-step BDF
+(:func:`foilbearing.orbit.stepper.run`) as a :class:`~foilbearing.orbit.problem.
+StepperProblem`: the same state and equations as :class:`~foilbearing.rotor.nonlinear.
+RotorOrbitSystem` (each bearing's film and foil, then the reduced rotor's q and q̇), in the
+implicit form ``d Q(y)/dt = f(y, t)`` with ``Q = [P_b H_b, U_b, ..., q, q̇]``.
+
+A Newton matrix is factorised by block elimination:
+
+- each bearing's film and foil block A_b, with its journal held, is the factor of the
+  single-bearing stepper (:meth:`~foilbearing.reynolds.transient.TransientSystem.factorize`)
+  with its journal's border left out; its solve is the compiled ``transient_solve``;
+- the journals couple each film to the rotor through ``Y_b = A_b⁻¹ a_b`` (two columns: the
+  film's response to its journal's ε);
+- the rotor's Schur complement, m × m,
+  ``S = K + c0² M + c0 Ω G + Σ_b B_bᵀ R W_b Y_b T_b``, with T_b the journal's ε from q,
+  W_b the film force per unit P and R the map to ROSS's frame, is factorised densely.
+
+A Newton iteration evaluates each film's BDF residual (the compiled
+``transient_residual``, with the lift-off branches of the single-bearing stepper), the
+rotor's, and solves: ``δq`` from S, ``δq̇ = c0 δq − g_q``, each film's
+``δy_b = A_b⁻¹ g_b − Y_b T_b δq``. The iteration's convergence test, lift-off branch
+switching and outcomes are those of the single-bearing kernel
+(:func:`~foilbearing.reynolds._kernels.transient_newton_solve`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from foilbearing.orbit.problem import RunStats, StepperProblem
+from foilbearing.orbit.result import RunStatus
+from foilbearing.orbit.sampling import Samples
+from foilbearing.orbit.settings import OrbitSettings
+from foilbearing.orbit.stepper import State, interrupt_at_step_boundary, run
+from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds.transient import Inputs
+from foilbearing.reynolds.transient_factor import TransientFactor
+from foilbearing.rotor.nonlinear import RotorOrbit, RotorOrbitSystem
+
+__all__ = ["RotorStepper", "run_rotor"]
+
+FloatArray = NDArray[np.float64]
+
+_ROSS = np.array([[0.0, 1.0], [-1.0, 0.0]])  # ROSS (x, y) = (Y, −X) from ours (X, Y)
+
+_CONVERGED, _FILM_CLOSED, _NOT_FINITE = (
+    kern.NEWTON_CONVERGED,
+    kern.NEWTON_FILM_CLOSED,
+    kern.NEWTON_NOT_FINITE,
+)
+_TOO_SLOW, _DIVERGED, _REFRESH = kern.NEWTON_TOO_SLOW, kern.NEWTON_DIVERGED, kern.NEWTON_REFRESH
+
+
+class _RotorInputs:
+    """The inputs at one instant: each bearing's, the rotor's speed and external force (N,
+    on the reduced coordinates)."""
+
+    __slots__ = ("bearings", "force", "omega")
+
+    def __init__(self, bearings: list[Inputs], omega: float, force: FloatArray) -> None:
+        self.bearings, self.omega, self.force = bearings, omega, force
+
+
+class _Bearing:
+    """One bearing's share of the stepper: its system, slices of the state and buffers."""
+
+    def __init__(self, stepper: RotorStepper, b: int) -> None:
+        orbit = stepper.system
+        self.sim = orbit.sims[b]
+        self.sys = self.sim.system
+        self.n, self.nt = self.sys.n, self.sys.nt
+        self.lo, self.hi = int(orbit.offsets[b]), int(orbit.offsets[b + 1])
+        self.c = self.sim.case.bearing.clearance
+        m = orbit.m
+        # ε = T q (units of C); the film force on the rotor, ROSS's frame, N per unit P.
+        self.T = np.zeros((2, m))
+        self.T[0, 2 * b + 1] = -1.0 / self.c
+        self.T[1, 2 * b] = 1.0 / self.c
+        self.force = _ROSS @ orbit.force_per_pressure[b]  # (2, n)
+        self.rows = slice(2 * b, 2 * b + 2)
+        self.x = 2 * b  # the journal's x in q
+        size = self.sys.size
+        self.y = np.zeros(size)
+        self.hist = np.zeros(size)
+        self.g = np.empty(size)
+        self.out = np.empty(size)
+        self.q_out = np.empty(size)
+        self.film = np.empty(self.sys.grid.shape)
+        self.res = np.empty(self.sys.grid.shape)
+        self.slack = np.zeros(self.n)
+        self.work = np.empty((self.n, 1))
+
+    def state(self, y: FloatArray, q: FloatArray, qd: FloatArray) -> FloatArray:
+        """The single-bearing state [P, U, ε, v] of this bearing (ε = T q, v = T q̇)."""
+        k = self.hi - self.lo
+        ys, x, c = self.y, self.x, self.c
+        ys[:k] = y[self.lo : self.hi]
+        ys[k] = -q[x + 1] / c
+        ys[k + 1] = q[x] / c
+        ys[k + 2] = -qd[x + 1] / c
+        ys[k + 3] = qd[x] / c
+        return ys
+
+
+class _RotorFactor:
+    """A factorised Newton matrix of the rotor's step (module docstring) and its iteration."""
+
+    def __init__(
+        self,
+        stepper: RotorStepper,
+        y: FloatArray,
+        inp: _RotorInputs,
+        c0: float,
+        hist: FloatArray,
+        branches: FloatArray | None,
+    ) -> None:
+        self.st = stepper
+        orbit = stepper.system
+        red = orbit.reduced
+        self.factors: list[TransientFactor] = []
+        self.groups: list[tuple[Any, Any, Any]] = []
+        self.cols: list[FloatArray] = []
+        schur = red.stiffness + c0 * c0 * red.mass + c0 * inp.omega * red.gyroscopic
+        q, qd = stepper.split_rotor(y)
+        for b, br in enumerate(stepper.bearings):
+            yb = br.state(y, q, qd)
+            br.hist[: br.hi - br.lo] = hist[br.lo : br.hi]
+            br.hist[br.hi - br.lo :] = 0.0
+            branch = None if branches is None else branches[stepper.cells[b] : stepper.cells[b + 1]]
+            fac = br.sys.factorize(yb, inp.bearings[b], c0, br.hist, branch)
+            if fac.arrays.fac is None:
+                raise ArithmeticError("a film's block factorisation fell back to SuperLU")
+            arrays = fac.arrays._replace(s_vp=np.zeros_like(fac.arrays.s_vp))
+            groups = (tuple(arrays), br.sys.kernel_groups[0], br.sys.kernel_groups[1])
+            # Y_b: the film's response to its journal's ε, two columns: the pressures' is
+            # the single-bearing factor's border times c0², the bumps' follows from it.
+            col = np.empty((br.hi - br.lo, 2))
+            col[: br.n] = arrays.y_border * (c0 * c0)
+            mean = col[: br.n].reshape(br.nt, -1, 2).mean(axis=1)
+            gain = arrays.rate * br.sys.c_bump * arrays.active / (c0 + arrays.rate)
+            col[br.n :] = gain[:, None] * mean
+            schur[br.rows, :] += (br.force @ col[: br.n]) @ br.T
+            self.factors.append(fac)
+            self.groups.append(groups)
+            self.cols.append(col)
+        self.schur_inv = np.linalg.inv(schur)
+        self.c0, self.omega = c0, inp.omega
+        self.damping = c0 * red.mass + inp.omega * red.gyroscopic  # of g_q in the Schur rhs
+        self._lift = np.concatenate([f.lift_state for f in self.factors])
+
+    @property
+    def lift_state(self) -> FloatArray:
+        """The bearings' lift-off branches, one after the other (the stepper moves them)."""
+        return self._lift
+
+    def _scatter_lift(self) -> None:
+        for b, f in enumerate(self.factors):
+            f.lift_state[:] = self._lift[self.st.cells[b] : self.st.cells[b + 1]]
+
+    def _gather_lift(self) -> None:
+        for b, f in enumerate(self.factors):
+            self._lift[self.st.cells[b] : self.st.cells[b + 1]] = f.lift_state
+            self.st.lift_slack[self.st.cells[b] : self.st.cells[b + 1]] = self.st.bearings[b].slack
+
+    def _residual(
+        self,
+        y: FloatArray,
+        inp: _RotorInputs,
+        c0: float,
+        hist: FloatArray,
+        g: FloatArray,
+        steps: list[tuple[Any, ...]],
+    ) -> float:
+        """G(y) into g; the minimum film. ``steps``: each bearing's step inputs."""
+        st = self.st
+        orbit = st.system
+        red = orbit.reduced
+        q, qd = st.split_rotor(y)
+        force = inp.force.copy()
+        h_min = math.inf
+        for b, br in enumerate(st.bearings):
+            yb = br.state(y, q, qd)
+            h = kern.transient_residual(
+                yb, steps[b], br.sys.kernel_groups[0], self.factors[b].lift_state,
+                br.film, br.res, br.g, br.slack,
+            )  # fmt: skip
+            h_min = min(h_min, float(h))
+            g[br.lo : br.hi] = br.g[: br.hi - br.lo]
+            force[br.rows] += br.force @ (yb[: br.n] - 1.0)
+        n_f, m = orbit.n_film, orbit.m
+        g[n_f : n_f + m] = c0 * q + hist[n_f : n_f + m] - qd
+        accel = orbit.mass_inv @ (force - red.stiffness @ q - inp.omega * red.gyroscopic @ qd)
+        g[n_f + m :] = c0 * qd + hist[n_f + m :] - accel
+        return h_min
+
+    def _solve(self, g: FloatArray, dy: FloatArray) -> None:
+        """dy with J dy = g (block elimination, module docstring)."""
+        st = self.st
+        orbit = st.system
+        red = orbit.reduced
+        n_f, m = orbit.n_film, orbit.m
+        g_q, g_qd = g[n_f : n_f + m], g[n_f + m :]
+        rhs = red.mass @ g_qd + self.damping @ g_q
+        for b, br in enumerate(st.bearings):
+            k = br.hi - br.lo
+            br.g[:k] = g[br.lo : br.hi]
+            br.g[k:] = 0.0
+            fac, model, pattern = self.groups[b]
+            kern.transient_solve(br.g, fac, model, pattern, br.work, br.out)
+            dy[br.lo : br.hi] = br.out[:k]
+            rhs[br.rows] += br.force @ br.out[: br.n]
+        d_q = self.schur_inv @ rhs
+        dy[n_f : n_f + m] = d_q
+        dy[n_f + m :] = self.c0 * d_q - g_q
+        for b, br in enumerate(st.bearings):
+            e = (-d_q[br.x + 1] / br.c, d_q[br.x] / br.c)
+            dy[br.lo : br.hi] -= self.cols[b] @ e
+
+    def newton_solve(
+        self,
+        y: FloatArray,
+        inp: _RotorInputs,
+        c0: float,
+        hist: FloatArray,
+        weights: FloatArray,
+        work: tuple[FloatArray, FloatArray, FloatArray],
+        controls: tuple[float, float, int],
+        fresh: bool,
+        first_change: float,
+    ) -> tuple[int, int, float, float]:
+        """Modified-Newton iterations with this factor (the single-bearing kernel's logic,
+        :func:`~foilbearing.reynolds._kernels.transient_newton_solve`)."""
+        newton_tol, newton_fraction, max_newton = controls
+        g, dy, q_out = work
+        st = self.st
+        self._scatter_lift()
+        steps = []
+        for b, br in enumerate(st.bearings):
+            br.hist[: br.hi - br.lo] = hist[br.lo : br.hi]
+            br.hist[br.hi - br.lo :] = 0.0
+            steps.append(tuple(br.sys.step_inputs(inp.bearings[b], c0, br.hist)))
+        prev = math.inf
+        k = since = switches = 0
+        try:
+            while True:
+                k += 1
+                since += 1
+                h_min = self._residual(y, inp, c0, hist, g, steps)
+                if not h_min > 0.0:
+                    return _FILM_CLOSED, k, first_change, math.nan
+                self._solve(g, dy)
+                # y −= dy, the weighted max-norm of dy and each film's smallest pressure.
+                err, p_min = 0.0, math.inf
+                for lo, hi, n in st.segments:
+                    e, p = kern.newton_update(y[lo:hi], dy[lo:hi], weights[lo:hi], n)
+                    err, p_min = max(err, e) if e == e else math.nan, min(p_min, p)
+                if not math.isfinite(err) or p_min <= 0.0:
+                    return _NOT_FINITE, k, first_change, math.nan
+                if first_change == math.inf:
+                    first_change = err
+                tol = max(newton_tol, newton_fraction * first_change)
+                conv = err / prev if since > 1 else math.nan
+                if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
+                    flipped = sum(
+                        kern.switch_branches(f.lift_state, br.slack, weights[br.lo : br.lo + br.n])
+                        for f, br in zip(self.factors, st.bearings, strict=True)
+                    )
+                    if flipped == 0:
+                        h_new = st.storage_into(y, inp, q_out)
+                        if h_new > 0.0:
+                            return _CONVERGED, k, first_change, h_new
+                    elif switches < kern.MAX_SWITCHES and flipped <= kern.MAX_MOVED_KEPT:
+                        switches += 1
+                        since = 0
+                        prev = math.inf
+                        continue
+                    else:
+                        return _REFRESH, k, first_change, math.nan
+                if fresh:
+                    if since >= max_newton or conv >= 1.0:
+                        if switches > 0:
+                            return _REFRESH, k, first_change, math.nan
+                        return _TOO_SLOW, k, first_change, math.nan
+                    if conv > 0.5:
+                        return _REFRESH, k, first_change, math.nan
+                elif since >= max_newton or conv >= 1.0:
+                    return _DIVERGED, k, first_change, math.nan
+                elif conv ** (max_newton - since) / (1.0 - conv) * err > tol:
+                    return _REFRESH, k, first_change, math.nan
+                prev = err
+        finally:
+            self._gather_lift()
+
+
+class RotorStepper:
+    """The rotor on its bearings as the orbit stepper's problem (module docstring).
+
+    Parameters
+    ----------
+    system
+        The rotor and its bearings (:class:`~foilbearing.rotor.nonlinear.RotorOrbitSystem`):
+        its state, reduction, forces and start.
+    settings
+        Steps per revolution, tolerances and Newton controls (the bearings' orbit
+        settings by default).
+    """
+
+    def __init__(self, system: RotorOrbitSystem, settings: OrbitSettings | None = None) -> None:
+        self.system = system
+        self.settings = settings or system.sims[0].settings
+        self.bearings = [_Bearing(self, b) for b in range(len(system.sims))]
+        self.cells = np.concatenate([[0], np.cumsum([br.n for br in self.bearings])]).astype(int)
+        self.lift_slack = np.zeros(int(self.cells[-1]))
+        # (start, end, pressures at its start) of the state's pieces, for the update.
+        self.segments = [(br.lo, br.hi, br.n) for br in self.bearings]
+        self.segments.append((system.n_film, system.size, 0))
+        self._atol = system.atol()
+        self._times: list[float] = []
+        self._q: list[FloatArray] = []
+
+    def split_rotor(self, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Views (q, q̇) of a state."""
+        n_f, m = self.system.n_film, self.system.m
+        return y[n_f : n_f + m], y[n_f + m :]
+
+    def inputs(self, t: float) -> tuple[_RotorInputs, FloatArray]:
+        """The inputs at t and the bearings' voltages (V, one after the other)."""
+        volts = [sim.volts(t) for sim in self.system.sims]
+        bearings = [
+            sim.inputs(t, v, imbalance=False)
+            for sim, v in zip(self.system.sims, volts, strict=True)
+        ]
+        force = self.system.gravity + self.system.unbalance_force(t)
+        return _RotorInputs(bearings, self.system.speed.omega(t), force), np.concatenate(volts)
+
+    def storage_into(self, y: FloatArray, inp: _RotorInputs, out: FloatArray) -> float:
+        """Q(y) into ``out``; the minimum film."""
+        q, qd = self.split_rotor(y)
+        h_min = math.inf
+        for b, br in enumerate(self.bearings):
+            yb = br.state(y, q, qd)
+            h = kern.transient_storage(
+                yb, inp.bearings[b].preload, br.sys.kernel_groups[0], br.q_out
+            )
+            h_min = min(h_min, float(h))
+            out[br.lo : br.hi] = br.q_out[: br.hi - br.lo]
+        n_f = self.system.n_film
+        out[n_f:] = y[n_f:]
+        return h_min
+
+    def storage(self, y: FloatArray, inp: _RotorInputs) -> FloatArray:
+        out = np.empty(self.system.size)
+        self.storage_into(y, inp, out)
+        return out
+
+    def factorize(
+        self,
+        y: FloatArray,
+        inp: _RotorInputs,
+        c0: float,
+        hist: FloatArray,
+        branches: FloatArray | None,
+    ) -> _RotorFactor:
+        return _RotorFactor(self, y, inp, c0, hist, branches)
+
+    def record(
+        self,
+        out: Samples,
+        t: float,
+        y: FloatArray,
+        volts: FloatArray,
+        inp: Any,
+        min_film: float | None,
+    ) -> None:
+        self._times.append(t)
+        self._q.append(self.split_rotor(y)[0].copy())
+
+    def make_result(
+        self, out: Samples, status: RunStatus, message: str, stats: RunStats
+    ) -> RotorOrbit:
+        """The run sampled at the settings' rate (linear between the accepted steps)."""
+        steps = np.asarray(self._times)
+        q = np.asarray(self._q).T  # (m, steps)
+        rate = self.settings.sample_rate
+        times = np.arange(steps[0], steps[-1] + 1e-12, 1.0 / rate)
+        q = np.vstack([np.interp(times, steps, row) for row in q])
+        orbit = self.system
+        nb = len(orbit.sims)
+        journals = np.stack([np.stack([-q[2 * b + 1], q[2 * b]]) for b in range(nb)])
+        lateral = orbit.reduced.basis @ q
+        nodes = np.stack([lateral[0::4], lateral[1::4]], axis=1)
+        wall = time.perf_counter() - stats.clock
+        return RotorOrbit(
+            times, journals, nodes, orbit.labels, wall, message,
+            steps=stats.steps, factorizations=stats.factorizations,
+            newton_iterations=stats.newton_iterations, status=str(status),
+        )  # fmt: skip
+
+    def problem(self, t_end: float) -> StepperProblem:
+        orbit = self.system
+        return StepperProblem(
+            size=orbit.size,
+            t_end=t_end,
+            speed=orbit.speed.omega,
+            inputs=self.inputs,  # type: ignore[arg-type]
+            storage=self.storage,  # type: ignore[arg-type]
+            factorize=self.factorize,  # type: ignore[arg-type]
+            lift_slack=self.lift_slack,
+            atol=self._atol,
+            journal=orbit.n_film,
+            clearance=self.bearings[0].c,
+            record=self.record,
+            observe=None,
+            program_checkpoint=dict,
+            make_result=self.make_result,  # type: ignore[arg-type]
+        )
+
+
+def run_rotor(
+    system: RotorOrbitSystem,
+    t_end: float,
+    *,
+    y0: FloatArray | None = None,
+    settings: OrbitSettings | None = None,
+    progress: bool = False,
+) -> RotorOrbit:
+    """Integrate the rotor on its bearings from t = 0 (the static state, or ``y0``) to
+    ``t_end`` (s) with the orbit's stepper (module docstring). Ctrl-C ends the run at a
+    step boundary, keeping what it computed."""
+    stepper = RotorStepper(system, settings)
+    s = stepper.settings
+    start = system.initial_state() if y0 is None else np.asarray(y0, float)
+    with interrupt_at_step_boundary() as interrupted:
+        result = run(
+            stepper.problem(t_end),
+            State(0.0, start.copy()),
+            Samples(1.0 / s.sample_rate),
+            s.step_rule,
+            s.newton_rule,
+            s.stop_rule(),
+            progress=progress,
+            interrupted=interrupted,
+        )
+    return result  # type: ignore[return-value]
