@@ -21,10 +21,35 @@ def register(sub: Any) -> argparse.ArgumentParser:
     rot.add_argument("rotor", type=Path, help="rotor file (TOML; docs/rotor-format.md)")
     rot.add_argument(
         "--speed-range",
-        default="30000rpm:60000rpm:2500rpm",
+        default=None,
         help="speeds START:STOP:STEP of the bearings' tables and the modes (default "
-        "30000rpm:60000rpm:2500rpm; about 500rpm apart near the onset reads it to 0.1 %%)",
+        "30000rpm:60000rpm:2500rpm, or none with --orbit; about 500rpm apart near the onset "
+        "reads it to 0.1 %%)",
     )
+    rot.add_argument(
+        "--orbit",
+        default=None,
+        metavar="SPEC",
+        help="a nonlinear run of the rotor with both bearings' films: SPEED:DURATION "
+        "(constant, e.g. 40000rpm:0.2s) or START:STOP:ACCELERATION (a speed-up, e.g. "
+        "30000rpm:60000rpm:500rad/s**2)",
+    )
+    rot.add_argument(
+        "--unbalance",
+        action="append",
+        default=[],
+        metavar="NODE:MAGNITUDE[:PHASE]",
+        help="an unbalance for --orbit, e.g. 1:8.5g*mm or 1:8.5g*mm:90deg (phase from "
+        "ROSS's +x, the bearings' +Y); repeat for several",
+    )
+    rot.add_argument(
+        "--shaft-modes",
+        type=int,
+        default=8,
+        help="shaft modes kept in the --orbit rotor's reduction (default 8; "
+        "docs/rotor-format.md shows the convergence)",
+    )
+    rot.add_argument("--out", type=Path, help="write the --orbit run (NetCDF)")
     rot.add_argument("--modes", type=int, default=4, help="modes kept at each speed (default 4)")
     rot.add_argument("--plot", metavar="DIR", type=Path, help="write campbell.png to DIR")
     rot.add_argument("--json", action="store_true", help="print one JSON object")
@@ -41,13 +66,14 @@ def cmd_rotor(args: argparse.Namespace) -> int:
     from foilbearing.units import parse_speed_range
 
     rotor = load_rotor(args.rotor)
-    speeds = parse_speed_range(args.speed_range, field="--speed-range")
-    if len(speeds) < 2:
-        raise InputError(f"--speed-range {args.speed_range!r}: need at least two speeds")
+    if args.out is not None and args.orbit is None:
+        raise InputError("--out writes the --orbit run: give --orbit too")
+    if args.unbalance and args.orbit is None:
+        raise InputError("--unbalance acts on the --orbit run: give --orbit too")
     if not 1 <= args.modes <= 20:
         raise InputError(f"--modes {args.modes}: allowed 1 to 20")
+    text = args.speed_range or (None if args.orbit else "30000rpm:60000rpm:2500rpm")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
-    onset, whirl, modes = rotor_onset(rotor, speeds, num_modes=args.modes, progress=progress)
     out: dict[str, Any] = {
         "title": rotor.title,
         "mass_kg": rotor.mass,
@@ -55,22 +81,127 @@ def cmd_rotor(args: argparse.Namespace) -> int:
             {"label": b.label, "node": b.node, "load_N": load}
             for b, load in zip(rotor.bearings, rotor.bearing_loads(), strict=True)
         ],
-        "onset_speed_rpm": None if onset is None else onset / RPM,
-        "whirl_frequency_Hz": whirl,
-        "modes": modes.headline(),
     }
-    if args.plot is not None:
-        from foilbearing.output.plots.rotor import plot_campbell
+    figures: list[str] = []
+    lines: list[str] = []
+    if text is not None:
+        speeds = parse_speed_range(text, field="--speed-range")
+        if len(speeds) < 2:
+            raise InputError(f"--speed-range {text!r}: need at least two speeds")
+        onset, whirl, modes = rotor_onset(rotor, speeds, num_modes=args.modes, progress=progress)
+        out["onset_speed_rpm"] = None if onset is None else onset / RPM
+        out["whirl_frequency_Hz"] = whirl
+        out["modes"] = modes.headline()
+        if onset is None:
+            lines.append(f"  stable up to {speeds[-1] / RPM:.0f} rpm")
+        else:
+            lines.append(f"  onset {onset / RPM:.0f} rpm, whirl {whirl:.1f} Hz")
+        if args.plot is not None:
+            from foilbearing.output.plots.rotor import plot_campbell
 
-        fig = plot_campbell(modes, onset, rotor.title)
-        out["figures"] = [str(save_figure(fig, args.plot / "campbell.png"))]
+            fig = plot_campbell(modes, onset, rotor.title)
+            figures.append(str(save_figure(fig, args.plot / "campbell.png")))
+    if args.orbit is not None:
+        out["orbit"] = _orbit(args, rotor, figures, lines)
+    if figures:
+        out["figures"] = figures
     if args.json:
         emit(out)
         return 0
     for b in out["bearings"]:
         print(f"  {b['label']} (node {b['node']}): carries {b['load_N']:.2f} N")
-    if onset is None:
-        print(f"  stable up to {speeds[-1] / RPM:.0f} rpm")
-    else:
-        print(f"  onset {onset / RPM:.0f} rpm, whirl {whirl:.1f} Hz")
+    for line in lines:
+        print(line)
     return 0
+
+
+def _orbit_profile(text: str) -> Any:
+    """The speed profile of ``--orbit``: SPEED:DURATION or START:STOP:ACCELERATION."""
+    from foilbearing.control import constant_speed, linear_ramp
+    from foilbearing.errors import InputError
+    from foilbearing.units import parse_quantity
+
+    parts = text.split(":")
+    if len(parts) == 2:
+        speed = parse_quantity(parts[0], "speed", field="--orbit SPEED")
+        duration = parse_quantity(parts[1], "time", field="--orbit DURATION")
+        if speed <= 0 or duration <= 0:
+            raise InputError(f"--orbit {text!r}: speed and duration must be > 0")
+        return constant_speed(speed, duration)
+    if len(parts) == 3:
+        start = parse_quantity(parts[0], "speed", field="--orbit START")
+        stop = parse_quantity(parts[1], "speed", field="--orbit STOP")
+        accel = parse_quantity(parts[2], "angular_acceleration", field="--orbit ACCELERATION")
+        return linear_ramp(start, stop, accel)
+    raise InputError(
+        f"--orbit {text!r}: write SPEED:DURATION (e.g. 40000rpm:0.2s) or "
+        "START:STOP:ACCELERATION (e.g. 30000rpm:60000rpm:500rad/s**2)"
+    )
+
+
+def _unbalances(texts: list[str]) -> list[Any]:
+    from foilbearing.errors import InputError
+    from foilbearing.rotor.nonlinear import Unbalance
+    from foilbearing.units import parse_quantity
+
+    out = []
+    for text in texts:
+        parts = text.split(":")
+        if len(parts) not in (2, 3) or not parts[0].strip().isdigit():
+            raise InputError(
+                f"--unbalance {text!r}: write NODE:MAGNITUDE[:PHASE], e.g. 1:8.5g*mm:90deg"
+            )
+        magnitude = parse_quantity(parts[1], "mass_length", field="--unbalance MAGNITUDE")
+        phase = (
+            parse_quantity(parts[2], "angle", field="--unbalance PHASE") if len(parts) == 3 else 0.0
+        )
+        out.append(Unbalance(int(parts[0]), magnitude, phase))
+    return out
+
+
+def _orbit(
+    args: argparse.Namespace, rotor: Any, figures: list[str], lines: list[str]
+) -> dict[str, Any]:
+    """Run ``--orbit``; its JSON part (and figures, printed lines)."""
+    from foilbearing.io import save_figure, write_with
+    from foilbearing.rotor.nonlinear import RotorOrbitSystem
+    from foilbearing.rotor.stepper import run_rotor
+
+    profile = _orbit_profile(args.orbit)
+    system = RotorOrbitSystem(
+        rotor, None, profile, n_modes=args.shaft_modes, unbalances=_unbalances(args.unbalance)
+    )
+    run = run_rotor(system, profile.duration, progress=not args.json)
+    amplitude = run.amplitude()
+    part: dict[str, Any] = {
+        "status": run.status,
+        "message": run.message,
+        "grid": [list(s.case.grid.orbit_shape) for s in system.sims],
+        "shaft_modes": args.shaft_modes,
+        "steps": run.steps,
+        "wall_time_s": run.wall_time,
+        "largest_excursion_um": {
+            label: float(a * 1e6) for label, a in zip(run.labels, amplitude, strict=True)
+        },
+    }
+    if run.time[-1] >= 1.0 and profile.speeds[-1] > profile.speeds[0]:
+        from foilbearing.signals import onset, subsynchronous_amplitude
+
+        speed, phase = profile.speed_and_phase(run.time)
+        found = onset(subsynchronous_amplitude(run.time, run.journals[0, 0], speed, phase))
+        part["onset_speed_rpm"] = found.onset_speed_rpm
+        part["whirl_frequency_Hz"] = found.whirl_frequency_hz
+    lines.append(f"  orbit: {run.message}; wall {run.wall_time:.1f} s")
+    for label, a in zip(run.labels, amplitude, strict=True):
+        lines.append(f"    {label}: largest excursion {a * 1e6:.2f} µm")
+    if part.get("onset_speed_rpm") is not None:
+        lines.append(f"    sub-synchronous onset at bearing A: {part['onset_speed_rpm']:.0f} rpm")
+    if args.out is not None:
+        data = run.to_dataset(rotor.title)
+        part["out"] = str(write_with(args.out, data.to_netcdf))
+    if args.plot is not None:
+        from foilbearing.output.plots.rotor_orbit import plot_rotor_orbit
+
+        fig = plot_rotor_orbit(run, rotor.title)
+        figures.append(str(save_figure(fig, args.plot / "rotor_orbit.png")))
+    return part

@@ -81,6 +81,8 @@ class RotorOrbit:
         The stepper's counts (0 from solve_ivp).
     status
         How the run ended (``completed``, ``contact``, ``interrupted``, ...).
+    speed
+        Rotor speed at each sample, rad/s (None if not recorded).
     """
 
     time: FloatArray
@@ -93,6 +95,47 @@ class RotorOrbit:
     factorizations: int = 0
     newton_iterations: int = 0
     status: str = "completed"
+    speed: FloatArray | None = None
+
+    def amplitude(self) -> FloatArray:
+        """Each bearing's largest journal excursion from its mean position, m,
+        shape (n_bearings,)."""
+        centred = self.journals - self.journals.mean(axis=2, keepdims=True)
+        return np.asarray(np.hypot(centred[:, 0], centred[:, 1]).max(axis=1), float)
+
+    def to_dataset(self, title: str = "") -> Any:
+        """The run as an ``xarray.Dataset`` (SI units in attributes)."""
+        import xarray as xr
+
+        data: dict[str, Any] = {
+            "journal": (("bearing", "axis", "time"), self.journals,
+                        {"units": "m", "long_name": "journal displacement in the bearing's "
+                         "frame (X along its load)"}),
+            "node_displacement": (("node", "ross_axis", "time"), self.nodes,
+                                  {"units": "m", "long_name": "lateral displacement, ROSS's "
+                                   "frame (x = Y, y = -X)"}),
+        }  # fmt: skip
+        if self.speed is not None:
+            data["speed"] = (("time",), self.speed, {"units": "rad/s"})
+        return xr.Dataset(
+            data,
+            coords={
+                "time": ("time", self.time, {"units": "s"}),
+                "bearing": list(self.labels),
+                "axis": ["X", "Y"],
+                "ross_axis": ["x", "y"],
+                "node": np.arange(self.nodes.shape[0]),
+            },
+            attrs={
+                "title": title,
+                "status": self.status,
+                "message": self.message,
+                "steps": self.steps,
+                "factorizations": self.factorizations,
+                "newton_iterations": self.newton_iterations,
+                "wall_time_s": self.wall_time,
+            },
+        )
 
 
 class RotorOrbitSystem:

@@ -324,6 +324,7 @@ class RotorStepper:
         self._atol = system.atol()
         self._times: list[float] = []
         self._q: list[FloatArray] = []
+        self._last: FloatArray | None = None
 
     def split_rotor(self, y: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Views (q, q̇) of a state."""
@@ -381,6 +382,7 @@ class RotorStepper:
     ) -> None:
         self._times.append(t)
         self._q.append(self.split_rotor(y)[0].copy())
+        self._last = y
 
     def make_result(
         self, out: Samples, status: RunStatus, message: str, stats: RunStats
@@ -397,11 +399,33 @@ class RotorStepper:
         lateral = orbit.reduced.basis @ q
         nodes = np.stack([lateral[0::4], lateral[1::4]], axis=1)
         wall = time.perf_counter() - stats.clock
+        if stats.contact is not None and self._last is not None:
+            message = self._contact_message(stats.contact["time_s"], self._last)
         return RotorOrbit(
             times, journals, nodes, orbit.labels, wall, message,
             steps=stats.steps, factorizations=stats.factorizations,
             newton_iterations=stats.newton_iterations, status=str(status),
+            speed=orbit.speed.speed_and_phase(times)[0],
         )  # fmt: skip
+
+    def _contact_message(self, t: float, y: FloatArray) -> str:
+        """Where the film closed: the bearing, its minimum film and the journal's angle
+        from its +X (the stepper's own message reads a single bearing's state)."""
+        q, qd = self.split_rotor(y)
+        inp = self.inputs(t)[0]
+        films = []
+        for b, br in enumerate(self.bearings):
+            yb = br.state(y, q, qd)
+            films.append(br.sys.min_film(yb, inp.bearings[b].preload))
+        b = int(np.argmin(films))
+        br = self.bearings[b]
+        eps = br.state(y, q, qd)[br.hi - br.lo : br.hi - br.lo + 2]
+        angle = math.degrees(math.atan2(eps[1], eps[0]))
+        rpm = self.system.speed.omega(t) * 30.0 / math.pi
+        return (
+            f"contact at t = {t:.4f} s, {rpm:.0f} rpm at {self.system.labels[b]}: minimum film "
+            f"{films[b] * br.c * 1e6:.2f} µm, journal at {angle:.1f} deg from its +X"
+        )
 
     def problem(self, t_end: float) -> StepperProblem:
         orbit = self.system
