@@ -4,6 +4,8 @@
 - :mod:`.toml`: the rotor file (:func:`load_rotor`);
 - :mod:`.linear`: modes, log decrements and the onset speed on ROSS with matched whirl
   (:func:`rotor_modes`, :func:`rotor_onset`; ROSS is the ``ross`` extra);
+- :mod:`.response`: the unbalance response at the bearings and disks and the mode shapes,
+  on ROSS (:func:`unbalance_response`, :func:`mode_shapes`);
 - :mod:`.reduced`: the rotor reduced to its journals and a few shaft modes (Craig-Bampton),
   the basis of the nonlinear rotor (:func:`reduce_rotor`, :func:`reduced_onset`);
 - :mod:`.nonlinear`: the nonlinear rotor, both bearings' films integrated with the reduced
@@ -13,17 +15,26 @@
 from foilbearing.rotor.linear import RotorModes, ross_rotor, rotor_modes, rotor_onset
 from foilbearing.rotor.model import BearingSite, Disk, Material, RotorCase, ShaftElement
 from foilbearing.rotor.reduced import ReducedRotor, reduce_rotor, reduced_modes, reduced_onset
+from foilbearing.rotor.response import (
+    ModeShapes,
+    UnbalanceResponse,
+    mode_shapes,
+    unbalance_response,
+)
 from foilbearing.rotor.toml import load_rotor, rotor_from_dict
 
 __all__ = [
     "BearingSite",
     "Disk",
     "Material",
+    "ModeShapes",
     "ReducedRotor",
     "RotorCase",
     "RotorModes",
     "ShaftElement",
+    "UnbalanceResponse",
     "load_rotor",
+    "mode_shapes",
     "reduce_rotor",
     "reduced_modes",
     "reduced_onset",
@@ -31,4 +42,5 @@ __all__ = [
     "rotor_from_dict",
     "rotor_modes",
     "rotor_onset",
+    "unbalance_response",
 ]
