@@ -189,3 +189,31 @@ def test_the_reduced_rotor_converges_on_the_full_model_with_its_modes() -> None:
     reduced = reduced_modes(model, [0, 2], at, n_modes=4)
     assert np.allclose(reduced.log_decrement, full.log_decrement, atol=1e-4)
     assert np.allclose(reduced.frequency, full.frequency, rtol=1e-3)
+
+
+@pytest.mark.slow
+def test_study_of_a_rotor_file_writes_its_report(tmp_path: Path, write_case, capsys) -> None:  # type: ignore[no-untyped-def]
+    # `foilbearing study ROTOR.toml`: a rotor file in place of a bearing case runs the
+    # rotor's stage (docs/rotor-format.md): the bearings' loads balance the rotor's weight,
+    # the onset is that of `foilbearing rotor` on the same speeds, the reduced rotor's error
+    # falls with its shaft modes, and report.html has the section with its Campbell diagram.
+    import json
+
+    from foilbearing.cli.main import main
+
+    case = write_case("coarse", n_theta=32, n_z=4)
+    text = EXAMPLE.with_name("rotor_two_disk.toml").read_text(encoding="utf-8")
+    rotor_file = tmp_path / "rotor.toml"
+    rotor_file.write_text(text.replace('case = "default"', f'case = "{case.as_posix()}"'))
+    out = tmp_path / "out"
+    assert main(["study", str(rotor_file), "--out", str(out), "--orbits", "none", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)["rotor"]
+    rotor = load_rotor(rotor_file)
+    loads = sum(b["load_N"] for b in summary["bearings"])
+    assert loads == pytest.approx(rotor.mass * rotor.gravity, rel=1e-12)
+    errors = [abs(r["error_percent"]) for r in summary["reduction"]]
+    assert errors[0] > errors[-1] and errors[-1] < 0.01
+    assert 30e3 < summary["onset_speed_rpm"] < 60e3
+    html = (out / "report.html").read_text(encoding="utf-8")
+    assert "A rotor on two foil bearings" in html and "data:image/png;base64" in html
+    assert (out / "campbell.png").stat().st_size > 10_000

@@ -40,7 +40,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         default=[],
         metavar="NODE:MAGNITUDE[:PHASE]",
         help="an unbalance for --orbit, e.g. 1:8.5g*mm or 1:8.5g*mm:90deg (phase from "
-        "ROSS's +x, the bearings' +Y); repeat for several",
+        "the bearings' +X, the load, in the sense of rotation); repeat for several",
     )
     rot.add_argument(
         "--shaft-modes",

@@ -68,7 +68,18 @@ def cmd_study(args: argparse.Namespace) -> int:
     """Run ``study``; returns the exit code (0)."""
     from foilbearing.case import load_case
     from foilbearing.study.paper import run_study
+    from foilbearing.study.rotor import is_rotor_file
 
+    if is_rotor_file(args.case):
+        from foilbearing.rotor import load_rotor
+        from foilbearing.study.rotor import run_rotor_study
+
+        result = run_rotor_study(
+            load_rotor(args.case), args.out, progress=not args.json, orbits=args.orbits == "full"
+        )
+        if args.json:
+            emit(result.summary)
+        return 0
     case = load_case(args.case)
     summary = run_study(
         case,

@@ -51,7 +51,9 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class Unbalance:
-    """An unbalance at a node: magnitude (kg·m) and phase (rad) at rotation angle 0."""
+    """An unbalance at a node: magnitude (kg·m) and phase (rad): its angle at rotation
+    angle 0 from the bearings' +X (the load), in the sense of rotation (as in
+    :func:`foilbearing.rotor.unbalance_response`)."""
 
     node: int
     magnitude: float
@@ -238,7 +240,7 @@ class RotorOrbitSystem:
         w, wd, phi = self.speed.state(t)
         f = np.zeros(self.reduced.basis.shape[0])
         for u in self.unbalances:
-            angle = phi + u.phase
+            angle = phi + u.phase - 0.5 * math.pi  # from ROSS's +x; our +X is its −y
             c, s = math.cos(angle), math.sin(angle)
             f[4 * u.node] += u.magnitude * (w * w * c + wd * s)
             f[4 * u.node + 1] += u.magnitude * (w * w * s - wd * c)
@@ -337,6 +339,7 @@ class RotorOrbitSystem:
         bearings' orbit settings' (:meth:`atol`) times ``atol_factor``."""
         start = self.initial_state() if y0 is None else np.asarray(y0, float)
         times = np.arange(0.0, t_end + 1e-12, 1.0 / sample_rate)
+        times = np.minimum(times, t_end)
         clock = time.perf_counter()
         sol = solve_ivp(
             self.derivative,

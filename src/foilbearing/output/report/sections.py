@@ -49,6 +49,7 @@ STAGES: tuple[tuple[str, str], ...] = (
     ),
     ("uncertainty", "What the unknowns allow: uncertainty envelopes (beyond the paper)"),
     ("schedule", "A voltage schedule for the controller (beyond the paper)"),
+    ("rotor", "A rotor on two foil bearings (beyond the paper)"),
 )
 
 
@@ -57,6 +58,14 @@ _FIG14 = {50.0: "a", 100.0: "b", 150.0: "c"}
 
 def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
     ran = [t.split(" (")[0] for k, t in STAGES if isinstance(summary.get(k), dict)]
+    if isinstance(summary.get("rotor"), dict):
+        return (
+            "<p>What <code>foilbearing study</code> computed for the rotor "
+            f"<b>{escape(str(case.get('title', '?')))}</b> on its foil bearings "
+            "(docs/rotor-format.md): the weight each bearing carries, the modes and the onset "
+            "with each mode's coefficients at its own whirl frequency (ROSS, matched whirl), "
+            "the reduced rotor's convergence, and a nonlinear speed-up through the onset.</p>"
+        )
     grid = case.get("grid") or {}
     kind = f" ({case['bearing_type']})" if case.get("bearing_type") else ""
     if isinstance(summary.get("plan"), dict):
@@ -512,6 +521,54 @@ def _schedule(d: dict[str, Any], case: dict[str, Any]) -> str:
     return body
 
 
+def _rotor(d: dict[str, Any], case: dict[str, Any]) -> str:
+    bearings = [b for b in d.get("bearings", []) if isinstance(b, dict)]
+    cols: list[Column] = [
+        ("bearing", _key("label"), ""),
+        ("node", _key("node"), "d"),
+        ("load (N)", _key("load_N"), ".2f"),
+        ("voltages (V)", lambda r: ", ".join(f"{v:g}" for v in r.get("voltages_V", [])), ""),
+    ]
+    body = _records(bearings, cols)
+    onset = d.get("onset_speed_rpm")
+    speeds = d.get("speeds_rpm") or []
+    span = f"{speeds[0] / 1e3:.0f}-{speeds[-1] / 1e3:.0f} krpm" if speeds else "its speeds"
+    body += (
+        f'<p class="note">Rotor {_f(d.get("mass_kg"), ".3f")} kg. Linear analysis over {span} '
+        "(ROSS, each mode's coefficients at its own whirl frequency): "
+        + (
+            f"onset {_f(onset, ',.0f')} rpm, whirl {_f(d.get('whirl_frequency_Hz'), '.1f')} Hz."
+            if onset is not None
+            else "stable over them."
+        )
+        + "</p>"
+    )
+    red = [r for r in d.get("reduction", []) if isinstance(r, dict)]
+    if red:
+        body += (
+            '<p class="note">The rotor reduced to its journals and N shaft modes (the '
+            "nonlinear run's rotor), its onset against the full beam model's:</p>"
+        )
+        body += _records(red, [
+            ("shaft modes N", _key("shaft_modes"), "d"),
+            ("onset (rpm)", _key("onset_speed_rpm"), ",.0f"),
+            ("error (%)", _key("error_percent"), "+.3f"),
+        ])  # fmt: skip
+    orb = d.get("orbit")
+    if isinstance(orb, dict):
+        body += (
+            f'<p class="note">Nonlinear speed-up {escape(str(orb.get("speed_up")))}, '
+            f"{_f(orb.get('unbalance_g_mm'), 'g')} g·mm at node {orb.get('unbalance_node')}, "
+            f"{orb.get('shaft_modes')} shaft modes: {escape(str(orb.get('message')))}. "
+            f"The run ends at {_f(orb.get('end_speed_rpm'), ',.0f')} rpm. Sustained "
+            "sub-synchronous motion read from bearing A's X (a ramped run, not the linear "
+            f"onset; none when the whirl grows to contact within half a second): "
+            f"{_f(orb.get('onset_speed_rpm'), ',.0f')} rpm, whirl "
+            f"{_f(orb.get('whirl_frequency_Hz'), '.0f')} Hz.</p>"
+        )
+    return body
+
+
 def _plan(d: dict[str, Any], case: dict[str, Any]) -> str:
     rows = [[k, _f(v, ".6g") if not isinstance(v, dict) else escape(str(v) or "none")]
             for k, v in d.items()]  # fmt: skip
@@ -646,6 +703,7 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "orbits_paper_reading": _orbits,
     "uncertainty": _uncertainty,
     "schedule": _schedule,
+    "rotor": _rotor,
     "plan": _plan,
     "bearing_static": _bearing_static,
     "load_capacity": _load_capacity,
