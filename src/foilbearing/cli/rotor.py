@@ -43,6 +43,13 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "the bearings' +X, the load, in the sense of rotation); repeat for several",
     )
     rot.add_argument(
+        "--voltage-ramp",
+        default=None,
+        metavar="T0:T1:V",
+        help="during --orbit, ramp every bearing's actuators from their case voltages to V "
+        "between T0 and T1, e.g. 0.5s:1.0s:150V",
+    )
+    rot.add_argument(
         "--shaft-modes",
         type=int,
         default=8,
@@ -139,6 +146,28 @@ def _orbit_profile(text: str) -> Any:
     )
 
 
+def _voltage_ramps(text: str | None, rotor: Any) -> list[Any] | None:
+    """``--voltage-ramp T0:T1:V``: one ramp per bearing with actuators, from its voltages."""
+    if text is None:
+        return None
+    from foilbearing.control import voltage_ramp
+    from foilbearing.errors import InputError
+    from foilbearing.units import parse_quantity
+
+    parts = text.split(":")
+    if len(parts) != 3:
+        raise InputError(f"--voltage-ramp {text!r}: expected T0:T1:V, e.g. 0.5s:1.0s:150V")
+    t0 = parse_quantity(parts[0], "time", field="--voltage-ramp T0")
+    t1 = parse_quantity(parts[1], "time", field="--voltage-ramp T1")
+    volts = parse_quantity(parts[2], "voltage", field="--voltage-ramp V")
+    acts = [b.case.actuators for b in rotor.bearings]
+    if all(a is None for a in acts):
+        raise InputError("--voltage-ramp: no bearing of the rotor has actuators")
+    return [
+        None if a is None else voltage_ramp(t0, t1, volts, initial=list(a.voltages)) for a in acts
+    ]
+
+
 def _unbalances(texts: list[str]) -> list[Any]:
     from foilbearing.errors import InputError
     from foilbearing.rotor.nonlinear import Unbalance
@@ -169,7 +198,12 @@ def _orbit(
 
     profile = _orbit_profile(args.orbit)
     system = RotorOrbitSystem(
-        rotor, None, profile, n_modes=args.shaft_modes, unbalances=_unbalances(args.unbalance)
+        rotor,
+        None,
+        profile,
+        n_modes=args.shaft_modes,
+        voltages=_voltage_ramps(args.voltage_ramp, rotor),
+        unbalances=_unbalances(args.unbalance),
     )
     run = run_rotor(system, profile.duration, progress=not args.json)
     amplitude = run.amplitude()
