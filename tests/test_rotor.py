@@ -133,7 +133,7 @@ def test_rotor_command_prints_modes_onset_and_campbell(tmp_path: Path, capsys) -
 
     pytest.importorskip("ross", minversion="3.0")
     argv = ["rotor", str(EXAMPLE), "--speed-range", "40000rpm:46000rpm:2000rpm"]
-    assert main([*argv, "--json", "--plot", str(tmp_path)]) == 0
+    assert main([*argv, "--json", "--plot", str(tmp_path), "--unbalance", "1:1g*mm"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert {"speed_rpm", "frequency_Hz", "log_decrement", "whirl"} <= set(out["modes"][0])
     assert len(out["modes"]) == 4 * 4
@@ -142,6 +142,15 @@ def test_rotor_command_prints_modes_onset_and_campbell(tmp_path: Path, capsys) -
     assert out["onset_speed_rpm"] == pytest.approx(ours.onset_speed / RPM, rel=0.01)
     assert sum(b["load_N"] for b in out["bearings"]) == pytest.approx(rotor.mass * 9.80665)
     assert (tmp_path / "campbell.png").stat().st_size > 10_000
+    for name in ("mode_shapes.png", "unbalance_response.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
+    # the unbalance response at each speed and node: both bearings of the symmetric rotor
+    # move alike under an unbalance at its middle
+    response = out["unbalance_response"]
+    assert {"speed_rpm", "node", "amplitude_um", "phase_deg"} <= set(response[0])
+    by = {(r["speed_rpm"], r["node"]): r["amplitude_um"] for r in response}
+    for speed in {r["speed_rpm"] for r in response}:
+        assert by[(speed, 0)] == pytest.approx(by[(speed, 2)], rel=1e-6)
     assert main(["rotor", str(tmp_path / "none.toml")]) == 2
     assert "rotor file not found" in capsys.readouterr().err
 

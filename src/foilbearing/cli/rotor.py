@@ -39,7 +39,9 @@ def register(sub: Any) -> argparse.ArgumentParser:
         action="append",
         default=[],
         metavar="NODE:MAGNITUDE[:PHASE]",
-        help="an unbalance for --orbit, e.g. 1:8.5g*mm or 1:8.5g*mm:90deg (phase from "
+        help="an unbalance: the linear unbalance response over --speed-range (JSON "
+        "unbalance_response, unbalance_response.png) and the --orbit run, e.g. 1:8.5g*mm or "
+        "1:8.5g*mm:90deg (phase from "
         "the bearings' +X, the load, in the sense of rotation); repeat for several",
     )
     rot.add_argument(
@@ -69,14 +71,12 @@ def cmd_rotor(args: argparse.Namespace) -> int:
     from foilbearing.constants import RPM
     from foilbearing.errors import InputError
     from foilbearing.io import save_figure
-    from foilbearing.rotor import load_rotor, rotor_onset
+    from foilbearing.rotor import load_rotor
     from foilbearing.units import parse_speed_range
 
     rotor = load_rotor(args.rotor)
     if args.out is not None and args.orbit is None:
         raise InputError("--out writes the --orbit run: give --orbit too")
-    if args.unbalance and args.orbit is None:
-        raise InputError("--unbalance acts on the --orbit run: give --orbit too")
     if not 1 <= args.modes <= 20:
         raise InputError(f"--modes {args.modes}: allowed 1 to 20")
     text = args.speed_range or (None if args.orbit else "30000rpm:60000rpm:2500rpm")
@@ -95,19 +95,47 @@ def cmd_rotor(args: argparse.Namespace) -> int:
         speeds = parse_speed_range(text, field="--speed-range")
         if len(speeds) < 2:
             raise InputError(f"--speed-range {text!r}: need at least two speeds")
-        onset, whirl, modes = rotor_onset(rotor, speeds, num_modes=args.modes, progress=progress)
+        from foilbearing.rotor import ross_rotor, rotor_modes
+        from foilbearing.rotor.linear import _modes_at, refine_onset
+        from foilbearing.rotor.response import table_frequencies
+
+        unbalances = _unbalances(args.unbalance)
+        # With unbalances, the tables hold each speed as a frequency: exact synchronous values.
+        freqs = list(table_frequencies(speeds)) if unbalances else None
+        model = ross_rotor(rotor, speeds, freqs, progress)
+        modes = rotor_modes(rotor, speeds, num_modes=args.modes, model=model)
+        onset, whirl = refine_onset(modes, lambda w: _modes_at(model, w, args.modes))
         out["onset_speed_rpm"] = None if onset is None else onset / RPM
         out["whirl_frequency_Hz"] = whirl
         out["modes"] = modes.headline()
+        response = None
+        if unbalances:
+            from foilbearing.rotor import unbalance_response
+
+            triples = [(u.node, u.magnitude, u.phase) for u in unbalances]
+            response = unbalance_response(rotor, speeds, triples, model=model)
+            out["unbalance_response"] = response.headline()
         if onset is None:
             lines.append(f"  stable up to {speeds[-1] / RPM:.0f} rpm")
         else:
             lines.append(f"  onset {onset / RPM:.0f} rpm, whirl {whirl:.1f} Hz")
         if args.plot is not None:
-            from foilbearing.output.plots.rotor import plot_campbell
+            from foilbearing.output.plots.rotor import (
+                plot_campbell,
+                plot_mode_shapes,
+                plot_unbalance_response,
+            )
+            from foilbearing.rotor import mode_shapes
 
             fig = plot_campbell(modes, onset, rotor.title)
             figures.append(str(save_figure(fig, args.plot / "campbell.png")))
+            at = speeds[-1] if onset is None else onset
+            shapes = mode_shapes(rotor, at, model=model, num_modes=args.modes)
+            fig = plot_mode_shapes(shapes, f"{rotor.title}: modes at {at / RPM:,.0f} rpm")
+            figures.append(str(save_figure(fig, args.plot / "mode_shapes.png")))
+            if response is not None:
+                fig = plot_unbalance_response(response, rotor.title)
+                figures.append(str(save_figure(fig, args.plot / "unbalance_response.png")))
     if args.orbit is not None:
         out["orbit"] = _orbit(args, rotor, figures, lines)
     if figures:
