@@ -52,6 +52,14 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "between T0 and T1, e.g. 0.5s:1.0s:150V",
     )
     rot.add_argument(
+        "--controller",
+        default=None,
+        metavar="K=V,...",
+        help="during --orbit, a closed-loop controller on every bearing with actuators, "
+        "reading its own journal: threshold=1um,target=150V,slew=5000V/s,window=0.03s "
+        "(as foilbearing orbit --controller)",
+    )
+    rot.add_argument(
         "--shaft-modes",
         type=int,
         default=8,
@@ -174,6 +182,26 @@ def _orbit_profile(text: str) -> Any:
     )
 
 
+def _programs(args: argparse.Namespace, rotor: Any, profile: Any) -> list[Any] | None:
+    """The bearings' voltage programs: ``--voltage-ramp`` or ``--controller`` (one each)."""
+    from foilbearing.errors import InputError
+
+    if args.voltage_ramp is not None and args.controller is not None:
+        raise InputError("--voltage-ramp and --controller: give one voltage program")
+    if args.controller is None:
+        return _voltage_ramps(args.voltage_ramp, rotor)
+    from foilbearing.orbit.spec import ControllerParams, controller_args
+
+    params = ControllerParams(**controller_args(args.controller))
+    acts = [b.case.actuators for b in rotor.bearings]
+    if all(a is None for a in acts):
+        raise InputError("--controller: no bearing of the rotor has actuators")
+    return [
+        None if a is None else params.program(b.case, profile)
+        for a, b in zip(acts, rotor.bearings, strict=True)
+    ]
+
+
 def _voltage_ramps(text: str | None, rotor: Any) -> list[Any] | None:
     """``--voltage-ramp T0:T1:V``: one ramp per bearing with actuators, from its voltages."""
     if text is None:
@@ -230,7 +258,7 @@ def _orbit(
         None,
         profile,
         n_modes=args.shaft_modes,
-        voltages=_voltage_ramps(args.voltage_ramp, rotor),
+        voltages=_programs(args, rotor, profile),
         unbalances=_unbalances(args.unbalance),
     )
     run = run_rotor(system, profile.duration, progress=not args.json)

@@ -413,7 +413,7 @@ class RunSpec:
                 )
             )
         if spec["controller"] is not None:
-            program = ControllerParams(**_controller_args(spec["controller"]))
+            program = ControllerParams(**controller_args(spec["controller"]))
         settings = OrbitSettings(
             steps_per_rev=int(spec["steps_per_rev"]),
             order=int(spec["order"] or 2),
@@ -464,7 +464,7 @@ def cli_quantity(text: str, kind: str, option: str) -> float:
     )
 
 
-def _controller_args(text: str) -> dict[str, float]:
+def controller_args(text: str) -> dict[str, float]:
     """``--controller threshold=2um,target=150V,...`` as the controller's keyword arguments."""
     kinds = {
         "threshold": ("length", "threshold"),

@@ -157,7 +157,9 @@ class RotorOrbitSystem:
     n_modes
         Shaft modes kept in the reduction (``tests/test_rotor.py`` shows the convergence).
     voltages
-        One voltage program per bearing (None: the case's voltages held).
+        One voltage program per bearing (None: the case's voltages held): a ramp, a
+        schedule, or a closed-loop controller reading its own journal's X motion (on the
+        stepper, :func:`foilbearing.rotor.stepper.run_rotor`).
     unbalances
         Unbalances at nodes.
     settings
@@ -177,12 +179,6 @@ class RotorOrbitSystem:
     ) -> None:
         if voltages is None:
             voltages = [None] * len(rotor.bearings)
-        if any(v is not None and v.observes for v in voltages):
-            raise InputError(
-                "a closed-loop controller on a rotor's bearing: not built yet (the rotor's "
-                "stepper does not hand it the samples); use a voltage ramp or schedule",
-                source=rotor.source,
-            )
         if model is None:
             from foilbearing.rotor.linear import ross_shaft
 
@@ -337,6 +333,11 @@ class RotorOrbitSystem:
         """Integrate from t = 0 (the static state, or ``y0``) to ``t_end`` (s) with
         solve_ivp's BDF; sampled at ``sample_rate`` (Hz). The absolute tolerances are the
         bearings' orbit settings' (:meth:`atol`) times ``atol_factor``."""
+        if any(s.voltage is not None and s.voltage.observes for s in self.sims):
+            raise InputError(
+                "a closed-loop controller reads the run's samples, which solve_ivp does not "
+                "hand it: run the rotor on its stepper (foilbearing.rotor.stepper.run_rotor)"
+            )
         start = self.initial_state() if y0 is None else np.asarray(y0, float)
         times = np.arange(0.0, t_end + 1e-12, 1.0 / sample_rate)
         times = np.minimum(times, t_end)

@@ -337,6 +337,12 @@ class RotorStepper:
         self._times: list[float] = []
         self._q: list[FloatArray] = []
         self._last: FloatArray | None = None
+        #: The bearings whose voltage program reads the run (a closed-loop controller).
+        self._observers = [
+            (b, sim.voltage)
+            for b, sim in enumerate(system.sims)
+            if sim.voltage is not None and sim.voltage.observes
+        ]
 
     def split_rotor(self, y: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Views (q, q̇) of a state."""
@@ -392,8 +398,22 @@ class RotorStepper:
         inp: Any,
         min_film: float | None,
     ) -> None:
+        """Keep the accepted state; hand each closed-loop program its journal's X (m) at
+        the output's sample times since the last state (linear between the two)."""
+        q = self.split_rotor(y)[0].copy()
+        if self._observers and self._times:
+            dt = 1.0 / self.settings.sample_rate
+            t0, q0 = self._times[-1], self._q[-1]
+            for k in range(math.floor(t0 / dt + 1e-9) + 1, math.floor(t / dt + 1e-9) + 1):
+                ts = k * dt
+                w = (ts - t0) / (t - t0)
+                phase = self.system.speed.phase(ts)
+                for b, program in self._observers:
+                    x = self.bearings[b].x
+                    e_x = -((1.0 - w) * q0[x + 1] + w * q[x + 1])  # X = −y in ROSS's frame
+                    program.observe(ts, e_x, phase)
         self._times.append(t)
-        self._q.append(self.split_rotor(y)[0].copy())
+        self._q.append(q)
         self._last = y
 
     def make_result(
