@@ -8,6 +8,15 @@ started from the last. :func:`to_ross_bearing` turns such a table into a
 and at each mode's whirl frequency (``Rotor.run_modal(speed,
 matched_whirl=True)``, ``Rotor.run_campbell(..., matched_whirl=True)``).
 
+**Pass ``matched_whirl=True``.** ROSS's default takes every bearing's coefficients at the
+running speed (synchronous). A foil bearing's coefficients change strongly with the whirl
+frequency, and its unstable whirl is sub-synchronous, so the default overstates this
+bearing's stability badly: on examples/rotor_rigid_symmetric.toml at 150 V, with tables
+4 krpm apart, the synchronous default turns unstable between 84 and 88 krpm, where the
+matched whirl finds 55.1 krpm (our own ``stability``, 55.0; measured 2026-12-03).
+:mod:`foilbearing.rotor` always passes it (docs/rotor-format.md). The unbalance response
+is synchronous by nature and ROSS takes it at frequency = speed.
+
 Frame mapping
 -------------
 Ours (docs/model.md §2): X along the static load (gravity, pointing down), Y
