@@ -28,9 +28,11 @@ SPEEDS_RPM = np.arange(20e3, 70.01e3, 2e3)
 #: Shaft modes kept in the reduction's convergence table, and in the nonlinear run.
 REDUCTION_MODES = (0, 4, 8, 16)
 ORBIT_MODES = 8
-#: The nonlinear speed-up: from 0.85 to 1.15 times the linear onset at 500 rad/s² (the
-#: paper's acceleration), with this unbalance at the heaviest disk, kg·m.
-ORBIT_SPAN = (0.85, 1.15)
+#: The nonlinear speed-up: from 0.85 to 1.3 times the linear onset at 500 rad/s² (the
+#: paper's acceleration), with this unbalance at the heaviest disk, kg·m. (To 1.15 times,
+#: the flexible example's whirl, growing from 52 krpm, had not lasted the half second the
+#: signal analysis asks of a sustained one.)
+ORBIT_SPAN = (0.85, 1.3)
 ORBIT_ACCELERATION = 500.0
 ORBIT_UNBALANCE = 1e-6
 #: The shortest run (s) whose sub-synchronous onset the signal analysis reads.
