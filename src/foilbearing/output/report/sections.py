@@ -562,7 +562,8 @@ def _rotor(d: dict[str, Any], case: dict[str, Any]) -> str:
             f"{orb.get('shaft_modes')} shaft modes: {escape(str(orb.get('message')))}. "
             f"The run ends at {_f(orb.get('end_speed_rpm'), ',.0f')} rpm. Sustained "
             "sub-synchronous motion read from bearing A's X (a ramped run, not the linear "
-            f"onset; none when the whirl grows to contact within half a second): "
+            f"onset; none when the whirl lasts under half a second before contact or the end of "
+            "the run): "
             f"{_f(orb.get('onset_speed_rpm'), ',.0f')} rpm, whirl "
             f"{_f(orb.get('whirl_frequency_Hz'), '.0f')} Hz.</p>"
         )
