@@ -204,8 +204,8 @@ def test_the_reduced_rotor_converges_on_the_full_model_with_its_modes() -> None:
 def test_study_of_a_rotor_file_writes_its_report(tmp_path: Path, write_case, capsys) -> None:  # type: ignore[no-untyped-def]
     # `foilbearing study ROTOR.toml`: a rotor file in place of a bearing case runs the
     # rotor's stage (docs/rotor-format.md): the bearings' loads balance the rotor's weight,
-    # the onset is that of `foilbearing rotor` on the same speeds, the reduced rotor's error
-    # falls with its shaft modes, and report.html has the section with its Campbell diagram.
+    # the reduced rotor's error falls with its shaft modes, and report.html has the section
+    # with its Campbell diagram, mode shapes and unbalance response.
     import json
 
     from foilbearing.cli.main import main
@@ -225,4 +225,8 @@ def test_study_of_a_rotor_file_writes_its_report(tmp_path: Path, write_case, cap
     assert 30e3 < summary["onset_speed_rpm"] < 60e3
     html = (out / "report.html").read_text(encoding="utf-8")
     assert "A rotor on two foil bearings" in html and "data:image/png;base64" in html
-    assert (out / "campbell.png").stat().st_size > 10_000
+    for name in ("campbell.png", "mode_shapes.png", "unbalance_response.png"):
+        assert (out / name).stat().st_size > 10_000
+    # 1 g·mm at the heavier disk: a response of µm at most, inside the clearance
+    c = rotor.bearings[0].case.bearing.clearance
+    assert 0.0 < summary["unbalance_response"]["peak_amplitude_um"] < 1e6 * c

@@ -3,7 +3,8 @@
 A rotor file (docs/rotor-format.md) in place of a bearing case runs this stage instead of
 the bearing's: the weight each bearing carries, the Campbell diagram and onset with matched
 whirl on ROSS, the convergence of the reduced rotor with its shaft modes, and a nonlinear
-speed-up through the onset. It writes ``summary.json``, the figures and ``report.html``
+speed-up through the onset, with the mode shapes at the onset and the response to an
+unbalance at the heaviest disk. It writes ``summary.json``, the figures and ``report.html``
 (section "A rotor on two foil bearings").
 """
 
@@ -54,10 +55,15 @@ def rotor_study(
     """The rotor's stage of the study (module docstring); its summary, unit-named keys,
     with the figures it wrote under ``figures``."""
     from foilbearing.io import save_figure, write_with
-    from foilbearing.output.plots.rotor import plot_campbell
-    from foilbearing.rotor import ross_rotor, rotor_modes
+    from foilbearing.output.plots.rotor import (
+        plot_campbell,
+        plot_mode_shapes,
+        plot_unbalance_response,
+    )
+    from foilbearing.rotor import mode_shapes, ross_rotor, rotor_modes, unbalance_response
     from foilbearing.rotor.linear import _modes_at, refine_onset
     from foilbearing.rotor.reduced import reduced_onset
+    from foilbearing.rotor.response import table_frequencies
 
     speeds = list(SPEEDS_RPM * RPM)
     summary: dict[str, Any] = {
@@ -79,13 +85,36 @@ def rotor_study(
         f"rotor: the bearings' coefficient tables, {len(speeds)} speeds "
         f"{SPEEDS_RPM[0] / 1e3:.0f}-{SPEEDS_RPM[-1] / 1e3:.0f} krpm; modes with matched whirl"
     )
-    model = ross_rotor(rotor, speeds)
+    # Each speed is also a frequency of the tables: the unbalance response is then exact.
+    model = ross_rotor(rotor, speeds, list(table_frequencies(speeds)))
     modes = rotor_modes(rotor, speeds, model=model)
     onset, whirl = refine_onset(modes, lambda w: _modes_at(model, w, 4))
     summary["onset_speed_rpm"] = None if onset is None else onset / RPM
     summary["whirl_frequency_Hz"] = whirl
     summary["least_log_decrement"] = [float(v) for v in modes.least_stable()]
     figures.append(str(save_figure(plot_campbell(modes, onset, rotor.title), out / "campbell.png")))
+    at = speeds[-1] if onset is None else onset
+    shapes = mode_shapes(rotor, at, model=model)
+    title = f"{rotor.title}: modes at {at / RPM:,.0f} rpm"
+    figures.append(str(save_figure(plot_mode_shapes(shapes, title), out / "mode_shapes.png")))
+    node = _heaviest_disk_node(rotor)
+    response = unbalance_response(rotor, speeds, [(node, ORBIT_UNBALANCE, 0.0)], model=model)
+    amplitude = response.amplitude_um()  # (speeds, nodes)
+    peak = np.unravel_index(int(np.argmax(amplitude)), amplitude.shape)
+    summary["unbalance_response"] = {
+        "unbalance_g_mm": ORBIT_UNBALANCE * 1e6,
+        "unbalance_node": node,
+        "peak_amplitude_um": float(amplitude[peak]),
+        "peak_speed_rpm": float(SPEEDS_RPM[peak[0]]),
+        "peak_at": response.labels[peak[1]],
+    }
+    figures.append(
+        str(
+            save_figure(
+                plot_unbalance_response(response, rotor.title), out / "unbalance_response.png"
+            )
+        )
+    )
     if len(rotor.bearings) >= 2 and onset is not None:
         stage(
             f"rotor: the reduced rotor's onset with {', '.join(map(str, REDUCTION_MODES))} shaft modes"
@@ -124,8 +153,7 @@ def _speed_up(
     from foilbearing.signals import subsynchronous_amplitude
 
     start, stop = (onset * f for f in ORBIT_SPAN)
-    disk = max(rotor.disks, key=lambda d: d.mass, default=None)
-    node = disk.node if disk is not None else rotor.bearings[0].node
+    node = _heaviest_disk_node(rotor)
     profile = linear_ramp(start, stop, ORBIT_ACCELERATION)
     stage(
         f"rotor: nonlinear speed-up {start / RPM / 1e3:.1f}-{stop / RPM / 1e3:.1f} krpm at "
@@ -157,6 +185,12 @@ def _speed_up(
         "largest_excursion_um": [float(a * 1e6) for a in run.amplitude()],
         "end_speed_rpm": float(profile.omega(float(run.time[-1])) / RPM),
     }
+
+
+def _heaviest_disk_node(rotor: RotorCase) -> int:
+    """Where the study puts its unbalance: the heaviest disk (the first bearing without)."""
+    disk = max(rotor.disks, key=lambda d: d.mass, default=None)
+    return disk.node if disk is not None else rotor.bearings[0].node
 
 
 def run_rotor_study(

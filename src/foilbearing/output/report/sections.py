@@ -543,6 +543,15 @@ def _rotor(d: dict[str, Any], case: dict[str, Any]) -> str:
         )
         + "</p>"
     )
+    resp = d.get("unbalance_response")
+    if isinstance(resp, dict):
+        body += (
+            f'<p class="note">Synchronous response to {_f(resp.get("unbalance_g_mm"), "g")} g·mm '
+            f"at node {resp.get('unbalance_node')} (linear, each bearing's coefficients at "
+            f"frequency = speed): largest {_f(resp.get('peak_amplitude_um'), '.2f')} µm at "
+            f"{escape(str(resp.get('peak_at')))}, {_f(resp.get('peak_speed_rpm'), ',.0f')} rpm."
+            "</p>"
+        )
     red = [r for r in d.get("reduction", []) if isinstance(r, dict)]
     if red:
         body += (
