@@ -18,7 +18,13 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "rotor",
         help="a rotor on foil bearings: modes, log decrements and onset (ROSS, matched whirl)",
     )
-    rot.add_argument("rotor", type=Path, help="rotor file (TOML; docs/rotor-format.md)")
+    rot.add_argument(
+        "rotor",
+        type=Path,
+        nargs="?",
+        help="rotor file (TOML; docs/rotor-format.md); not with --resume, which uses the "
+        "file's text the run started with",
+    )
     rot.add_argument(
         "--speed-range",
         default=None,
@@ -66,7 +72,20 @@ def register(sub: Any) -> argparse.ArgumentParser:
         help="shaft modes kept in the --orbit rotor's reduction (default 8; "
         "docs/rotor-format.md shows the convergence)",
     )
-    rot.add_argument("--out", type=Path, help="write the --orbit run (NetCDF)")
+    rot.add_argument(
+        "--out", type=Path, help="write the --orbit run (NetCDF), with checkpoints as it goes"
+    )
+    rot.add_argument(
+        "--stop-time", default=None, help="end the --orbit run at this simulated time, e.g. 1s"
+    )
+    rot.add_argument(
+        "--checkpoint-every",
+        default="30s",
+        help="wall time between checkpoints written to --out (default 30s)",
+    )
+    rot.add_argument(
+        "--resume", type=Path, metavar="FILE.nc", help="continue a stopped --orbit run"
+    )
     rot.add_argument("--modes", type=int, default=4, help="modes kept at each speed (default 4)")
     rot.add_argument("--plot", metavar="DIR", type=Path, help="write campbell.png to DIR")
     rot.add_argument("--json", action="store_true", help="print one JSON object")
@@ -82,7 +101,13 @@ def cmd_rotor(args: argparse.Namespace) -> int:
     from foilbearing.rotor import load_rotor
     from foilbearing.units import parse_speed_range
 
-    rotor = load_rotor(args.rotor)
+    resume = None
+    if args.resume is not None:
+        resume, rotor = _resume(args)
+    elif args.rotor is None:
+        raise InputError("give a rotor file (or --resume FILE.nc)")
+    else:
+        rotor = load_rotor(args.rotor)
     if args.out is not None and args.orbit is None:
         raise InputError("--out writes the --orbit run: give --orbit too")
     if not 1 <= args.modes <= 20:
@@ -145,7 +170,7 @@ def cmd_rotor(args: argparse.Namespace) -> int:
                 fig = plot_unbalance_response(response, rotor.title)
                 figures.append(str(save_figure(fig, args.plot / "unbalance_response.png")))
     if args.orbit is not None:
-        out["orbit"] = _orbit(args, rotor, figures, lines)
+        out["orbit"] = _orbit(args, rotor, figures, lines, resume)
     if figures:
         out["figures"] = figures
     if args.json:
@@ -244,13 +269,72 @@ def _unbalances(texts: list[str]) -> list[Any]:
     return out
 
 
+#: The options of an --orbit run kept in its file (attribute ``rotor_run``) for --resume.
+_RUN_OPTIONS = ("orbit", "unbalance", "voltage_ramp", "controller", "shaft_modes")
+
+
+def _resume(args: argparse.Namespace) -> tuple[Any, Any]:
+    """``--resume FILE.nc``: the stopped run, and its rotor from the text it started with;
+    the run's options go back into ``args``."""
+    import json
+    import tomllib
+
+    from foilbearing.errors import InputError
+    from foilbearing.rotor import rotor_from_dict
+    from foilbearing.rotor.nonlinear import load_rotor_orbit
+
+    run, attrs = load_rotor_orbit(args.resume)
+    if "rotor_run" not in attrs or not run.resumable:
+        why = "no checkpoint" if "rotor_run" not in attrs else f"it ended ({run.message})"
+        raise InputError(f"nothing to resume: {why}", source=str(args.resume))
+    spec = json.loads(attrs["rotor_run"])
+    for key in _RUN_OPTIONS:
+        setattr(args, key, spec[key])
+    path = Path(spec["rotor_file"])
+    rotor = rotor_from_dict(tomllib.loads(spec["rotor_text"]), source=str(path), folder=path.parent)
+    args.out = args.out or args.resume
+    args.speed_range = None
+    return run, rotor
+
+
 def _orbit(
-    args: argparse.Namespace, rotor: Any, figures: list[str], lines: list[str]
+    args: argparse.Namespace,
+    rotor: Any,
+    figures: list[str],
+    lines: list[str],
+    resume: Any = None,
 ) -> dict[str, Any]:
-    """Run ``--orbit``; its JSON part (and figures, printed lines)."""
+    """Run ``--orbit`` (or continue ``resume``); its JSON part (and figures, printed lines)."""
+    import json
+
+    from foilbearing.errors import InputError
     from foilbearing.io import save_figure, write_with
     from foilbearing.rotor.nonlinear import RotorOrbitSystem
     from foilbearing.rotor.stepper import run_rotor
+    from foilbearing.units import parse_quantity
+
+    stop_time = None
+    if args.stop_time is not None:
+        stop_time = parse_quantity(args.stop_time, "time", field="--stop-time")
+    every = parse_quantity(args.checkpoint_every, "time", field="--checkpoint-every")
+    if not every > 0.0:
+        raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
+    source = Path(str(rotor.source)) if rotor.source else None
+    spec = {key: getattr(args, key) for key in _RUN_OPTIONS}
+    spec["rotor_file"] = str(source)
+    spec["rotor_text"] = (
+        source.read_text(encoding="utf-8") if resume is None and source is not None else ""
+    )
+    if resume is not None:
+        from foilbearing.rotor.nonlinear import load_rotor_orbit
+
+        spec["rotor_text"] = json.loads(load_rotor_orbit(args.resume)[1]["rotor_run"])["rotor_text"]
+
+    def save(run: Any) -> None:
+        if args.out is not None:
+            data = run.to_dataset(rotor.title)
+            data.attrs["rotor_run"] = json.dumps(spec)
+            write_with(args.out, data.to_netcdf)
 
     profile = _orbit_profile(args.orbit)
     system = RotorOrbitSystem(
@@ -261,7 +345,16 @@ def _orbit(
         voltages=_programs(args, rotor, profile),
         unbalances=_unbalances(args.unbalance),
     )
-    run = run_rotor(system, profile.duration, progress=not args.json)
+    run = run_rotor(
+        system,
+        profile.duration,
+        progress=not args.json,
+        stop_time=stop_time,
+        resume=resume,
+        checkpoint=save if args.out is not None else None,
+        checkpoint_every=every,
+    )
+    save(run)
     amplitude = run.amplitude()
     part: dict[str, Any] = {
         "status": run.status,
@@ -287,8 +380,9 @@ def _orbit(
     if part.get("onset_speed_rpm") is not None:
         lines.append(f"    sub-synchronous onset at bearing A: {part['onset_speed_rpm']:.0f} rpm")
     if args.out is not None:
-        data = run.to_dataset(rotor.title)
-        part["out"] = str(write_with(args.out, data.to_netcdf))
+        part["out"] = str(args.out)
+    if run.resumable:
+        part["advice"] = f"continue with: foilbearing rotor --resume {args.out or 'FILE.nc'}"
     if args.plot is not None:
         from foilbearing.output.plots.rotor_orbit import plot_rotor_orbit
 

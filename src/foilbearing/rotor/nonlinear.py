@@ -44,7 +44,7 @@ from foilbearing.orbit.settings import OrbitSettings
 from foilbearing.rotor.model import RotorCase
 from foilbearing.rotor.reduced import ReducedRotor, reduce_rotor
 
-__all__ = ["RotorOrbit", "RotorOrbitSystem", "Unbalance"]
+__all__ = ["RotorOrbit", "RotorOrbitSystem", "Unbalance", "load_rotor_orbit"]
 
 FloatArray = NDArray[np.float64]
 
@@ -98,6 +98,33 @@ class RotorOrbit:
     newton_iterations: int = 0
     status: str = "completed"
     speed: FloatArray | None = None
+    checkpoint: dict[str, Any] | None = None
+
+    @property
+    def resumable(self) -> bool:
+        """Whether the run can go on (stopped or interrupted, with a checkpoint)."""
+        return self.checkpoint is not None and self.status not in ("completed", "contact")
+
+    def joined(self, later: RotorOrbit) -> RotorOrbit:
+        """This run followed by ``later``, its continuation (samples after this one's end)."""
+        new = later.time > self.time[-1] + 1e-12
+        speed = None
+        if self.speed is not None and later.speed is not None:
+            speed = np.concatenate([self.speed, later.speed[new]])
+        return RotorOrbit(
+            np.concatenate([self.time, later.time[new]]),
+            np.concatenate([self.journals, later.journals[:, :, new]], axis=2),
+            np.concatenate([self.nodes, later.nodes[:, :, new]], axis=2),
+            later.labels,
+            self.wall_time + later.wall_time,
+            later.message,
+            self.steps + later.steps,
+            self.factorizations + later.factorizations,
+            self.newton_iterations + later.newton_iterations,
+            later.status,
+            speed,
+            later.checkpoint,
+        )
 
     def amplitude(self) -> FloatArray:
         """Each bearing's largest journal excursion from its mean position, m,
@@ -119,6 +146,10 @@ class RotorOrbit:
         }  # fmt: skip
         if self.speed is not None:
             data["speed"] = (("time",), self.speed, {"units": "rad/s"})
+        for key, value in (self.checkpoint or {}).items():
+            arr = np.asarray(value, float)
+            dims = tuple(f"checkpoint_{key}_{k}" for k in range(arr.ndim))
+            data[f"checkpoint_{key}"] = (dims, arr)
         return xr.Dataset(
             data,
             coords={
@@ -364,3 +395,45 @@ class RotorOrbitSystem:
         lateral = self.reduced.basis @ q
         nodes = np.stack([lateral[0::4], lateral[1::4]], axis=1)
         return RotorOrbit(sol.t, journals, nodes, self.labels, wall, str(sol.message))
+
+
+def load_rotor_orbit(path: Any) -> tuple[RotorOrbit, dict[str, Any]]:
+    """Read a rotor run written by :meth:`RotorOrbit.to_dataset`: the run (with its
+    checkpoint) and the dataset's attributes.
+
+    Raises
+    ------
+    InputError
+        Not a rotor run (one line, naming the file).
+    """
+    import xarray as xr
+
+    try:
+        ds = xr.load_dataset(path)
+    except (OSError, ValueError) as exc:
+        raise InputError(
+            f"cannot read the run ({exc.__class__.__name__})", source=str(path)
+        ) from None
+    if "journal" not in ds or "node_displacement" not in ds:
+        raise InputError("not a foilbearing rotor run", source=str(path))
+    checkpoint = {
+        str(k).removeprefix("checkpoint_"): np.asarray(ds[k].values)
+        for k in ds.data_vars
+        if str(k).startswith("checkpoint_")
+    }
+    a = ds.attrs
+    run = RotorOrbit(
+        np.asarray(ds["time"].values, float),
+        np.asarray(ds["journal"].values, float),
+        np.asarray(ds["node_displacement"].values, float),
+        tuple(str(b) for b in ds["bearing"].values),
+        float(a.get("wall_time_s", 0.0)),
+        str(a.get("message", "")),
+        int(a.get("steps", 0)),
+        int(a.get("factorizations", 0)),
+        int(a.get("newton_iterations", 0)),
+        str(a.get("status", "completed")),
+        np.asarray(ds["speed"].values, float) if "speed" in ds else None,
+        checkpoint or None,
+    )
+    return run, dict(a)

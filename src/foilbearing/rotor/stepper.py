@@ -29,12 +29,14 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.errors import InputError
 from foilbearing.orbit.problem import RunStats, StepperProblem
 from foilbearing.orbit.result import RunStatus
 from foilbearing.orbit.sampling import Samples
@@ -422,8 +424,10 @@ class RotorStepper:
         """The run sampled at the settings' rate (linear between the accepted steps)."""
         steps = np.asarray(self._times)
         q = np.asarray(self._q).T  # (m, steps)
-        rate = self.settings.sample_rate
-        times = np.arange(steps[0], steps[-1] + 1e-12, 1.0 / rate)
+        dt = 1.0 / self.settings.sample_rate
+        # on the run's sample grid k dt (a resumed part starts between two samples)
+        first = math.ceil(steps[0] / dt - 1e-9) * dt
+        times = np.arange(first, steps[-1] + 1e-12, dt)
         q = np.vstack([np.interp(times, steps, row) for row in q])
         orbit = self.system
         nb = len(orbit.sims)
@@ -438,7 +442,31 @@ class RotorStepper:
             steps=stats.steps, factorizations=stats.factorizations,
             newton_iterations=stats.newton_iterations, status=str(status),
             speed=orbit.speed.speed_and_phase(times)[0],
+            checkpoint=stats.checkpoint,
         )  # fmt: skip
+
+    def program_checkpoint(self) -> dict[str, Any]:
+        """Each bearing's voltage program's state (a controller's latch), keys prefixed
+        ``program<b>_``."""
+        out: dict[str, Any] = {}
+        for b, sim in enumerate(self.system.sims):
+            if sim.voltage is not None:
+                for key, value in sim.voltage.checkpoint().items():
+                    out[f"program{b}_{key}"] = value
+        return out
+
+    def restore_programs(self, checkpoint: dict[str, Any]) -> None:
+        """Give each bearing's program its state from a checkpoint."""
+        for b, sim in enumerate(self.system.sims):
+            prefix = f"program{b}_"
+            if sim.voltage is not None:
+                sim.voltage.restore(
+                    {
+                        k.removeprefix(prefix): v
+                        for k, v in checkpoint.items()
+                        if k.startswith(prefix)
+                    }
+                )
 
     def _contact_message(self, t: float, y: FloatArray) -> str:
         """Where the film closed: the bearing, its minimum film and the journal's angle
@@ -474,7 +502,7 @@ class RotorStepper:
             clearance=self.bearings[0].c,
             record=self.record,
             observe=None,
-            program_checkpoint=dict,
+            program_checkpoint=self.program_checkpoint,
             make_result=self.make_result,  # type: ignore[arg-type]
         )
 
@@ -486,22 +514,52 @@ def run_rotor(
     y0: FloatArray | None = None,
     settings: OrbitSettings | None = None,
     progress: bool = False,
+    stop_time: float | None = None,
+    resume: RotorOrbit | None = None,
+    checkpoint: Callable[[RotorOrbit], None] | None = None,
+    checkpoint_every: float = 30.0,
 ) -> RotorOrbit:
     """Integrate the rotor on its bearings from t = 0 (the static state, or ``y0``) to
-    ``t_end`` (s) with the orbit's stepper (module docstring). Ctrl-C ends the run at a
-    step boundary, keeping what it computed."""
+    ``t_end`` (s) with the orbit's stepper (module docstring).
+
+    ``stop_time`` (s) ends the run there, resumable. ``resume``: a stopped or interrupted
+    run of the same system, continued from its checkpoint; the result holds both parts.
+    ``checkpoint`` is called with the run so far every ``checkpoint_every`` seconds of wall
+    time. Ctrl-C ends the run at a step boundary, keeping what it computed."""
     stepper = RotorStepper(system, settings)
     s = stepper.settings
-    start = system.initial_state() if y0 is None else np.asarray(y0, float)
+    if resume is not None:
+        if not resume.resumable or resume.checkpoint is None:
+            raise InputError(f"the run already ended ({resume.message}): nothing to resume")
+        state = State.from_checkpoint(resume.checkpoint)
+        if state.y.shape != (system.size,):
+            raise InputError(
+                f"the checkpoint holds {state.y.size} states, this rotor {system.size}: resume "
+                "with the rotor file and options the run started with"
+            )
+        stepper.restore_programs(resume.checkpoint)
+    else:
+        start = system.initial_state() if y0 is None else np.asarray(y0, float)
+        state = State(0.0, start.copy())
+
+    def joined(part: RotorOrbit) -> RotorOrbit:
+        return part if resume is None else resume.joined(part)
+
+    def save(part: Any) -> None:
+        if checkpoint is not None:
+            checkpoint(joined(part))
+
     with interrupt_at_step_boundary() as interrupted:
         result = run(
             stepper.problem(t_end),
-            State(0.0, start.copy()),
+            state,
             Samples(1.0 / s.sample_rate),
             s.step_rule,
             s.newton_rule,
-            s.stop_rule(),
+            s.stop_rule(stop_time),
             progress=progress,
+            checkpoint=save if checkpoint is not None else None,
+            checkpoint_every=checkpoint_every,
             interrupted=interrupted,
         )
-    return result  # type: ignore[return-value]
+    return joined(result)  # type: ignore[arg-type]
