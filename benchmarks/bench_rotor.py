@@ -21,7 +21,7 @@ import numpy as np
 
 from foilbearing.constants import RPM
 from foilbearing.rotor import load_rotor, ross_rotor, rotor_modes
-from foilbearing.rotor.linear import _modes_at, refine_onset
+from foilbearing.rotor.linear import modes_at, refine_onset
 from foilbearing.rotor.reduced import reduced_onset
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "rotor_rigid_symmetric.toml"
@@ -32,7 +32,7 @@ def reduction() -> None:
     speeds = list(np.arange(40e3, 56.01e3, 2e3) * RPM)
     model = ross_rotor(rotor, speeds)
     full = rotor_modes(rotor, speeds, model=model)
-    onset, whirl = refine_onset(full, lambda w: _modes_at(model, w, 4))
+    onset, whirl = refine_onset(full, lambda w: modes_at(model, w, 4))
     assert onset is not None and whirl is not None
     print(f"ROSS's full model: onset {onset / RPM:,.0f} rpm, whirl {whirl:.2f} Hz")
     print("shaft modes kept | onset, rpm | error | whirl, Hz | wall, s")

@@ -169,14 +169,14 @@ def test_the_reduced_rotor_converges_on_the_full_model_with_its_modes() -> None:
     conical mode)."""
     pytest.importorskip("ross", minversion="3.0")
     from foilbearing.rotor import ross_rotor, rotor_modes
-    from foilbearing.rotor.linear import _modes_at, refine_onset
+    from foilbearing.rotor.linear import modes_at, refine_onset
     from foilbearing.rotor.reduced import reduced_onset
 
     rotor = load_rotor(EXAMPLE.with_name("rotor_two_disk.toml"))
     speeds = list(np.arange(42e3, 50.01e3, 2e3) * RPM)
     model = ross_rotor(rotor, speeds)
     full = rotor_modes(rotor, speeds, model=model)
-    onset, whirl = refine_onset(full, lambda w: _modes_at(model, w, 4))
+    onset, whirl = refine_onset(full, lambda w: modes_at(model, w, 4))
     assert onset is not None and whirl is not None
     nodes = [b.node for b in rotor.bearings]
     error = {}

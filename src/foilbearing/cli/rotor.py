@@ -129,7 +129,7 @@ def cmd_rotor(args: argparse.Namespace) -> int:
         if len(speeds) < 2:
             raise InputError(f"--speed-range {text!r}: need at least two speeds")
         from foilbearing.rotor import ross_rotor, rotor_modes
-        from foilbearing.rotor.linear import _modes_at, refine_onset
+        from foilbearing.rotor.linear import modes_at, refine_onset
         from foilbearing.rotor.response import table_frequencies
 
         unbalances = _unbalances(args.unbalance)
@@ -137,7 +137,7 @@ def cmd_rotor(args: argparse.Namespace) -> int:
         freqs = list(table_frequencies(speeds)) if unbalances else None
         model = ross_rotor(rotor, speeds, freqs, progress)
         modes = rotor_modes(rotor, speeds, num_modes=args.modes, model=model)
-        onset, whirl = refine_onset(modes, lambda w: _modes_at(model, w, args.modes))
+        onset, whirl = refine_onset(modes, lambda w: modes_at(model, w, args.modes))
         out["onset_speed_rpm"] = None if onset is None else onset / RPM
         out["whirl_frequency_Hz"] = whirl
         out["modes"] = modes.headline()

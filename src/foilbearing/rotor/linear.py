@@ -35,6 +35,7 @@ from foilbearing.rotor.model import RotorCase
 __all__ = [
     "DEFAULT_FREQUENCIES",
     "RotorModes",
+    "modes_at",
     "refine_onset",
     "ross_rotor",
     "ross_shaft",
@@ -142,7 +143,10 @@ def ross_rotor(
     return ross_shaft(rotor, bearings)
 
 
-def _modes_at(model: Any, speed: float, num_modes: int) -> tuple[FloatArray, FloatArray, Any]:
+def modes_at(model: Any, speed: float, num_modes: int) -> tuple[FloatArray, FloatArray, Any]:
+    """The ``num_modes`` lowest modes of the ROSS rotor ``model`` at ``speed`` (rad/s), each
+    with its coefficients at its own whirl frequency: (damped frequencies, rad/s; log
+    decrements; whether ROSS labels each forward), ascending in frequency."""
     with warnings.catch_warnings():
         # ROSS starts each mode's whirl iteration from coefficients it may extrapolate.
         warnings.filterwarnings("ignore", message="Extrapolating")
@@ -171,7 +175,7 @@ def rotor_modes(
     speeds_arr = np.asarray(speeds, float)
     if model is None:
         model = ross_rotor(rotor, list(speeds_arr), frequencies, progress)
-    rows = [_modes_at(model, w, num_modes) for w in speeds_arr]
+    rows = [modes_at(model, w, num_modes) for w in speeds_arr]
     return RotorModes(
         speeds_arr,
         np.array([r[0] for r in rows]) / (2.0 * math.pi),
@@ -196,18 +200,18 @@ def rotor_onset(
     """
     model = ross_rotor(rotor, speeds, frequencies, progress)
     modes = rotor_modes(rotor, speeds, num_modes=num_modes, model=model)
-    onset, whirl = refine_onset(modes, lambda w: _modes_at(model, w, num_modes))
+    onset, whirl = refine_onset(modes, lambda w: modes_at(model, w, num_modes))
     return onset, whirl, modes
 
 
 def refine_onset(
     modes: RotorModes,
-    modes_at: Callable[[float], tuple[FloatArray, FloatArray, Any]],
+    modes_of: Callable[[float], tuple[FloatArray, FloatArray, Any]],
 ) -> tuple[float | None, float | None]:
     """The lowest speed (rad/s) where the least stable of ``modes`` turns unstable, and its
     whirl frequency (Hz); (None, None) if none does on ``modes.speeds``.
 
-    Bracketed on ``modes.speeds`` and refined by Brent's method on ``modes_at(speed)``,
+    Bracketed on ``modes.speeds`` and refined by Brent's method on ``modes_of(speed)``,
     which gives (whirl frequencies rad/s, log decrements, forward) of the modes at a speed.
     """
     speeds = modes.speeds
@@ -223,9 +227,9 @@ def refine_onset(
         )
 
     def least(w: float) -> float:
-        return float(np.min(modes_at(w)[1]))
+        return float(np.min(modes_of(w)[1]))
 
     onset = float(brentq(least, float(speeds[k - 1]), float(speeds[k]), rtol=1e-7))
-    wd, dec, _fw = modes_at(onset)
+    wd, dec, _fw = modes_of(onset)
     i = int(np.argmin(dec))
     return onset, float(wd[i] / (2.0 * math.pi))

@@ -61,7 +61,7 @@ def rotor_study(
         plot_unbalance_response,
     )
     from foilbearing.rotor import mode_shapes, ross_rotor, rotor_modes, unbalance_response
-    from foilbearing.rotor.linear import _modes_at, refine_onset
+    from foilbearing.rotor.linear import modes_at, refine_onset
     from foilbearing.rotor.reduced import reduced_onset
     from foilbearing.rotor.response import table_frequencies
 
@@ -88,7 +88,7 @@ def rotor_study(
     # Each speed is also a frequency of the tables: the unbalance response is then exact.
     model = ross_rotor(rotor, speeds, list(table_frequencies(speeds)))
     modes = rotor_modes(rotor, speeds, model=model)
-    onset, whirl = refine_onset(modes, lambda w: _modes_at(model, w, 4))
+    onset, whirl = refine_onset(modes, lambda w: modes_at(model, w, 4))
     summary["onset_speed_rpm"] = None if onset is None else onset / RPM
     summary["whirl_frequency_Hz"] = whirl
     summary["least_log_decrement"] = [float(v) for v in modes.least_stable()]
