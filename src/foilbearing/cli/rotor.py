@@ -294,6 +294,7 @@ def _resume(args: argparse.Namespace) -> tuple[Any, Any]:
     rotor = rotor_from_dict(tomllib.loads(spec["rotor_text"]), source=str(path), folder=path.parent)
     args.out = args.out or args.resume
     args.speed_range = None
+    args.rotor_text = spec["rotor_text"]  # the text the run started with, kept in its file
     return run, rotor
 
 
@@ -316,19 +317,18 @@ def _orbit(
     stop_time = None
     if args.stop_time is not None:
         stop_time = parse_quantity(args.stop_time, "time", field="--stop-time")
+        if not stop_time > 0.0:
+            raise InputError(f"--stop-time {args.stop_time!r}: expected a time > 0 s")
     every = parse_quantity(args.checkpoint_every, "time", field="--checkpoint-every")
     if not every > 0.0:
         raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
     source = Path(str(rotor.source)) if rotor.source else None
     spec = {key: getattr(args, key) for key in _RUN_OPTIONS}
     spec["rotor_file"] = str(source)
-    spec["rotor_text"] = (
-        source.read_text(encoding="utf-8") if resume is None and source is not None else ""
-    )
-    if resume is not None:
-        from foilbearing.rotor.nonlinear import load_rotor_orbit
-
-        spec["rotor_text"] = json.loads(load_rotor_orbit(args.resume)[1]["rotor_run"])["rotor_text"]
+    text = getattr(args, "rotor_text", None)  # set by --resume
+    if text is None:
+        text = source.read_text(encoding="utf-8") if source is not None else ""
+    spec["rotor_text"] = text
 
     def save(run: Any) -> None:
         if args.out is not None:
@@ -367,11 +367,8 @@ def _orbit(
             label: float(a * 1e6) for label, a in zip(run.labels, amplitude, strict=True)
         },
     }
-    if run.time[-1] >= 1.0 and profile.speeds[-1] > profile.speeds[0]:
-        from foilbearing.signals import onset, subsynchronous_amplitude
-
-        speed, phase = profile.speed_and_phase(run.time)
-        found = onset(subsynchronous_amplitude(run.time, run.journals[0, 0], speed, phase))
+    found = run.subsynchronous_onset(profile) if profile.speeds[-1] > profile.speeds[0] else None
+    if found is not None:
         part["onset_speed_rpm"] = found.onset_speed_rpm
         part["whirl_frequency_Hz"] = found.whirl_frequency_hz
     lines.append(f"  orbit: {run.message}; wall {run.wall_time:.1f} s")

@@ -42,11 +42,14 @@ from foilbearing.orbit import OrbitSimulation
 from foilbearing.orbit.reference import state_derivative, state_sparsity
 from foilbearing.orbit.settings import OrbitSettings
 from foilbearing.rotor.model import RotorCase
-from foilbearing.rotor.reduced import ReducedRotor, reduce_rotor
+from foilbearing.rotor.reduced import ReducedRotor, lateral_dofs, reduce_rotor
 
 __all__ = ["RotorOrbit", "RotorOrbitSystem", "Unbalance", "load_rotor_orbit"]
 
 FloatArray = NDArray[np.float64]
+
+#: The shortest run (s) whose sub-synchronous onset the signal analysis reads.
+READ_AFTER = 1.0
 
 
 @dataclass(frozen=True)
@@ -125,6 +128,17 @@ class RotorOrbit:
             speed,
             later.checkpoint,
         )
+
+    def subsynchronous_onset(self, profile: SpeedProfile) -> Any:
+        """Sustained sub-synchronous motion of bearing A's X, read as the single-bearing
+        speed-ups are (:func:`foilbearing.signals.onset`): an ``Onset``, or None for a run
+        shorter than :data:`READ_AFTER` (the analysis' windows need it)."""
+        from foilbearing.signals import onset, subsynchronous_amplitude
+
+        if self.time[-1] - self.time[0] < READ_AFTER:
+            return None
+        speed, phase = profile.speed_and_phase(self.time)
+        return onset(subsynchronous_amplitude(self.time, self.journals[0, 0], speed, phase))
 
     def amplitude(self) -> FloatArray:
         """Each bearing's largest journal excursion from its mean position, m,
@@ -243,7 +257,7 @@ class RotorOrbitSystem:
         n_lat = self.reduced.basis.shape[0]
         accel = np.zeros(n_lat)
         accel[1::4] = -rotor.gravity
-        lateral = np.array([6 * n + k for n in range(n_nodes) for k in (0, 1, 3, 4)])
+        lateral = lateral_dofs(n_nodes)
         m_lat = np.asarray(model.M0, float)[np.ix_(lateral, lateral)]
         self.gravity = self.reduced.basis.T @ (m_lat @ accel)
         self.force_per_pressure = [

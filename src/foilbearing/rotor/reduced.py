@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from foilbearing.errors import InputError, SolverError
 from foilbearing.rotor.linear import RotorModes, refine_onset
 
-__all__ = ["ReducedRotor", "reduce_rotor", "reduced_modes", "reduced_onset"]
+__all__ = ["ReducedRotor", "lateral_dofs", "reduce_rotor", "reduced_modes", "reduced_onset"]
 
 FloatArray = NDArray[np.float64]
 
@@ -44,6 +44,12 @@ _LATERAL = (0, 1, 3, 4)
 
 _WHIRL_RTOL = 1e-6
 _WHIRL_MAX_ITER = 50
+
+
+def lateral_dofs(n_nodes: int) -> NDArray[np.int64]:
+    """ROSS's indices of the lateral degrees of freedom (x, y, α, β) of every node, node
+    by node: the rows of :attr:`ReducedRotor.basis`."""
+    return np.array([_DOF_PER_NODE * n + k for n in range(n_nodes) for k in _LATERAL])
 
 
 @dataclass(frozen=True)
@@ -103,7 +109,7 @@ def reduce_rotor(model: Any, bearing_nodes: Sequence[int], n_modes: int) -> Redu
             f"a reduced rotor needs two bearings or more (got {len(bearing_nodes)}): with one "
             "the rotor can tilt freely about it"
         )
-    lateral = np.array([_DOF_PER_NODE * n + k for n in range(nodes) for k in _LATERAL])
+    lateral = lateral_dofs(nodes)
     n_lat = lateral.size
     if not 0 <= n_modes <= n_lat - 2 * len(bearing_nodes):
         raise InputError(
@@ -248,7 +254,12 @@ def reduced_modes(
     analysis uses, so the two differ by the reduction alone.
     """
     reduced = reduce_rotor(model, bearing_nodes, n_modes)
-    bearings = _bearings_of(model, reduced)
+    return _modes_on(reduced, _bearings_of(model, reduced), speeds, num_modes)
+
+
+def _modes_on(
+    reduced: ReducedRotor, bearings: Sequence[Any], speeds: Sequence[float], num_modes: int
+) -> RotorModes:
     rows = [_matched(reduced, bearings, float(w), num_modes) for w in speeds]
     return RotorModes(
         np.asarray(speeds, float),
@@ -270,6 +281,6 @@ def reduced_onset(
     ``speeds``, as :func:`foilbearing.rotor.rotor_onset` on the full model."""
     reduced = reduce_rotor(model, bearing_nodes, n_modes)
     bearings = _bearings_of(model, reduced)
-    modes = reduced_modes(model, bearing_nodes, speeds, n_modes=n_modes, num_modes=num_modes)
+    modes = _modes_on(reduced, bearings, speeds, num_modes)
     onset, whirl = refine_onset(modes, lambda w: _matched(reduced, bearings, w, num_modes))
     return onset, whirl, modes

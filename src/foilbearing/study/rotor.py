@@ -36,8 +36,6 @@ ORBIT_MODES = 8
 ORBIT_SPAN = (0.85, 1.3)
 ORBIT_ACCELERATION = 500.0
 ORBIT_UNBALANCE = 1e-6
-#: The shortest run (s) whose sub-synchronous onset the signal analysis reads.
-READ_AFTER = 1.0
 
 
 def is_rotor_file(path: Path | None) -> bool:
@@ -54,7 +52,7 @@ def rotor_study(
 ) -> dict[str, Any]:
     """The rotor's stage of the study (module docstring); its summary, unit-named keys,
     with the figures it wrote under ``figures``."""
-    from foilbearing.io import save_figure, write_with
+    from foilbearing.io import save_figure
     from foilbearing.output.plots.rotor import (
         plot_campbell,
         plot_mode_shapes,
@@ -130,7 +128,7 @@ def rotor_study(
             })  # fmt: skip
         summary["reduction"] = rows
     if orbits and onset is not None and len(rotor.bearings) >= 2:
-        summary["orbit"] = _speed_up(rotor, onset, out, stage, figures, write_with, save_figure)
+        summary["orbit"] = _speed_up(rotor, onset, out, stage, figures)
     summary["figures"] = figures
     return summary
 
@@ -141,16 +139,13 @@ def _speed_up(
     out: Path,
     stage: Callable[[str], None],
     figures: list[str],
-    write_with: Any,
-    save_figure: Any,
 ) -> dict[str, Any]:
     """The nonlinear speed-up through the linear onset (module constants)."""
     from foilbearing.control import linear_ramp
+    from foilbearing.io import save_figure, write_with
     from foilbearing.output.plots.rotor_orbit import plot_rotor_orbit
     from foilbearing.rotor.nonlinear import RotorOrbitSystem, Unbalance
     from foilbearing.rotor.stepper import run_rotor
-    from foilbearing.signals import onset as read_onset
-    from foilbearing.signals import subsynchronous_amplitude
 
     start, stop = (onset * f for f in ORBIT_SPAN)
     node = _heaviest_disk_node(rotor)
@@ -165,10 +160,7 @@ def _speed_up(
     )
     clock = time.perf_counter()
     run = run_rotor(system, profile.duration)
-    found = None
-    if run.time[-1] - run.time[0] >= READ_AFTER:  # the signal analysis' windows need a second
-        speed, phase = profile.speed_and_phase(run.time)
-        found = read_onset(subsynchronous_amplitude(run.time, run.journals[0, 0], speed, phase))
+    found = run.subsynchronous_onset(profile)
     write_with(out / "rotor_orbit.nc", run.to_dataset(rotor.title).to_netcdf)
     figures.append(str(save_figure(plot_rotor_orbit(run, rotor.title), out / "rotor_orbit.png")))
     return {
