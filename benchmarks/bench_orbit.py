@@ -2,7 +2,8 @@
 figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
-     [--divergence] [--disturbance] [--steps] [--newton] [--refresh] [--readings] [--orbit-grid G ...]
+     [--divergence] [--disturbance] [--steps] [--newton] [--refresh] [--readings]
+     [--axial-order] [--orbit-grid G ...]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -24,10 +25,15 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   converged to 0.2 % (eight runs, two at a time; about 8 minutes).
 - ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
   0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
-- ``--orbit-grid G [G ...]`` (e.g. ``96x6 96x8``): the paper's speed-ups of ``--readouts`` on
-  each orbit grid (``[grid] orbit_n_theta``, ``orbit_n_z``) against the case's 96 x 12: onset,
+- ``--orbit-grid G [G ...]`` (e.g. ``96x6 96x8 96x4o4``; ``oK``: axial order K): the paper's
+  speed-ups of ``--readouts`` on each orbit grid (``[grid] orbit_n_theta``, ``orbit_n_z``,
+  ``orbit_axial_order``) against the case's 96 x 12: onset,
   whip frequency, divergence or contact, and the 1X amplitude at 5 and 10 krpm and at its
   peak; the issue-30 target is 1 % (two runs at a time, about 2 minutes a grid).
+- ``--axial-order``: route 2 of issue 30 built (``[grid] axial_order = 4``): the cost per step
+  of a smooth and a large orbit on 96 x 12 (order 2) and 96 x 4, 6, 8 (order 4), and the
+  linear onsets on them against 192 x 24, under lift-off and with suction retained (about
+  3 minutes).
 - ``--refresh``: route 4 of issue 30, a fresh factor at the start of a step after a step
   that took more than T iterations (T = 0: a fresh factor every step), on three orbits of
   0.05 s and on 96 x 12 and 96 x 6: iterations and factorisations per step, the cost by
@@ -149,15 +155,24 @@ def readouts() -> None:
                     print(f"    {key}: default {100 * (a - b) / b:+.2f} % from converged")
 
 
-def _grid_readout_run(job: tuple[int, tuple[int, int]]) -> tuple[tuple[int, tuple[int, int]], dict]:
+OrbitGrid = tuple[int, int, int]  # n_theta, n_z, axial order
+
+
+def _grid_readout_run(job: tuple[int, OrbitGrid]) -> tuple[tuple[int, OrbitGrid], dict]:
     from foilbearing.case import Grid
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.signals import subsynchronous_amplitude
 
-    k, (n_theta, n_z) = job
+    k, (n_theta, n_z, order) = job
     _label, imbalance, ramp = READOUT_RUNS[k]
     base = default_case()
-    grid = Grid(base.grid.n_theta, base.grid.n_z, orbit_n_theta=n_theta, orbit_n_z=n_z)
+    grid = Grid(
+        base.grid.n_theta,
+        base.grid.n_z,
+        orbit_n_theta=n_theta,
+        orbit_n_z=n_z,
+        orbit_axial_order=order,
+    )
     case = replace(base, rotor=replace(base.rotor, imbalance=imbalance), grid=grid)
     program = None if ramp is None else voltage_ramp(*ramp)
     res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), program)
@@ -174,19 +189,26 @@ def _grid_readout_run(job: tuple[int, tuple[int, int]]) -> tuple[tuple[int, tupl
     return job, head | one_x | {"wall": res.wall_time}
 
 
-def orbit_grid_readouts(grids: list[tuple[int, int]]) -> None:
+def _orbit_grid(text: str) -> OrbitGrid:
+    """``"96x6"`` or ``"96x4o4"`` (axial order 4) as (n_theta, n_z, order)."""
+    shape, _, order = text.partition("o")
+    n_theta, n_z = (int(x) for x in shape.split("x"))
+    return n_theta, n_z, int(order or 2)
+
+
+def orbit_grid_readouts(grids: list[OrbitGrid]) -> None:
     """The paper's speed-ups on each orbit grid against the case's own (96 x 12)."""
     from concurrent.futures import ProcessPoolExecutor
 
     base = default_case().grid
-    ref = (base.n_theta, base.n_z)
+    ref = (base.n_theta, base.n_z, base.axial_order)
     print(
         f"orbit grid: the paper's speed-ups (3-90 krpm, 500 rad/s², default settings) on each "
         f"orbit grid against {ref[0]} x {ref[1]}; two runs at a time"
     )
     grids = [ref] + [g for g in grids if g != ref]
     jobs = [(k, g) for k in range(len(READOUT_RUNS)) for g in grids]
-    out: dict[tuple[int, tuple[int, int]], dict] = {}
+    out: dict[tuple[int, OrbitGrid], dict] = {}
     keys = (
         ("onset_speed_rpm", "onset"),
         ("whip_frequency_Hz", "whip"),
@@ -211,7 +233,61 @@ def orbit_grid_readouts(grids: list[tuple[int, int]]) -> None:
                     parts.append(f"{name} {a:.4g}")
                 else:
                     parts.append(f"{name} {a:.4g} ({100 * (a - b) / b:+.2f} %)")
-            print(f"    {g[0]:3d} x {g[1]:2d} ({head['wall']:.0f} s): " + ", ".join(parts))
+            label = f"{g[0]:3d} x {g[1]:2d}" + ("" if g[2] == 2 else f", order {g[2]}")
+            print(f"    {label} ({head['wall']:.0f} s): " + ", ".join(parts))
+
+
+def axial_order_study() -> None:
+    """Route 2 of issue 30 built: the orbit's cost and the linear onsets on fourth-order grids."""
+    from foilbearing.case import Case, Grid
+    from foilbearing.stability import onset_speed
+
+    grids = [(96, 12, 2), (96, 4, 4), (96, 6, 4), (96, 8, 4)]
+    print("cost per step, 0.05 s at constant speed, best of 3 (ms; iterations, factorisations):")
+    orbits = [
+        ("C-GFB, 0 V, 1 g·mm, 30 krpm", default_case(), 1e-6, 30e3),
+        (
+            "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm",
+            default_case().with_voltages(150.0).shimmed(),
+            8.5e-6,
+            50e3,
+        ),
+    ]
+    for label, base, imbalance, rpm in orbits:
+        print(f"  {label}:")
+        for n_theta, n_z, order in grids:
+            case = replace(
+                base,
+                rotor=replace(base.rotor, imbalance=imbalance),
+                grid=Grid(n_theta, n_z, axial_order=order),
+            )
+            simulate(case, constant_speed(rpm * RPM, 5e-4))  # compile, warm up
+            runs = [simulate(case, constant_speed(rpm * RPM, 0.05)) for _ in range(3)]
+            res = min(runs, key=lambda r: r.wall_time)
+            print(
+                f"    {n_theta} x {n_z:2d}, order {order}: "
+                f"{1e3 * res.wall_time / res.steps:.3f} ms per step "
+                f"({res.newton_iterations / res.steps:.2f}, "
+                f"{res.factorizations / res.steps:.3f}), e_X at the end {res.e_x[-1] * 1e6:.4f} um",
+                flush=True,
+            )
+    print("linear onset (krpm) against 192 x 24, order 2:")
+    for subambient in ("lift-off", "retained"):
+        for volts in (0.0, 150.0):
+            base = default_case().with_voltages(volts).with_subambient(subambient)
+
+            def onset(n_theta: int, n_z: int, order: int, base: Case = base) -> float:
+                case = replace(base, grid=Grid(n_theta, n_z, axial_order=order))
+                return onset_speed(case).onset_speed / RPM / 1e3
+
+            ref = onset(192, 24, 2)
+            parts = []
+            for n_theta, n_z, order in [*grids, (96, 24, 2), (192, 6, 4)]:
+                x = onset(n_theta, n_z, order)
+                parts.append(f"{n_theta}x{n_z} o{order} {x:.2f} ({100 * (x - ref) / ref:+.1f} %)")
+            print(
+                f"  {subambient}, {volts:.0f} V: 192x24 {ref:.2f}; " + ", ".join(parts), flush=True
+            )
 
 
 def newton_statistics() -> None:
@@ -654,7 +730,10 @@ if __name__ == "__main__":
         sys.exit(0)
     if "--orbit-grid" in sys.argv:
         names = sys.argv[sys.argv.index("--orbit-grid") + 1 :]
-        orbit_grid_readouts([tuple(int(x) for x in g.split("x")) for g in names])  # type: ignore[misc]
+        orbit_grid_readouts([_orbit_grid(g) for g in names])
+        sys.exit(0)
+    if "--axial-order" in sys.argv:
+        axial_order_study()
         sys.exit(0)
     if "--refresh" in sys.argv:
         refresh_policy()

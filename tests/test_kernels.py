@@ -8,11 +8,18 @@ import scipy.sparse as sp
 
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds import reference
+from foilbearing.reynolds.grid import FilmGrid
 
 N_THETA, N_Z = 10, 4
 D_THETA = 2.0 * np.pi / N_THETA
 D_Z = 0.3
 LAMBDAS = [0.0, 0.1, 1.0, 3.0, 10.0, -2.0]
+#: The axial orders of the discretisation (FilmGrid.axial_order); every kernel test runs both.
+ORDERS = [2, 4]
+
+
+def _axial(order: int) -> tuple:
+    return tuple(FilmGrid(N_THETA, N_Z, N_Z * D_Z, axial_order=order).axial)
 
 
 def _fields(seed: int, low_h: float = 0.3) -> tuple[np.ndarray, np.ndarray]:
@@ -22,19 +29,21 @@ def _fields(seed: int, low_h: float = 0.3) -> tuple[np.ndarray, np.ndarray]:
     return P, H
 
 
-def _dense(data: np.ndarray) -> np.ndarray:
-    indptr, indices, _ = kern.stencil_pattern(N_THETA, N_Z)
+def _dense(data: np.ndarray, order: int = 2) -> np.ndarray:
+    indptr, indices, _ = kern.stencil_pattern(N_THETA, N_Z, order)
     n = N_THETA * N_Z
     return sp.csr_matrix((data, indices, indptr), shape=(n, n)).toarray()
 
 
-def _residual(P: np.ndarray, H: np.ndarray, lam: float) -> np.ndarray:
+def _residual(P: np.ndarray, H: np.ndarray, lam: float, order: int = 2) -> np.ndarray:
     out = np.empty_like(P)
-    kern.residual(P, H, lam, D_THETA, D_Z, out)
+    kern.residual(P, H, lam, D_THETA, D_Z, _axial(order), out)
     return out.ravel()
 
 
-def _fd_jacobian(P: np.ndarray, H: np.ndarray, lam: float, wrt_h: bool) -> np.ndarray:
+def _fd_jacobian(
+    P: np.ndarray, H: np.ndarray, lam: float, wrt_h: bool, order: int = 2
+) -> np.ndarray:
     """Central finite differences of the residual, column by column."""
     n = P.size
     jac = np.empty((n, n))
@@ -45,9 +54,9 @@ def _fd_jacobian(P: np.ndarray, H: np.ndarray, lam: float, wrt_h: bool) -> np.nd
         xp.flat[k] += step
         xm.flat[k] -= step
         if wrt_h:
-            jac[:, k] = (_residual(P, xp, lam) - _residual(P, xm, lam)) / (2 * step)
+            jac[:, k] = (_residual(P, xp, lam, order) - _residual(P, xm, lam, order)) / (2 * step)
         else:
-            jac[:, k] = (_residual(xp, H, lam) - _residual(xm, H, lam)) / (2 * step)
+            jac[:, k] = (_residual(xp, H, lam, order) - _residual(xm, H, lam, order)) / (2 * step)
     return jac
 
 
@@ -69,6 +78,23 @@ def test_bernoulli_matches_definition_and_identities() -> None:
         h = 1e-6
         fd = (kern.bernoulli(v + h) - kern.bernoulli(v - h)) / (2 * h)
         assert kern.bernoulli_deriv(v) == pytest.approx(fd, rel=1e-8, abs=1e-10)
+
+
+def test_stencil_pattern_of_order_4_has_the_5_point_axial_reach() -> None:
+    """At axial order 4 row (i, j) reaches (i, j ± 2); the slots match the order-2 ones."""
+    indptr, indices, slots = kern.stencil_pattern(N_THETA, N_Z, 4)
+    for i in range(N_THETA):
+        for j in range(N_Z):
+            row = i * N_Z + j
+            for d, dj in enumerate(range(-2, 3)):
+                slot = slots[i, j, 1 + d]
+                if 0 <= j + dj < N_Z:
+                    assert indices[slot] == row + dj
+                else:
+                    assert slot == -1
+            assert indices[slots[i, j, 0]] == ((i - 1) % N_THETA) * N_Z + j
+            assert indices[slots[i, j, 6]] == ((i + 1) % N_THETA) * N_Z + j
+            assert np.all(np.diff(indices[indptr[row] : indptr[row + 1]]) > 0)
 
 
 def test_stencil_pattern_slots_point_at_neighbour_columns() -> None:
@@ -95,58 +121,64 @@ def test_stencil_pattern_slots_point_at_neighbour_columns() -> None:
             assert np.all(np.diff(row_cols) > 0), "columns sorted within each row"
 
 
+@pytest.mark.parametrize("order", ORDERS)
 @pytest.mark.parametrize("lam", LAMBDAS)
-def test_residual_kernel_equals_twin(lam: float) -> None:
+def test_residual_kernel_equals_twin(lam: float, order: int) -> None:
     P, H = _fields(1)
     a, b = np.empty_like(P), np.empty_like(P)
-    kern.residual(P, H, lam, D_THETA, D_Z, a)
-    reference.residual_py(P, H, lam, D_THETA, D_Z, b)
+    kern.residual(P, H, lam, D_THETA, D_Z, _axial(order), a)
+    reference.residual_py(P, H, lam, D_THETA, D_Z, _axial(order), b)
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
 
 
+@pytest.mark.parametrize("order", ORDERS)
 @pytest.mark.parametrize("lam", LAMBDAS)
 @pytest.mark.parametrize("which", ["P", "H"])
-def test_jacobian_kernels_equal_twins(lam: float, which: str) -> None:
+def test_jacobian_kernels_equal_twins(lam: float, which: str, order: int) -> None:
     P, H = _fields(2)
-    nnz = kern.stencil_pattern(N_THETA, N_Z)[1].size
+    nnz = kern.stencil_pattern(N_THETA, N_Z, order)[1].size
     a, b = np.empty(nnz), np.empty(nnz)
     kernel, twin = (
         (kern.jacobian_P, reference.jacobian_P_py)
         if which == "P"
         else (kern.jacobian_H, reference.jacobian_H_py)
     )
-    kernel(P, H, lam, D_THETA, D_Z, a)
-    twin(P, H, lam, D_THETA, D_Z, b)
+    kernel(P, H, lam, D_THETA, D_Z, _axial(order), a)
+    twin(P, H, lam, D_THETA, D_Z, _axial(order), b)
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
 
 
+@pytest.mark.parametrize("order", ORDERS)
 @pytest.mark.parametrize("lam", LAMBDAS)
 @pytest.mark.parametrize("which", ["P", "H"])
-def test_jacobians_equal_finite_differences(lam: float, which: str) -> None:
+def test_jacobians_equal_finite_differences(lam: float, which: str, order: int) -> None:
     # thin films make the grid Péclet number large (up to ~300 for Λ = 10), so the
     # large-|x| branches of B and B' are exercised too
     P, H = _fields(3, low_h=0.15)
-    nnz = kern.stencil_pattern(N_THETA, N_Z)[1].size
+    nnz = kern.stencil_pattern(N_THETA, N_Z, order)[1].size
     data = np.empty(nnz)
-    (kern.jacobian_P if which == "P" else kern.jacobian_H)(P, H, lam, D_THETA, D_Z, data)
-    exact = _dense(data)
-    fd = _fd_jacobian(P, H, lam, wrt_h=(which == "H"))
+    kernel = kern.jacobian_P if which == "P" else kern.jacobian_H
+    kernel(P, H, lam, D_THETA, D_Z, _axial(order), data)
+    exact = _dense(data, order)
+    fd = _fd_jacobian(P, H, lam, wrt_h=(which == "H"), order=order)
     err = np.abs(exact - fd).max() / np.abs(exact).max()
     assert err < 1e-6, f"d R/d{which} differs from finite differences by {err:.2e} at Λ={lam}"
 
 
-def test_coupled_jacobian_kernel_equals_sparse_product() -> None:
+@pytest.mark.parametrize("order", ORDERS)
+def test_coupled_jacobian_kernel_equals_sparse_product(order: int) -> None:
     P, H = _fields(4)
-    nnz = kern.stencil_pattern(N_THETA, N_Z)[1].size
+    nnz = kern.stencil_pattern(N_THETA, N_Z, order)[1].size
     jp, jh = np.empty(nnz), np.empty(nnz)
-    kern.jacobian_P(P, H, 1.5, D_THETA, D_Z, jp)
-    kern.jacobian_H(P, H, 1.5, D_THETA, D_Z, jh)
+    axial = _axial(order)
+    kern.jacobian_P(P, H, 1.5, D_THETA, D_Z, axial, jp)
+    kern.jacobian_H(P, H, 1.5, D_THETA, D_Z, axial, jh)
     s = np.random.default_rng(5).uniform(0.0, 0.05, N_THETA)
     s[[0, 3]] = 0.0  # inactive foil (p̄ <= 0) at some angles, including the wrap
     _, c_indices = kern.coupled_pattern(N_THETA, N_Z)
     a, b = np.empty(c_indices.size), np.empty(c_indices.size)
-    kern.coupled_jacobian(jp, jh, s, N_Z, a)
-    reference.coupled_jacobian_py(jp, jh, s, N_Z, b)
+    kern.coupled_jacobian(jp, jh, s, N_Z, axial, a)
+    reference.coupled_jacobian_py(jp, jh, s, N_Z, axial, b)
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
 
 
@@ -161,8 +193,8 @@ def test_lift_off_rows_kernel_equals_twin(coupled: bool) -> None:
     diag = slots[:, :, 2].ravel()
     nnz = indptr[-1]
     jp, jh = np.empty(nnz), np.empty(nnz)
-    kern.jacobian_P(P, H, 1.5, D_THETA, D_Z, jp)
-    kern.jacobian_H(P, H, 1.5, D_THETA, D_Z, jh)
+    kern.jacobian_P(P, H, 1.5, D_THETA, D_Z, _axial(2), jp)
+    kern.jacobian_H(P, H, 1.5, D_THETA, D_Z, _axial(2), jh)
     res = _residual(P, H, 1.5).reshape(P.shape)
     jc = rng.standard_normal(kern.coupled_pattern(N_THETA, N_Z)[1].size)
     outs = []

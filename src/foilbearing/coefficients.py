@@ -155,7 +155,7 @@ def dynamic_compliance(
     compliance = model.bump_compliance / (1.0 + 1j * gamma * frequency / static.speed)
     if model.actuator_dynamics == "compliant":
         compliance = compliance + model.actuator_compliance
-    engaged = static.P.mean(axis=1) - 1.0 > 0.0
+    engaged = model.grid.gauge_mean(static.P) > 0.0
     return np.where(engaged, compliance, 0.0).astype(complex)
 
 

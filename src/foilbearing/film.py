@@ -121,7 +121,7 @@ class FilmModel:
         """
         if not self.lobe or self.actuator_rows is None:
             return np.zeros(len(self.preload_angles))
-        q = np.reshape(P, self.grid.shape).mean(axis=1) - 1.0
+        q = self.grid.gauge_mean(np.reshape(P, self.grid.shape))
         return self.stack_compliance * np.maximum(self.actuator_rows @ q, 0.0)
 
     def h_rigid_loaded(self, eps_x: float, eps_y: float, compression: FloatArray) -> FloatArray:
@@ -137,7 +137,7 @@ class FilmModel:
         deflection c(θ) max(q, 0)."""
         Pg = np.reshape(P, self.grid.shape)
         h = self.h_rigid_loaded(eps_x, eps_y, self.stack_compression(Pg))
-        return h + (self.compliance * np.maximum(Pg.mean(axis=1) - 1.0, 0.0))[:, None]
+        return h + (self.compliance * np.maximum(self.grid.gauge_mean(Pg), 0.0))[:, None]
 
     def h_rigid(self, eps_x: float, eps_y: float) -> FloatArray:
         """Film thickness without foil deflection, H_r = 1 + ε_X cos θ + ε_Y sin θ − r_p/C.
@@ -182,6 +182,7 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         n_theta=n_theta or case.grid.n_theta,
         n_z=n_z or case.grid.n_z,
         half_length=case.bearing.length / (2.0 * case.bearing.radius),
+        axial_order=case.grid.axial_order,
     )
     theta = grid.theta
     c = case.bearing.clearance

@@ -177,7 +177,7 @@ class StaticResult:
             "pressure": (("theta", "z"), self.P * pa, {"units": "Pa", "long_name": "p"}),
             "gauge_pressure_mean": (
                 "theta",
-                (self.P.mean(axis=1) - 1.0) * pa,
+                self.model.grid.gauge_mean(self.P) * pa,
                 {"units": "Pa", "long_name": "axially averaged gauge pressure p_A"},
             ),
             "film_thickness": (("theta", "z"), self.H * c, {"units": "m", "long_name": "h"}),
@@ -493,7 +493,7 @@ class _Equilibrium:
 
     def _film_min(self, P: FloatArray, eps: FloatArray, D: FloatArray) -> float:
         m = self.model
-        p_mean = P.reshape(m.grid.shape).mean(axis=1) - 1.0
+        p_mean = m.grid.gauge_mean(P.reshape(m.grid.shape))
         h = m.h_rigid_loaded(eps[0], eps[1], D)[:, 0] + m.compliance * np.maximum(p_mean, 0.0)
         return float(h.min())
 
@@ -638,7 +638,7 @@ def _result(
     g = model.grid
     pa, r = case.gas.ambient_pressure, case.bearing.radius
     fx, fy = film_force(g, P)
-    p_mean = P.mean(axis=1) - 1.0
+    p_mean = g.gauge_mean(P)
     angles = model.preload_angles
     p_act = model.at_angles(p_mean, angles) * pa if angles else np.zeros(0)
     base = np.asarray(model.base_preloads, dtype=float)

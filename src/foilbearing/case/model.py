@@ -247,12 +247,17 @@ class Grid:
     ``n_theta`` × ``n_z`` set the static and linear analyses. The orbit runs on
     ``orbit_n_theta`` × ``orbit_n_z`` where they are given (None: the same), and a
     linear analysis on that grid is its by-construction partner (:meth:`Case.orbit_case`).
+    ``axial_order`` (2 or 4) is the order of the axial discretisation
+    (:class:`foilbearing.reynolds.grid.FilmGrid`); ``orbit_axial_order`` the orbit's
+    (None: the same).
     """
 
     n_theta: int = 96
     n_z: int = 12
     orbit_n_theta: int | None = None
     orbit_n_z: int | None = None
+    axial_order: int = 2
+    orbit_axial_order: int | None = None
 
     @property
     def orbit_shape(self) -> tuple[int, int]:
@@ -260,9 +265,21 @@ class Grid:
         return (self.orbit_n_theta or self.n_theta, self.orbit_n_z or self.n_z)
 
     @property
+    def orbit_order(self) -> int:
+        """Axial order of the orbit's grid."""
+        return self.orbit_axial_order or self.axial_order
+
+    @property
     def orbit_is_own(self) -> bool:
         """The orbit runs on another grid than the static and linear analyses."""
-        return self.orbit_shape != (self.n_theta, self.n_z)
+        return (*self.orbit_shape, self.orbit_order) != (self.n_theta, self.n_z, self.axial_order)
+
+    @property
+    def orbit_label(self) -> str:
+        """The orbit's grid in words, e.g. ``"96 × 4 (axial order 4)"``."""
+        n_theta, n_z = self.orbit_shape
+        order = "" if self.orbit_order == 2 else f" (axial order {self.orbit_order})"
+        return f"{n_theta} × {n_z}{order}"
 
 
 @dataclass(frozen=True)
@@ -436,7 +453,7 @@ class Case:
             )
         if not g.orbit_is_own:
             return self
-        return replace(self, grid=Grid(n_theta, n_z))
+        return replace(self, grid=Grid(n_theta, n_z, axial_order=g.orbit_order))
 
     def with_speed(self, speed: float) -> Case:
         """The same case at another rotor speed (rad/s, > 0)."""

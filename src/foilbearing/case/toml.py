@@ -149,7 +149,20 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
             n_z=grid_t.integer("n_z", 2, 256, default=Grid.n_z),
             orbit_n_theta=_optional_integer(grid_t, "orbit_n_theta", 24, 2048),
             orbit_n_z=_optional_integer(grid_t, "orbit_n_z", 2, 256),
+            axial_order=_axial_order(grid_t, "axial_order", Grid.axial_order),
+            orbit_axial_order=(
+                _axial_order(grid_t, "orbit_axial_order", 2)
+                if "orbit_axial_order" in grid_t.data
+                else None
+            ),
         )
+        for order, n_z_key in (
+            (grid.axial_order, "n_z"),
+            (grid.orbit_order, "orbit_n_z" if grid.orbit_n_z is not None else "n_z"),
+        ):
+            n_z = grid.n_z if n_z_key == "n_z" else grid.orbit_shape[1]
+            if order == 4 and n_z < 3:
+                raise grid_t.error(n_z_key, n_z, "at least 3 at axial order 4 (the end's cubic)")
         grid_t.done()
     disturbance = _read_disturbance(root.table("disturbance")) if "disturbance" in data else None
     study = root.raw("study", default=None)
@@ -175,6 +188,14 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
 def _optional_integer(t: TableReader, key: str, lo: int, hi: int) -> int | None:
     """An integer field from ``lo`` to ``hi`` that may be left out (None)."""
     return None if key not in t.data else t.integer(key, lo, hi, default=lo)
+
+
+def _axial_order(t: TableReader, key: str, default: int) -> int:
+    """An axial order: 2 or 4 (:class:`foilbearing.reynolds.grid.FilmGrid`)."""
+    value = t.raw(key, default)
+    if value not in (2, 4) or isinstance(value, bool):
+        raise t.error(key, value, "2 or 4")
+    return int(value)
 
 
 def _read_disturbance(t: TableReader) -> Disturbance:

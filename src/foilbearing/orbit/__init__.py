@@ -71,12 +71,12 @@ def simulate(
         if not resume.checkpoint:
             raise InputError("the run to resume has no checkpoint")
         state = State.from_checkpoint(resume.checkpoint)
-        if state.y.size != sim.system.size:
-            g = resume.case.grid
+        g, here = resume.case.grid, sim.system.grid
+        if state.y.size != sim.system.size or g.axial_order != here.axial_order:
             raise InputError(
-                f"the run to resume was on a {g.n_theta} x {g.n_z} grid, this case's orbit "
-                f"runs on {sim.system.grid.n_theta} x {sim.system.grid.n_z}: resume it with "
-                "the case it started with",
+                f"the run to resume was on a {g.n_theta} x {g.n_z} grid of axial order "
+                f"{g.axial_order}, this case's orbit runs on {here.n_theta} x {here.n_z} of "
+                f"order {here.axial_order}: resume it with the case it started with",
                 source=case.source,
             )
         if voltage is not None:

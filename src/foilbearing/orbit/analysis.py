@@ -64,6 +64,7 @@ class OrbitAnalysis:
             "mean_power_loss_W": mean_power_loss(result),
             "steps": result.steps,
             "grid": [result.case.grid.n_theta, result.case.grid.n_z],
+            "grid_axial_order": result.case.grid.axial_order,
             "actuator_reading": (None if act is None else f"{act.preload_response}+{act.dynamics}"),
         }
 

@@ -92,7 +92,7 @@ class HeldStingers:
         if m.lobe:
             assert m.lobe_shapes is not None
             return m.stack_compression(st.P) @ m.lobe_shapes
-        return m.actuator_compliance * np.maximum(st.P.mean(axis=1) - 1.0, 0.0)
+        return m.actuator_compliance * np.maximum(m.grid.gauge_mean(st.P), 0.0)
 
     def _next_time(self, t: float) -> float:
         """The next knot after ``t``: halve the interval until ω and V change little."""

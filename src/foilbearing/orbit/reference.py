@@ -49,17 +49,23 @@ HOLD_TIME = 1e-8
 
 
 def _row_rates(
-    b: FloatArray, a: FloatArray, P: FloatArray, H: FloatArray, held: FloatArray, rate: FloatArray
+    b: FloatArray,
+    a: FloatArray,
+    P: FloatArray,
+    H: FloatArray,
+    held: FloatArray,
+    rate: FloatArray,
+    w: FloatArray,
 ) -> FloatArray:
     """dP/dt of each cell from ``H dP/dt + P a mean_row(dP/dt) = b``, held cells given ``rate``.
 
-    ``b``, ``P``, ``held`` (0/1), ``rate``: (n_theta, n_z); ``a`` and ``H``: (n_theta,).
-    Per row: ``m (1 + a Σ_free P/(n_z H)) = (Σ_free b/H + Σ_held rate)/n_z``.
+    ``b``, ``P``, ``held`` (0/1), ``rate``: (n_theta, n_z); ``a`` and ``H``: (n_theta,);
+    ``w`` (n_z,) the axial-mean weights (``1/n_z`` at second order). Per row:
+    ``m (1 + a Σ_free w P/H) = Σ_free w b/H + Σ_held w rate``.
     """
-    nz = P.shape[1]
     free = 1.0 - held
-    num = ((free * b).sum(axis=1) / H + (held * rate).sum(axis=1)) / nz
-    den = 1.0 + a * (free * P).sum(axis=1) / (nz * H)
+    num = (free * b) @ w / H + (held * rate) @ w
+    den = 1.0 + a * ((free * P) @ w) / H
     m = num / den
     return free * (b - P * (a * m)[:, None]) / H[:, None] + held * rate
 
@@ -81,16 +87,17 @@ def _film_rates(
     the row solve of the held cells' rates removed (:func:`_row_rates`), M the mean at
     the stingers and G the gains.
     """
-    dp = _row_rates(b, a, P, H, held, rate)
     sys_ = sim.system
+    w = sys_.grid.axial.mean_w
+    dp = _row_rates(b, a, P, H, held, rate, w)
     if sys_.n_lobe == 0:
         return dp
     gain = sys_.lobe_gain(P)
     zero = np.zeros_like(P)
-    cols = [_row_rates(P * lobe[:, None], a, P, H, held, zero) for lobe in sys_.lobes]
+    cols = [_row_rates(P * lobe[:, None], a, P, H, held, zero, w) for lobe in sys_.lobes]
     at_stingers = gain[:, None] * sys_.lobe_rows  # ξ = at_stingers @ mean_row(dP/dt)
-    small = np.eye(sys_.n_lobe) + np.column_stack([at_stingers @ c.mean(axis=1) for c in cols])
-    xi = np.linalg.solve(small, at_stingers @ dp.mean(axis=1))
+    small = np.eye(sys_.n_lobe) + np.column_stack([at_stingers @ (c @ w) for c in cols])
+    xi = np.linalg.solve(small, at_stingers @ (dp @ w))
     return dp - sum((x * c for x, c in zip(xi, cols, strict=True)), np.zeros_like(P))
 
 
@@ -111,7 +118,7 @@ def state_derivative(sim: OrbitSimulation, t: float, y: FloatArray) -> FloatArra
     du = f[n : n + nt]
     dh_known = sys_.cos_t * v[0] + sys_.sin_t * v[1] - preload_rate + du  # (nt,)
     b = f[:n].reshape(nt, nz) - P * dh_known[:, None]
-    active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+    active = (g.gauge_mean(P) > 0.0).astype(float)
     a = sys_.c_act * active  # coefficient of P times the row mean of dP/dt
     h_row = H[:, 0]
     no_hold = np.zeros_like(P)

@@ -161,6 +161,7 @@ class OrbitResult:
             rotor_mass_kg=self.case.rotor.mass,
             grid_n_theta=self.case.grid.n_theta,
             grid_n_z=self.case.grid.n_z,
+            grid_axial_order=self.case.grid.axial_order,
         )
         d = self.case.disturbance
         if d is not None:

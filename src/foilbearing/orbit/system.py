@@ -177,7 +177,7 @@ class OrbitSimulation:
                 "run at a higher speed or a lower load"
             )
         sys_ = self.system
-        q = np.maximum(st.P.mean(axis=1) - 1.0, 0.0)
+        q = np.maximum(sys_.grid.gauge_mean(st.P), 0.0)
         u = sys_.c_bump * q if sys_.dynamic_bump else np.zeros(sys_.nt)
         return np.concatenate([st.P.ravel(), u, [st.eps_x, st.eps_y, 0.0, 0.0]])
 

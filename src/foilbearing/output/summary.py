@@ -47,6 +47,8 @@ def case_summary(case: Case) -> dict[str, Any]:
             "n_z": case.grid.n_z,
             "orbit_n_theta": case.grid.orbit_shape[0],
             "orbit_n_z": case.grid.orbit_shape[1],
+            "axial_order": case.grid.axial_order,
+            "orbit_axial_order": case.grid.orbit_order,
         },
         "bearing_type": BEARING_TYPES[case.kind],
         **(

@@ -47,7 +47,9 @@ class Workspace:
     indices: NDArray[np.int64] = field(init=False, repr=False)
     c_indptr: NDArray[np.int64] = field(init=False, repr=False)
     c_indices: NDArray[np.int64] = field(init=False, repr=False)
-    #: Position of each cell's diagonal entry in the 5-point stencil data.
+    #: The grid's axial discretisation, as the kernels take it.
+    axial: tuple[Any, ...] = field(init=False, repr=False)
+    #: Position of each cell's diagonal entry in the stencil data.
     diag_slots: NDArray[np.int64] = field(init=False, repr=False)
     res: FloatArray = field(init=False, repr=False)
     h: FloatArray = field(init=False, repr=False)
@@ -55,15 +57,16 @@ class Workspace:
     jp: FloatArray = field(init=False, repr=False)
     jh: FloatArray = field(init=False, repr=False)
     jc: FloatArray = field(init=False, repr=False)
-    #: Row of each entry of the 5-point stencil data.
+    #: Row of each entry of the stencil data.
     entry_rows: NDArray[np.int64] = field(init=False, repr=False)
     #: Cells held at ambient by lift-off at the last assembly (all False without lift-off).
     clamped: NDArray[np.bool_] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         g = self.grid
-        self.indptr, self.indices, slots = kern.stencil_pattern(g.n_theta, g.n_z)
-        self.diag_slots = slots[:, :, 2].ravel()
+        self.indptr, self.indices, _ = kern.stencil_pattern(g.n_theta, g.n_z, g.axial_order)
+        self.axial = tuple(g.axial)
+        self.diag_slots = g.axial.slots[:, :, 3].ravel()
         self.c_indptr, self.c_indices = kern.coupled_pattern(g.n_theta, g.n_z)
         self.res = np.empty(g.shape)
         self.h = np.empty(g.shape)
@@ -92,9 +95,9 @@ def film_thickness(
     -------
     H : ndarray, shape (n_theta, n_z)
     p_mean : ndarray, shape (n_theta,)
-        ``axial_mean(P − 1)``.
+        ``axial_mean(P − 1)`` (:meth:`FilmGrid.gauge_mean`).
     """
-    p_mean = grid.axial_mean(P) - 1.0
+    p_mean = grid.gauge_mean(P)
     return h_rigid + (compliance * np.maximum(p_mean, 0.0))[:, None], p_mean
 
 
@@ -111,8 +114,8 @@ def held_cells(
     ws = workspace if workspace is not None else Workspace(grid)
     p = np.ascontiguousarray(P, dtype=np.float64)
     h = np.ascontiguousarray(H, dtype=np.float64)
-    kern.residual(p, h, lam, grid.d_theta, grid.d_z, ws.res)
-    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.jp)
+    kern.residual(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.res)
+    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.jp)
     kern.lift_off_rows(p, ws.res, ws.jp, ws.jh, ws.jp, ws.diag_slots, ws.indptr, False, ws.clamped)
     return ws.clamped.copy()
 
@@ -134,13 +137,13 @@ def set_unit_rows(
 
 
 def _film(ws: Workspace, P: FloatArray, h_rigid: FloatArray, comp: FloatArray) -> None:
-    """Fill ``ws.h`` and ``ws.s = dH_i/dP_ik`` without allocating fields."""
-    p_mean = P.mean(axis=1) - 1.0
+    """Fill ``ws.h`` and ``ws.s = dH_i/dp̄_i`` (the engaged rows' compliance; ``dH_i/dP_ik``
+    is ``s_i`` times the axial-mean weight of k) without allocating fields."""
+    p_mean = ws.grid.gauge_mean(P)
     active = p_mean > 0.0
     np.multiply(comp, np.where(active, p_mean, 0.0), out=ws.s)
     np.add(h_rigid, ws.s[:, None], out=ws.h)
     np.multiply(comp, active, out=ws.s)
-    ws.s /= ws.grid.n_z
 
 
 def _assemble(
@@ -155,12 +158,12 @@ def _assemble(
     """Fill residual and Jacobian buffers (lift-off rows included); return the data of ``J_PP``."""
     g = ws.grid
     _film(ws, P, h_rigid, comp)
-    kern.residual(P, ws.h, lam, g.d_theta, g.d_z, ws.res)
-    kern.jacobian_P(P, ws.h, lam, g.d_theta, g.d_z, ws.jp)
+    kern.residual(P, ws.h, lam, g.d_theta, g.d_z, ws.axial, ws.res)
+    kern.jacobian_P(P, ws.h, lam, g.d_theta, g.d_z, ws.axial, ws.jp)
     if coupled or lift_off:
-        kern.jacobian_H(P, ws.h, lam, g.d_theta, g.d_z, ws.jh)
+        kern.jacobian_H(P, ws.h, lam, g.d_theta, g.d_z, ws.axial, ws.jh)
     if coupled:
-        kern.coupled_jacobian(ws.jp, ws.jh, ws.s, g.n_z, ws.jc)
+        kern.coupled_jacobian(ws.jp, ws.jh, ws.s, g.n_z, ws.axial, ws.jc)
     if lift_off:
         kern.lift_off_rows(
             P, ws.res, ws.jp, ws.jh, ws.jc, ws.diag_slots, ws.indptr, coupled, ws.clamped
@@ -226,7 +229,7 @@ def coupled_system(
     coupled = bool(np.any(comp != 0.0))
     data = _assemble(ws, p, h_r, comp, lam, coupled, lift_off)
     if not (coupled or lift_off):
-        kern.jacobian_H(p, ws.h, lam, grid.d_theta, grid.d_z, ws.jh)
+        kern.jacobian_H(p, ws.h, lam, grid.d_theta, grid.d_z, ws.axial, ws.jh)
     j_ph = sp.csr_matrix((ws.jh.copy(), ws.indices, ws.indptr), shape=(n, n))
     indices, indptr = (ws.c_indices, ws.c_indptr) if coupled else (ws.indices, ws.indptr)
     j_pp = sp.csr_matrix((data.copy(), indices, indptr), shape=(n, n))

@@ -14,7 +14,8 @@ small harmonic perturbation ``P = P₀ + ΔP e^{jντ}``, ``H = H₀ + ΔH e^{j�
 with ``J_P = ∂R/∂P`` and ``J_H = ∂R/∂H`` the same Jacobians the static Newton
 uses. The film perturbation is the journal's part plus the foil's,
 ``ΔH = ΔH_journal + S ΔP``, where ``S`` maps the pressures of a θ-row to the
-deflection of the foil there: ``S[(i,j),(i,k)] = c_i/n_z`` with the complex
+deflection of the foil there: ``S[(i,j),(i,k)] = c_i w_k`` (``w_k`` the axial-mean
+weights, ``1/n_z`` at second order) with the complex
 dynamic compliance ``c_i`` (zero where the foil is not engaged). Under top-foil
 lift-off the cells held at ambient pressure by the static solution stay there,
 ``ΔP = 0``: their rows are the linearisation of the same complementarity
@@ -43,7 +44,7 @@ ComplexArray = NDArray[np.complex128]
 def reynolds_jacobians(
     grid: FilmGrid, P: FloatArray, H: FloatArray, lam: float, workspace: Workspace | None = None
 ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-    """``J_P = ∂R/∂P`` and ``J_H = ∂R/∂H`` at fixed film, CSR on the 5-point pattern.
+    """``J_P = ∂R/∂P`` and ``J_H = ∂R/∂H`` at fixed film, CSR on the stencil pattern.
 
     Parameters
     ----------
@@ -68,8 +69,8 @@ def _jacobians_into(
     ws = workspace if workspace is not None else Workspace(grid)
     p = np.ascontiguousarray(P, dtype=np.float64)
     h = np.ascontiguousarray(H, dtype=np.float64)
-    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.jp)
-    kern.jacobian_H(p, h, lam, grid.d_theta, grid.d_z, ws.jh)
+    kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.jp)
+    kern.jacobian_H(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.jh)
     return ws
 
 
@@ -77,10 +78,10 @@ def foil_operator(grid: FilmGrid, compliance: ComplexArray | FloatArray) -> sp.c
     """``S``: the film change of each cell per unit pressure change in its θ-row.
 
     ``ΔH[i, j] = c_i · mean_k ΔP[i, k]``: the foil responds to the axially
-    averaged pressure (docs/model.md §3). ``compliance`` is (n_theta,),
-    zero where the foil is not engaged (p̄ <= 0).
+    averaged pressure (docs/model.md §3; the grid's axial-mean weights). ``compliance``
+    is (n_theta,), zero where the foil is not engaged (p̄ <= 0).
     """
-    block = np.ones((grid.n_z, grid.n_z)) / grid.n_z
+    block = np.ones((grid.n_z, 1)) * grid.axial.mean_w[None, :]
     return sp.kron(sp.diags(np.asarray(compliance)), block, format="csr")
 
 
@@ -134,9 +135,9 @@ def pressure_response(
     j_film[diag] -= jw * np.ravel(P)
     # The system (J_P − jw H₀) + (J_H − jw P₀) S on the foil-coupled pattern, where the
     # compiled block-cyclic LU factorises it (SuperLU if it cannot).
-    s_row = np.asarray(compliance, dtype=np.complex128) / grid.n_z
+    s_row = np.asarray(compliance, dtype=np.complex128)
     system = np.empty(ws.c_indices.size, dtype=np.complex128)
-    kern.coupled_jacobian(j_pressure, j_film, s_row, grid.n_z, system)
+    kern.coupled_jacobian(j_pressure, j_film, s_row, grid.n_z, ws.axial, system)
     if np.any(clamped):
         rows = np.flatnonzero(clamped)
         # Scaled like the Reynolds rows (|∂R/∂P| on the diagonal), which the block LU's

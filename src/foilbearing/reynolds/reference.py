@@ -122,14 +122,95 @@ def _faces_py(
     return th, zf, end
 
 
+def _axial4_py(
+    P: FloatArray, H: FloatArray, d_z: float, axial: tuple[Any, ...]
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Fourth-order axial face fluxes of every θ-row: ``(Σ c ψ + c₀, H_f, q)``, each (n_theta, n_z)."""
+    _order, cols, coef, const = axial[:4]
+    psi = P * P
+    acc = np.einsum("tfm,fm->tf", psi[:, cols], coef) + const
+    hf = np.concatenate([0.5 * (H[:, :-1] + H[:, 1:]), H[:, -1:]], axis=1)
+    return acc, hf, hf**3 * acc / d_z
+
+
 def residual_py(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, out: FloatArray
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    axial: tuple[Any, ...],
+    out: FloatArray,
 ) -> None:
     """Twin of :func:`~foilbearing.reynolds._kernels.residual`."""
     th, zf, end = _faces_py(P, H, lam, d_theta, d_z)
     qt = th[0]
-    qz = np.concatenate([np.zeros((P.shape[0], 1)), zf[0], end[0][:, None]], axis=1)
+    if axial[0] == 2:
+        qz = np.concatenate([np.zeros((P.shape[0], 1)), zf[0], end[0][:, None]], axis=1)
+    else:
+        qz = np.concatenate([np.zeros((P.shape[0], 1)), _axial4_py(P, H, d_z, axial)[2]], axis=1)
     out[:, :] = d_z * (qt - np.roll(qt, 1, axis=0)) + d_theta * (qz[:, 1:] - qz[:, :-1])
+
+
+def _jacobian4_py(
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    axial: tuple[Any, ...],
+    data: FloatArray,
+    wrt_h: bool,
+) -> None:
+    """The fourth-order Jacobian, entry by entry in COO form, read on the pattern."""
+    n_theta, n_z = P.shape
+    n = n_theta * n_z
+    th, _zf, _end = _faces_py(P, H, lam, d_theta, d_z)
+    t_a, t_b = (th[3], th[3]) if wrt_h else (th[1], th[2])
+    cell = np.arange(n).reshape(n_theta, n_z)
+    east = np.roll(cell, -1, axis=0)
+    rows: list[NDArray[np.int64]] = []
+    cols: list[NDArray[np.int64]] = []
+    vals: list[FloatArray] = []
+
+    def add(r: NDArray[np.int64], c: NDArray[np.int64], v: FloatArray) -> None:
+        rows.append(r.ravel())
+        cols.append(c.ravel())
+        vals.append(np.broadcast_to(v, r.shape).ravel())
+
+    # θ-face i+1/2: +ΔZ q on cell (i, j), −ΔZ q on cell (i+1, j)
+    add(cell, cell, d_z * t_a)
+    add(cell, east, d_z * t_b)
+    add(east, cell, -d_z * t_a)
+    add(east, east, -d_z * t_b)
+    acc, hf, _q = _axial4_py(P, H, d_z, axial)
+    f_cols, f_coef = axial[1], axial[2]
+    for f in range(n_z):
+        row_in = cell[:, f]
+        row_out = cell[:, f + 1] if f < n_z - 1 else None
+        if wrt_h:
+            if row_out is None:
+                add(row_in, row_in, d_theta * 3.0 * hf[:, f] ** 2 * acc[:, f] / d_z)
+                continue
+            d = d_theta * 1.5 * hf[:, f] ** 2 * acc[:, f] / d_z
+            for c in (cell[:, f], cell[:, f + 1]):
+                add(row_in, c, d)
+                add(row_out, c, -d)
+            continue
+        for m in range(4):
+            if f_coef[f, m] == 0.0:
+                continue
+            col = f_cols[f, m]
+            d = d_theta * hf[:, f] ** 3 / d_z * 2.0 * f_coef[f, m] * P[:, col]
+            add(row_in, cell[:, col], d)
+            if row_out is not None:
+                add(row_out, cell[:, col], -d)
+    full = sp.coo_matrix(
+        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)
+    ).tocsr()
+    indptr, indices, _ = kern.stencil_pattern(n_theta, n_z, 4)
+    entry_rows = np.repeat(np.arange(n), np.diff(indptr))
+    data[:] = np.asarray(full[entry_rows, indices]).ravel()
 
 
 def _jacobian_py(
@@ -138,9 +219,13 @@ def _jacobian_py(
     lam: float,
     d_theta: float,
     d_z: float,
+    axial: tuple[Any, ...],
     data: FloatArray,
     wrt_h: bool,
 ) -> None:
+    if axial[0] != 2:
+        _jacobian4_py(P, H, lam, d_theta, d_z, axial, data, wrt_h)
+        return
     n_theta, n_z = P.shape
     th, zf, end = _faces_py(P, H, lam, d_theta, d_z)
     if wrt_h:
@@ -168,29 +253,46 @@ def _jacobian_py(
 
 
 def jacobian_P_py(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    axial: tuple[Any, ...],
+    data: FloatArray,
 ) -> None:
     """Twin of :func:`~foilbearing.reynolds._kernels.jacobian_P`."""
-    _jacobian_py(P, H, lam, d_theta, d_z, data, False)
+    _jacobian_py(P, H, lam, d_theta, d_z, axial, data, False)
 
 
 def jacobian_H_py(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    axial: tuple[Any, ...],
+    data: FloatArray,
 ) -> None:
     """Twin of :func:`~foilbearing.reynolds._kernels.jacobian_H`."""
-    _jacobian_py(P, H, lam, d_theta, d_z, data, True)
+    _jacobian_py(P, H, lam, d_theta, d_z, axial, data, True)
 
 
 def coupled_jacobian_py(
-    jp_data: FloatArray, jh_data: FloatArray, s: FloatArray, n_z: int, out: FloatArray
+    jp_data: FloatArray,
+    jh_data: FloatArray,
+    s: FloatArray,
+    n_z: int,
+    axial: tuple[Any, ...],
+    out: FloatArray,
 ) -> None:
     """Twin of :func:`~foilbearing.reynolds._kernels.coupled_jacobian` (scipy.sparse products)."""
     n_theta = s.shape[0]
     n = n_theta * n_z
-    indptr, indices, _ = kern.stencil_pattern(n_theta, n_z)
+    indptr, indices, _ = kern.stencil_pattern(n_theta, n_z, axial[0])
     jp = sp.csr_matrix((jp_data, indices, indptr), shape=(n, n))
     jh = sp.csr_matrix((jh_data, indices, indptr), shape=(n, n))
-    dhdp = sp.kron(sp.diags(s), np.ones((n_z, n_z)), format="csr")
+    dhdp = sp.kron(sp.diags(s), np.ones((n_z, 1)) * axial[5][None, :], format="csr")
     full = (jp + jh @ dhdp).toarray()
     c_indptr, c_indices = kern.coupled_pattern(n_theta, n_z)
     rows = np.repeat(np.arange(n), np.diff(c_indptr))
@@ -370,7 +472,9 @@ def newton_residual_py(
     P, U, eps, v = system.split(y)
     H, q = system.film(y, inputs.preload)
     g = system.grid
-    kern.residual(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, system._res)
+    kern.residual(
+        np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, system._axial, system._res
+    )
     out = np.empty(system.size)
     n, nt = system.n, system.nt
     out[:n] = c0 * (P * H).ravel() - system._res.ravel() / (system.area * system.sigma)
@@ -421,8 +525,8 @@ def jacobian_blocks_py(
     ws = system.ws
     jp_raw = np.empty(ws.jp.size)
     jh_raw = np.empty(ws.jh.size)
-    kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, jp_raw)
-    kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, jh_raw)
+    kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, system._axial, jp_raw)
+    kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, system._axial, jh_raw)
     scale = 1.0 / (system.area * system.sigma)
     # Row scaling of the Reynolds block: c0·∂(PH) − ∂R/(Aσ).
     jp = -scale * jp_raw
@@ -430,14 +534,14 @@ def jacobian_blocks_py(
     jp[system.diag_slots] += c0 * H.ravel()
     jh[system.diag_slots] += c0 * P.ravel()
     rate = system.rate(inputs)
-    active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+    active = (g.gauge_mean(P) > 0.0).astype(float)
     c_eff = system.c_act + rate * system.c_bump / (c0 + rate)
     n = system.n
     d = system.lift_state(y, inputs, c0, hist)
     clamped = d > 0.0
     jh[clamped[ws.entry_rows]] = 0.0
     jc = np.empty(system._jc.size)
-    coupled_jacobian_py(jp, jh, c_eff * active / g.n_z, g.n_z, jc)
+    coupled_jacobian_py(jp, jh, c_eff * active, g.n_z, system._axial, jc)
     rows = np.flatnonzero(clamped)
     set_unit_rows(jc, rows, d[rows], g.n_theta, g.n_z)
     jh_mat = sp.csr_matrix((jh, ws.indices, ws.indptr), shape=(n, n))
@@ -447,11 +551,9 @@ def jacobian_blocks_py(
     return H, jp, jh, active, jc, np.asarray(a_pe), d, clamped, np.asarray(a_pl), gain
 
 
-def lobe_correct_py(
-    x: FloatArray, lobe: tuple[FloatArray, ...], system: TransientSystem
-) -> FloatArray:
+def lobe_correct_py(x: FloatArray, lobe: tuple[Any, ...], system: TransientSystem) -> FloatArray:
     """Twin of :func:`~foilbearing.reynolds._kernels.lobe_correct`: ``B'⁻¹ b`` from
-    ``x = B⁻¹ b`` (a new array), ``lobe = (B⁻¹ a_pl, (I + L B⁻¹ a_pl)⁻¹, gain, lobe_rows)``."""
+    ``x = B⁻¹ b`` (a new array), ``lobe = (B⁻¹ a_pl, (I + L B⁻¹ a_pl)⁻¹, gain, lobe_rows, axial)``."""
     border, inv, gain = lobe[:3]
     if gain.size == 0:
         return x
@@ -464,7 +566,7 @@ def border_py(
     lu: Any,
     a_pe: FloatArray,
     c0: float,
-    lobe: tuple[FloatArray, ...] | None = None,
+    lobe: tuple[Any, ...] | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """Twin of :func:`~foilbearing.reynolds._kernels.transient_border`.
 
@@ -501,7 +603,7 @@ def solve_py(factor: TransientFactor, g: FloatArray) -> FloatArray:
     d_p = z - arrays.y_border @ (arrays.small_inv @ (arrays.s_vp @ z))
     d_e = (arrays.s_vp @ d_p + g_v + c0 * g_e) / c0**2
     d_v = c0 * d_e - g_e
-    dq = arrays.active[:, None] * d_p.reshape(nt, nz, -1).mean(axis=1)
+    dq = arrays.active[:, None] * s.grid.axial_mean(d_p.reshape(nt, nz, -1))
     d_u = (g_u + rate * s.c_bump[:, None] * dq) / (c0 + rate)
     return np.concatenate([d_p, d_u, d_e, d_v]).reshape(g.shape)
 

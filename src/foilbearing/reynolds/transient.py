@@ -164,10 +164,15 @@ class TransientSystem:
         self.n_lobe = self.lobes.shape[0]
         self.c_stack = float(stack_compliance) if self.n_lobe else 0.0
         # ∂D_n/∂P per unit gain: the interpolation at the stinger of the θ-rows' mean, (n_lobe, n)
-        self.lobe_mean = np.repeat(self.lobe_rows, grid.n_z, axis=1) / grid.n_z
+        rows = np.repeat(self.lobe_rows, grid.n_z, axis=1)
+        if grid.axial_order == 2:
+            self.lobe_mean = rows / grid.n_z
+        else:
+            self.lobe_mean = rows * np.tile(grid.axial.mean_w, self.nt)
         self.ws = Workspace(grid)
         self.expand = sp.kron(sp.eye(self.nt), np.ones((grid.n_z, 1)), format="csr")
-        self.mean = sp.kron(sp.eye(self.nt), np.ones((1, grid.n_z)) / grid.n_z, format="csr")
+        self.mean = sp.kron(sp.eye(self.nt), grid.axial.mean_w[None, :], format="csr")
+        self._axial = tuple(grid.axial)
         self._res = np.empty(grid.shape)
         self._H = np.empty(grid.shape)
         self._slack = np.empty(self.n)
@@ -197,6 +202,7 @@ class TransientSystem:
             self.lobes,
             self.lobe_rows,
             self.c_stack,
+            tuple(grid.axial),
         )
         self.pattern = kern.StencilPattern(self.diag_slots, self.jh_rows, self.ws.indptr)
         # ... as the plain tuples the kernels take (kernels/groups.py says why).
@@ -217,7 +223,7 @@ class TransientSystem:
     def film(self, y: FloatArray, preload: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Film H (n_theta, n_z) and engaged mean gauge pressure q (n_theta,)."""
         P, U, eps, _ = self.split(y)
-        q = np.maximum(P.mean(axis=1) - 1.0, 0.0)
+        q = np.maximum(self.grid.gauge_mean(P), 0.0)
         row = 1.0 + eps[0] * self.cos_t + eps[1] * self.sin_t - preload + U + self.c_act * q
         if self.n_lobe:
             row = row + self.c_stack * np.maximum(self._stinger_pressure(P), 0.0) @ self.lobes
@@ -226,7 +232,7 @@ class TransientSystem:
     def _stinger_pressure(self, P: FloatArray) -> FloatArray:
         """q(θ_n): the mean gauge pressure at the stingers of the lobes that follow their
         stacks, whose compression is D_n = c_s max(q(θ_n), 0) in C (n_lobe,)."""
-        return self.lobe_rows @ (np.reshape(P, self.grid.shape).mean(axis=1) - 1.0)
+        return self.lobe_rows @ self.grid.gauge_mean(np.reshape(P, self.grid.shape))
 
     def lobe_gain(self, P: FloatArray) -> FloatArray:
         """∂D_n/∂q(θ_n): c_s where the stack is loaded, else 0 (n_lobe,)."""
@@ -243,7 +249,9 @@ class TransientSystem:
         P, U, _eps, v = self.split(y)
         H, q = self.film(y, inputs.preload)
         g = self.grid
-        kern.residual(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, self._res)
+        kern.residual(
+            np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, tuple(g.axial), self._res
+        )
         f_p = self._res.ravel() / (self.area * self.sigma)
         if self.dynamic_bump:
             f_u = inputs.omega / self.gamma * (self.c_bump * q - U)
@@ -311,7 +319,7 @@ class TransientSystem:
         H, _q = self.film(y, inputs.preload)
         g = self.grid
         jp = np.empty(self.ws.jp.size)
-        kern.jacobian_P(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, jp)
+        kern.jacobian_P(np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, self._axial, jp)
         d = np.abs(c0 * H.ravel() - jp[self.diag_slots] / (self.area * self.sigma))
         return np.where(d > 0.0, d, 1.0)
 
@@ -419,19 +427,20 @@ class TransientSystem:
 
     def lobe_border(
         self, lu: object, a_pl: FloatArray, gain: FloatArray
-    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, tuple[Any, ...]]:
         """The lobes' Woodbury border of a factorisation (:func:`~.reynolds._kernels.lobe_correct`).
 
         ``B' = B + a_pl L`` with ``L = gain_n · lobe_mean_n`` (∂D/∂P); returns
-        ``(B⁻¹ a_pl, (I + L B⁻¹ a_pl)⁻¹, gain, lobe_rows)``, empty without lobes.
+        ``(B⁻¹ a_pl, (I + L B⁻¹ a_pl)⁻¹, gain, lobe_rows, axial)``, empty without lobes.
         ``lu`` is the LU of B (any with a ``solve`` of (n, k) right-hand sides).
         """
         if self.n_lobe == 0:
-            return np.zeros((self.n, 0)), np.zeros((0, 0)), gain, self.lobe_rows
+            return np.zeros((self.n, 0)), np.zeros((0, 0)), gain, self.lobe_rows, self._axial
         solved = lu.solve(np.ascontiguousarray(a_pl))  # type: ignore[attr-defined]
         border: FloatArray = np.ascontiguousarray(solved, dtype=np.float64)
         small = np.eye(self.n_lobe) + (gain[:, None] * self.lobe_mean) @ border
-        return border, np.linalg.inv(small).astype(np.float64), gain, self.lobe_rows
+        inv = np.linalg.inv(small).astype(np.float64)
+        return border, inv, gain, self.lobe_rows, self._axial
 
     def min_film(self, y: FloatArray, preload: FloatArray) -> float:
         """Smallest film thickness h/C."""
@@ -441,7 +450,7 @@ class TransientSystem:
     def _film_derivatives(self, P: FloatArray) -> tuple[Any, Any, Any, Any]:
         """∂q/∂P (n_theta, n) and ∂H/∂P, ∂H/∂U, ∂H/∂ε per cell, sparse, at pressures P."""
         g = self.grid
-        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+        active = (g.gauge_mean(P) > 0.0).astype(float)
         dq_dp = sp.diags(active) @ self.mean  # (nt, n)
         # ∂H/∂P through the actuator compliance (and the lobes that follow their stacks)
         dh_dp = self.expand @ sp.diags(self.c_act) @ dq_dp
@@ -476,7 +485,7 @@ class TransientSystem:
         n, nt, nz = self.n, self.nt, g.n_z
         P = np.array(self.split(y)[0])
         h_row = self.film(y, preload)[0][:, 0]
-        active = (P.mean(axis=1) - 1.0 > 0.0).astype(float)
+        active = (g.gauge_mean(P) > 0.0).astype(float)
         c_eff = (self.c_act * active)[:, None]
         lobe_at = (
             self.lobes.T @ (self.lobe_gain(P)[:, None] * self.lobe_rows) if self.n_lobe else None
@@ -486,7 +495,7 @@ class TransientSystem:
         def apply(dy: FloatArray) -> FloatArray:
             m = dy.shape[1]
             d_p = dy[:n].reshape(nt, nz, m)
-            mean = d_p.mean(axis=1)  # (nt, m)
+            mean = g.axial_mean(d_p)  # (nt, m)
             d_h = cos_t * dy[n + nt] + sin_t * dy[n + nt + 1] + dy[n : n + nt] + c_eff * mean
             if lobe_at is not None:
                 d_h = d_h + lobe_at @ mean
@@ -515,8 +524,8 @@ class TransientSystem:
         H, _q = self.film(y, inputs.preload)
         g = self.grid
         Pc = np.ascontiguousarray(P)
-        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, self.ws.jp)
-        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, self.ws.jh)
+        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, tuple(g.axial), self.ws.jp)
+        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, tuple(g.axial), self.ws.jh)
         n = self.n
         j_p = sp.csr_matrix((self.ws.jp, self.ws.indices, self.ws.indptr), shape=(n, n))
         j_h = sp.csr_matrix((self.ws.jh, self.ws.indices, self.ws.indptr), shape=(n, n))

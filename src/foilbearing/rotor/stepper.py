@@ -150,7 +150,7 @@ class _RotorFactor:
             # the single-bearing factor's border times c0², the bumps' follows from it.
             col = np.empty((br.hi - br.lo, 2))
             col[: br.n] = arrays.y_border * (c0 * c0)
-            mean = col[: br.n].reshape(br.nt, -1, 2).mean(axis=1)
+            mean = br.sys.grid.axial_mean(col[: br.n].reshape(br.nt, -1, 2))
             gain = arrays.rate * br.sys.c_bump * arrays.active / (c0 + arrays.rate)
             col[br.n :] = gain[:, None] * mean
             schur[br.rows, :] += (br.force @ col[: br.n]) @ br.T

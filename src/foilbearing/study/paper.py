@@ -284,11 +284,7 @@ def _paper_comparison(
         "# Our numbers beside the paper's\n\n"
         f"Case: {case.title}. Viscosity {case.gas.viscosity:g} Pa·s (assumed: the paper does "
         f"not give it); grid {case.grid.n_theta} × {case.grid.n_z} (θ × half length)"
-        + (
-            f"; the orbits on {case.grid.orbit_shape[0]} × {case.grid.orbit_shape[1]}"
-            if case.grid.orbit_is_own
-            else ""
-        )
+        + (f"; the orbits on {case.grid.orbit_label}" if case.grid.orbit_is_own else "")
         + ".\n\n"
         + table
         + "\n",

@@ -99,9 +99,14 @@ def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
 def _grid_text(grid: dict[str, Any]) -> str:
     """'96 × 12 (θ × half length)', and the orbits' own grid where they have one."""
     text = f"{_f(grid.get('n_theta'), 'd')} × {_f(grid.get('n_z'), 'd')} (θ × half length)"
-    orbit = (grid.get("orbit_n_theta"), grid.get("orbit_n_z"))
-    if None not in orbit and orbit != (grid.get("n_theta"), grid.get("n_z")):
+    order = grid.get("axial_order", 2)
+    if order != 2:
+        text += f", axial order {order}"
+    orbit = (grid.get("orbit_n_theta"), grid.get("orbit_n_z"), grid.get("orbit_axial_order", order))
+    if None not in orbit[:2] and orbit != (grid.get("n_theta"), grid.get("n_z"), order):
         text += f"; the orbits run on {_f(orbit[0], 'd')} × {_f(orbit[1], 'd')}"
+        if orbit[2] != 2:
+            text += f", axial order {orbit[2]}"
     return text
 
 

@@ -27,6 +27,25 @@ IntArray = NDArray[np.int64]
 # ---------------------------------------------------------------------------
 
 
+@njit(cache=True, inline="always")
+def _row_mean(x: FloatArray, i: int, n_z: int, axial: Group, gauge: bool) -> float:
+    """Axial mean of θ-row i of the flat field x (``k = i n_z + j``), or of ``x − 1``.
+
+    Second order: the plain mean; fourth order: the weights ``axial.mean_w``
+    (:class:`~foilbearing.reynolds.grid.AxialStencil`).
+    """
+    acc = 0.0
+    if axial[0] == 2:
+        for j in range(n_z):
+            acc += x[i * n_z + j]
+        return acc / n_z - 1.0 if gauge else acc / n_z
+    mean_w = axial[5]
+    shift = 1.0 if gauge else 0.0
+    for j in range(n_z):
+        acc += mean_w[j] * (x[i * n_z + j] - shift)
+    return acc
+
+
 @njit(cache=True)
 def _film_rows(
     y: FloatArray,
@@ -47,16 +66,13 @@ def _film_rows(
     """
     n_theta = q.shape[0]
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:]
     n = n_theta * n_z
     e_x = y[n + n_theta]
     e_y = y[n + n_theta + 1]
     n_lobe = lobes.shape[0]
     for i in range(n_theta):
-        acc = 0.0
-        for j in range(n_z):
-            acc += y[i * n_z + j]
-        q[i] = acc / n_z - 1.0
+        q[i] = _row_mean(y, i, n_z, axial, True)
     if n_lobe > 0:
         for a in range(n_lobe):
             acc = 0.0
@@ -133,7 +149,7 @@ def transient_residual(
     """
     c0, hist, lam, rate, preload, force = step
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:]
     n_theta, n_z = film.shape
     n = n_theta * n_z
     q = np.empty(n_theta)
@@ -143,7 +159,7 @@ def transient_residual(
         for j in range(n_z):
             film[i, j] = h_row[i]
     P = y[:n].reshape((n_theta, n_z))
-    residual(P, film, lam, d_theta, d_z, res)
+    residual(P, film, lam, d_theta, d_z, axial, res)
     fx = 0.0
     fy = 0.0
     for i in range(n_theta):
@@ -198,7 +214,7 @@ def transient_storage(y: FloatArray, preload: FloatArray, model: Group, out: Flo
     """
     n_theta = preload.shape[0]
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:]
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
     h_min = _film_rows(y, preload, model, q, h_row, np.empty(lobes.shape[0]))
@@ -219,6 +235,7 @@ def lobe_correct(
     lobe_inv: FloatArray,
     lobe_gain: FloatArray,
     lobe_rows: FloatArray,
+    axial: Group,
 ) -> None:
     """Turn ``x = B⁻¹ b`` into ``B'⁻¹ b`` in place, ``B' = B + a_pl L`` (the lobes' border).
 
@@ -236,6 +253,8 @@ def lobe_correct(
         As :class:`~.groups.FactorArrays`.
     lobe_rows : ndarray, shape (n_lobe, n_theta)
         Interpolation at the stingers (:class:`~.groups.FilmConstants`).
+    axial : AxialStencil (as a plain tuple)
+        The axial-mean weights.
     """
     n_lobe = lobe_gain.shape[0]
     if n_lobe == 0:
@@ -245,6 +264,8 @@ def lobe_correct(
     n_z = n // n_theta
     t = np.empty(n_lobe)
     u = np.empty(n_lobe)
+    second = axial[0] == 2
+    mean_w = axial[5]
     for c in range(x.shape[1]):
         for a in range(n_lobe):
             acc = 0.0
@@ -252,10 +273,14 @@ def lobe_correct(
                 wt = lobe_rows[a, i]
                 if wt != 0.0:
                     row = 0.0
-                    for j in range(n_z):
-                        row += x[i * n_z + j, c]
+                    if second:
+                        for j in range(n_z):
+                            row += x[i * n_z + j, c]
+                    else:
+                        for j in range(n_z):
+                            row += mean_w[j] * x[i * n_z + j, c]
                     acc += wt * row
-            t[a] = lobe_gain[a] * acc / n_z
+            t[a] = lobe_gain[a] * acc / n_z if second else lobe_gain[a] * acc
         for a in range(n_lobe):
             acc = 0.0
             for b in range(n_lobe):
@@ -307,7 +332,7 @@ def transient_solve(
     fac, jh_data, a_pe, s_vp, y_border, small_inv, c0, rate, active, lift_state = factor[:10]
     lobe_border, lobe_inv, lobe_gain = factor[10:]
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:]
     diag_slots, jh_rows, jh_indptr = pattern
     n_theta = active.shape[0]
     n = work.shape[0]
@@ -326,7 +351,7 @@ def transient_solve(
             acc += jh_data[s] * g_u[jh_rows[s]]
         work[r, 0] = g[r] - acc - (a_pe[r, 0] * b0 + a_pe[r, 1] * b1)
     block_cyclic_solve(fac, work, work)
-    lobe_correct(work, lobe_border, lobe_inv, lobe_gain, lobe_rows)
+    lobe_correct(work, lobe_border, lobe_inv, lobe_gain, lobe_rows, axial)
     t0 = 0.0
     t1 = 0.0
     for r in range(n):
@@ -346,10 +371,7 @@ def transient_solve(
         out[m + k] = d_e
         out[m + 2 + k] = c0 * d_e - g[m + k]
     for i in range(n_theta):
-        acc = 0.0
-        for j in range(n_z):
-            acc += out[i * n_z + j]
-        dq = active[i] * (acc / n_z)
+        dq = active[i] * _row_mean(out, i, n_z, axial, False)
         out[n + i] = (g[n + i] + rate * c_bump[i] * dq) / cu
 
 
@@ -408,7 +430,7 @@ def transient_jacobian(
     H, jp, jh, active, jc, a_pe, lift_state, a_pl, lobe_gain = blocks
     c0, hist, lam, rate, preload, force = step
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:]
     diag_slots, jh_rows, jh_indptr = pattern
     n_theta, n_z = H.shape
     n = n_theta * n_z
@@ -423,7 +445,7 @@ def transient_jacobian(
         for j in range(n_z):
             H[i, j] = h_row[i]
     P = y[:n].reshape((n_theta, n_z))
-    _jacobian_both(P, H, lam, d_theta, d_z, jp, jh)
+    _jacobian_both(P, H, lam, d_theta, d_z, axial, jp, jh)
     m_scale = -(1.0 / denom)
     for k in range(jp.shape[0]):
         jp[k] = m_scale * jp[k]
@@ -436,7 +458,7 @@ def transient_jacobian(
     clamped = np.zeros(n, dtype=np.bool_)
     if lift_off:
         res = np.empty((n_theta, n_z))
-        residual(P, H, lam, d_theta, d_z, res)
+        residual(P, H, lam, d_theta, d_z, axial, res)
         for k in range(n):
             d = abs(jp[diag_slots[k]])
             if d == 0.0:
@@ -458,13 +480,10 @@ def transient_jacobian(
             lift_state[k] = 0.0
     s = np.empty(n_theta)
     for i in range(n_theta):
-        acc = 0.0
-        for j in range(n_z):
-            acc += y[i * n_z + j]
-        active[i] = 1.0 if acc / n_z - 1.0 > 0.0 else 0.0
+        active[i] = 1.0 if _row_mean(y, i, n_z, axial, True) > 0.0 else 0.0
         c_eff = c_act[i] + rate * c_bump[i] / (c0 + rate)
-        s[i] = c_eff * active[i] / n_z
-    coupled_jacobian(jp, jh, s, n_z, jc)
+        s[i] = c_eff * active[i]
+    coupled_jacobian(jp, jh, s, n_z, axial, jc)
     if n_clamped > 0:
         for k in range(n):
             if clamped[k]:
@@ -513,20 +532,20 @@ def transient_border(
     c0 : float
         BDF leading coefficient, 1/s.
     lobe : tuple
-        ``(lobe_border, lobe_inv, lobe_gain, lobe_rows)`` (:func:`lobe_correct`).
+        ``(lobe_border, lobe_inv, lobe_gain, lobe_rows, axial)`` (:func:`lobe_correct`).
     y_border : ndarray, shape (n, 2)
         Filled with ``B'⁻¹ a_pe / c0²``.
     small_inv : ndarray, shape (2, 2)
         Filled with the inverse of the Woodbury matrix.
     """
-    lobe_border, lobe_inv, lobe_gain, lobe_rows = lobe
+    lobe_border, lobe_inv, lobe_gain, lobe_rows, axial = lobe
     n = a_pe.shape[0]
     c2 = c0**2
     for r in range(n):
         y_border[r, 0] = a_pe[r, 0] / c2
         y_border[r, 1] = a_pe[r, 1] / c2
     block_cyclic_solve(fac, y_border, y_border)
-    lobe_correct(y_border, lobe_border, lobe_inv, lobe_gain, lobe_rows)
+    lobe_correct(y_border, lobe_border, lobe_inv, lobe_gain, lobe_rows, axial)
     m00 = 1.0
     m01 = 0.0
     m10 = 0.0

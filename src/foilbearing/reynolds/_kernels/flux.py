@@ -13,6 +13,8 @@ FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 #: Real or complex data (the complex one for the perturbation at a frequency).
 DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a frequency)
+#: An argument group as a kernel takes it (a plain tuple; here the AxialStencil).
+Group = tuple[Any, ...]
 
 # Below this |x| the Bernoulli function and its derivative use their Taylor
 # series: x/expm1(x) loses digits to cancellation in B'(x) = B(1−B)/x − B.
@@ -68,49 +70,53 @@ def bernoulli_deriv(x: float) -> float:
 # ---------------------------------------------------------------------------
 
 
-def stencil_pattern(n_theta: int, n_z: int) -> tuple[IntArray, IntArray, IntArray]:
-    """CSR pattern of the 5-point stencil, periodic in θ, columns sorted.
+def stencil_pattern(
+    n_theta: int, n_z: int, axial_order: int = 2
+) -> tuple[IntArray, IntArray, IntArray]:
+    """CSR pattern of the film stencil, periodic in θ, columns sorted.
+
+    Order 2: the 5-point stencil; order 4: 7 points, ``(i, j−2 .. j+2)`` axially.
 
     Parameters
     ----------
     n_theta, n_z : int
         Grid size (``n_theta >= 3`` so that W, C, E are distinct; ``n_z >= 2``).
+    axial_order : int
+        2 or 4 (:class:`~foilbearing.reynolds.grid.AxialStencil`).
 
     Returns
     -------
     indptr : ndarray, shape (n_theta*n_z + 1,)
-    indices : ndarray, shape (nnz,), ``nnz = n_theta (5 n_z − 2)``
-    slots : ndarray, shape (n_theta, n_z, 5)
+    indices : ndarray, shape (nnz,), ``nnz = n_theta (5 n_z − 2)`` at order 2
+    slots : ndarray, shape (n_theta, n_z, 5) at order 2, (n_theta, n_z, 7) at order 4
         Position in ``data`` of the entry of row ``(i, j)`` in direction
-        W, S, C, N, E (see module constants), ``-1`` where absent (S on the
-        mid-plane row ``j = 0``, N on the end row ``j = n_z−1``). The kernels
-        compute the same positions in place (:func:`_row_slots`).
+        W, S, C, N, E (see module constants; order 4: W, j−2, j−1, C, j+1, j+2, E),
+        ``-1`` where absent (S on the mid-plane row ``j = 0``, N on the end row
+        ``j = n_z−1``). The order-2 kernels compute the same positions in place
+        (:func:`_row_slots`).
     """
+    reach = 1 if axial_order == 2 else 2
     i = np.repeat(np.arange(n_theta), n_z)
     j = np.tile(np.arange(n_z), n_theta)
     row = i * n_z + j
+    axial = [np.where((j + d >= 0) & (j + d < n_z), row + d, -1) for d in range(-reach, reach + 1)]
     cols = np.stack(
-        [
-            ((i - 1) % n_theta) * n_z + j,
-            np.where(j > 0, row - 1, -1),
-            row,
-            np.where(j < n_z - 1, row + 1, -1),
-            ((i + 1) % n_theta) * n_z + j,
-        ],
+        [((i - 1) % n_theta) * n_z + j, *axial, ((i + 1) % n_theta) * n_z + j],
         axis=1,
     )
+    width = cols.shape[1]
     present = cols >= 0
     big = n_theta * n_z + 1
     key = np.where(present, cols, big)
     order = np.argsort(key, axis=1, kind="stable")
     rank = np.empty_like(order)
-    np.put_along_axis(rank, order, np.arange(5)[None, :].repeat(len(row), 0), axis=1)
+    np.put_along_axis(rank, order, np.arange(width)[None, :].repeat(len(row), 0), axis=1)
     counts = present.sum(axis=1)
     indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     sorted_key = np.take_along_axis(key, order, axis=1)
     indices = sorted_key[sorted_key < big].astype(np.int64)
     slots = np.where(present, indptr[:-1, None] + rank, -1).astype(np.int64)
-    return indptr, indices, slots.reshape(n_theta, n_z, 5)
+    return indptr, indices, slots.reshape(n_theta, n_z, width)
 
 
 def coupled_pattern(n_theta: int, n_z: int) -> tuple[IntArray, IntArray]:
@@ -258,8 +264,35 @@ def _end_face(pa: float, ha: float, dz: float) -> tuple[float, float, float]:
 
 
 @njit(cache=True)
+def _axial_flux4(
+    P: FloatArray, H: FloatArray, i: int, f: int, d_z: float, axial: Group
+) -> tuple[float, float]:
+    """Fourth-order axial flux through face f of θ-row i, and its H-factor ``3 H_f² ψ_f/ΔZ``.
+
+    ``q = H_f³ (Σ_m c_m ψ_m + c)/ΔZ`` with ``ψ = P²`` (:class:`~..grid.AxialStencil`).
+    """
+    cols, coef, const = axial[1], axial[2], axial[3]
+    n_z = P.shape[1]
+    acc = const[f]
+    for m in range(4):
+        c = coef[f, m]
+        if c != 0.0:
+            p = P[i, cols[f, m]]
+            acc += c * p * p
+    hf = H[i, f] if f == n_z - 1 else 0.5 * (H[i, f] + H[i, f + 1])
+    hf2 = hf * hf
+    return hf2 * hf * acc / d_z, 3.0 * hf2 * acc / d_z
+
+
+@njit(cache=True)
 def residual(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, out: FloatArray
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    axial: Group,
+    out: FloatArray,
 ) -> None:
     """Finite-volume residual of Eq. (4), cell-integrated.
 
@@ -273,10 +306,13 @@ def residual(
         Bearing number ``Λ = 6 μ ω R²/(p_a C²)`` (any sign).
     d_theta, d_z : float
         Cell sizes Δθ, ΔZ.
+    axial : AxialStencil (as a plain tuple)
+        The axial discretisation (:attr:`~foilbearing.reynolds.grid.FilmGrid.axial`).
     out : ndarray, shape (n_theta, n_z)
         Filled with ``R[i, j]`` (net outflow of q through the cell faces).
     """
     n_theta, n_z = P.shape
+    second = axial[0] == 2
     out[:, :] = 0.0
     for i in range(n_theta):
         ie = i + 1 if i < n_theta - 1 else 0
@@ -284,11 +320,70 @@ def residual(
             q = _theta_flux(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)
             out[i, j] += d_z * q
             out[ie, j] -= d_z * q
-        for j in range(n_z - 1):
-            q = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)[0]
-            out[i, j] += d_theta * q
-            out[i, j + 1] -= d_theta * q
-        out[i, n_z - 1] += d_theta * _end_face(P[i, n_z - 1], H[i, n_z - 1], d_z)[0]
+        if second:
+            for j in range(n_z - 1):
+                q = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)[0]
+                out[i, j] += d_theta * q
+                out[i, j + 1] -= d_theta * q
+            out[i, n_z - 1] += d_theta * _end_face(P[i, n_z - 1], H[i, n_z - 1], d_z)[0]
+        else:
+            for f in range(n_z):
+                q = _axial_flux4(P, H, i, f, d_z, axial)[0]
+                out[i, f] += d_theta * q
+                if f < n_z - 1:
+                    out[i, f + 1] -= d_theta * q
+
+
+@njit(cache=True, inline="always")
+def _wce(i: int, j: int, n_theta: int, n_z: int, axial: Group) -> tuple[int, int, int]:
+    """Positions (W, C, E) of row (i, j) in the stencil data, at either axial order."""
+    if axial[0] == 2:
+        w, _, c, _, e = _row_slots(i, j, n_theta, n_z)
+        return w, c, e
+    slots = axial[4]
+    return slots[i, j, 0], slots[i, j, 3], slots[i, j, 6]
+
+
+@njit(cache=True)
+def _axial_jacobian4(
+    P: FloatArray,
+    H: FloatArray,
+    i: int,
+    d_theta: float,
+    d_z: float,
+    axial: Group,
+    data_p: FloatArray,
+    data_h: FloatArray,
+    want_p: bool,
+    want_h: bool,
+) -> None:
+    """Add the fourth-order axial fluxes' derivatives of θ-row i (∂R/∂P and/or ∂R/∂H)."""
+    cols, coef, slots = axial[1], axial[2], axial[4]
+    n_z = P.shape[1]
+    for f in range(n_z):
+        _, dqh = _axial_flux4(P, H, i, f, d_z, axial)
+        hf = H[i, f] if f == n_z - 1 else 0.5 * (H[i, f] + H[i, f + 1])
+        h3 = hf * hf * hf / d_z
+        last = f == n_z - 1
+        if want_p:
+            for m in range(4):
+                c = coef[f, m]
+                if c == 0.0:
+                    continue
+                col = cols[f, m]
+                d = d_theta * h3 * 2.0 * c * P[i, col]
+                data_p[slots[i, f, 3 + col - f]] += d
+                if not last:
+                    data_p[slots[i, f + 1, 3 + col - f - 1]] -= d
+        if want_h:
+            if last:
+                data_h[slots[i, f, 3]] += d_theta * dqh
+            else:
+                d = d_theta * 0.5 * dqh
+                data_h[slots[i, f, 3]] += d
+                data_h[slots[i, f, 4]] += d
+                data_h[slots[i, f + 1, 2]] -= d
+                data_h[slots[i, f + 1, 3]] -= d
 
 
 @njit(cache=True)
@@ -298,10 +393,12 @@ def _jacobian(
     lam: float,
     d_theta: float,
     d_z: float,
+    axial: Group,
     data: FloatArray,
     wrt_h: bool,
 ) -> None:
     n_theta, n_z = P.shape
+    second = axial[0] == 2
     data[:] = 0.0
     for i in range(n_theta):
         ie = i + 1 if i < n_theta - 1 else 0
@@ -310,12 +407,15 @@ def _jacobian(
             if wrt_h:
                 dqa = dqh
                 dqb = dqh
-            _, _, ca, _, ea = _row_slots(i, j, n_theta, n_z)
-            wb, _, cb, _, _ = _row_slots(ie, j, n_theta, n_z)
+            _, ca, ea = _wce(i, j, n_theta, n_z, axial)
+            wb, cb, _ = _wce(ie, j, n_theta, n_z, axial)
             data[ca] += d_z * dqa
             data[ea] += d_z * dqb
             data[wb] -= d_z * dqa
             data[cb] -= d_z * dqb
+        if not second:
+            _axial_jacobian4(P, H, i, d_theta, d_z, axial, data, data, not wrt_h, wrt_h)
+            continue
         for j in range(n_z - 1):
             _, dqa, dqb, dqh = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)
             if wrt_h:
@@ -339,19 +439,21 @@ def _jacobian_both(
     lam: float,
     d_theta: float,
     d_z: float,
+    axial: Group,
     data_p: FloatArray,
     data_h: FloatArray,
 ) -> None:
     """:func:`jacobian_P` and :func:`jacobian_H` in one pass over the faces (same values)."""
     n_theta, n_z = P.shape
+    second = axial[0] == 2
     data_p[:] = 0.0
     data_h[:] = 0.0
     for i in range(n_theta):
         ie = i + 1 if i < n_theta - 1 else 0
         for j in range(n_z):
             _, dqa, dqb, dqh = _theta_face(P[i, j], P[ie, j], H[i, j], H[ie, j], lam, d_theta)
-            _, _, ca, _, ea = _row_slots(i, j, n_theta, n_z)
-            wb, _, cb, _, _ = _row_slots(ie, j, n_theta, n_z)
+            _, ca, ea = _wce(i, j, n_theta, n_z, axial)
+            wb, cb, _ = _wce(ie, j, n_theta, n_z, axial)
             data_p[ca] += d_z * dqa
             data_p[ea] += d_z * dqb
             data_p[wb] -= d_z * dqa
@@ -360,6 +462,9 @@ def _jacobian_both(
             data_h[ea] += d_z * dqh
             data_h[wb] -= d_z * dqh
             data_h[cb] -= d_z * dqh
+        if not second:
+            _axial_jacobian4(P, H, i, d_theta, d_z, axial, data_p, data_h, True, True)
+            continue
         for j in range(n_z - 1):
             _, dqa, dqb, dqh = _z_face(P[i, j], P[i, j + 1], H[i, j], H[i, j + 1], d_z)
             _, _, ca, na, _ = _row_slots(i, j, n_theta, n_z)
@@ -380,7 +485,13 @@ def _jacobian_both(
 
 @njit(cache=True)
 def jacobian_P(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    axial: Group,
+    data: FloatArray,
 ) -> None:
     """Fill ``data`` of the CSR ``dR/dP`` (pattern :func:`stencil_pattern`).
 
@@ -388,31 +499,43 @@ def jacobian_P(
     Twin: :func:`~foilbearing.reynolds.reference.jacobian_P_py`. Arguments as :func:`residual`;
     ``data`` has shape ``(nnz,)`` and is overwritten.
     """
-    _jacobian(P, H, lam, d_theta, d_z, data, False)
+    _jacobian(P, H, lam, d_theta, d_z, axial, data, False)
 
 
 @njit(cache=True)
 def jacobian_H(
-    P: FloatArray, H: FloatArray, lam: float, d_theta: float, d_z: float, data: FloatArray
+    P: FloatArray,
+    H: FloatArray,
+    lam: float,
+    d_theta: float,
+    d_z: float,
+    axial: Group,
+    data: FloatArray,
 ) -> None:
     """Fill ``data`` of the CSR ``dR/dH`` (pattern :func:`stencil_pattern`).
 
     Twin: :func:`~foilbearing.reynolds.reference.jacobian_H_py`. Arguments as :func:`jacobian_P`.
     """
-    _jacobian(P, H, lam, d_theta, d_z, data, True)
+    _jacobian(P, H, lam, d_theta, d_z, axial, data, True)
 
 
 @njit(cache=True)
 def coupled_jacobian(
-    jp_data: DataArray, jh_data: DataArray, s: DataArray, n_z: int, out: DataArray
+    jp_data: DataArray,
+    jh_data: DataArray,
+    s: DataArray,
+    n_z: int,
+    axial: Group,
+    out: DataArray,
 ) -> None:
     """Assemble ``dR/dP + dR/dH · dH/dP`` on the pattern of :func:`coupled_pattern`.
 
     The foil couples ``H[i, :]`` to the axial mean of ``P[i, :]``:
-    ``dH[i, j]/dP[i, k] = s[i]`` for every ``j, k``, with
-    ``s[i] = c_i/n_z`` where ``p̄_i > 0`` and ``0`` elsewhere. Row ``(i, j)``
-    of the product is therefore constant over ``k`` in each column block
-    ``i' ∈ {i−1, i, i+1}``: ``s[i'] · Σ_{j'} dR[i, j]/dH[i', j']``.
+    ``dH[i, j]/dP[i, k] = s[i] w_k`` for every ``j, k``, with ``s[i] = c_i`` (the
+    row's compliance) where ``p̄_i > 0`` and ``0`` elsewhere, and ``w_k`` the
+    axial-mean weights (``1/n_z`` at second order, :attr:`AxialStencil.mean_w` at
+    fourth). Row ``(i, j)`` of the product in column block ``i' ∈ {i−1, i, i+1}`` is
+    ``s[i'] w_k · Σ_{j'} dR[i, j]/dH[i', j']``.
     Twin: :func:`~foilbearing.reynolds.reference.coupled_jacobian_py`.
 
     Parameters
@@ -421,10 +544,14 @@ def coupled_jacobian(
         Data of ``dR/dP`` and ``dR/dH`` on :func:`stencil_pattern`.
     s : ndarray, shape (n_theta,)
     n_z : int
+    axial : AxialStencil (as a plain tuple)
     out : ndarray, shape (3 n_z · n_theta n_z,)
     """
     n_theta = s.shape[0]
     width = 3 * n_z
+    second = axial[0] == 2
+    slots = axial[4]
+    mean_w = axial[5]
     for i in range(n_theta):
         iw = i - 1 if i > 0 else n_theta - 1
         ie = i + 1 if i < n_theta - 1 else 0
@@ -436,27 +563,50 @@ def coupled_jacobian(
         else:
             rw, rc, re = 0, 1, 2
         for j in range(n_z):
-            w, so, c, no, e = _row_slots(i, j, n_theta, n_z)
             base = (i * n_z + j) * width
-            hc = jh_data[c]
-            if so >= 0:
-                hc += jh_data[so]
-            if no >= 0:
-                hc += jh_data[no]
+            if second:
+                w, so, c, no, e = _row_slots(i, j, n_theta, n_z)
+                hc = jh_data[c]
+                if so >= 0:
+                    hc += jh_data[so]
+                if no >= 0:
+                    hc += jh_data[no]
+                vw = s[iw] / n_z * jh_data[w]
+                vc = s[i] / n_z * hc
+                ve = s[ie] / n_z * jh_data[e]
+                for k in range(n_z):
+                    out[base + rw * n_z + k] = vw
+                    out[base + rc * n_z + k] = vc
+                    out[base + re * n_z + k] = ve
+                out[base + rw * n_z + j] += jp_data[w]
+                out[base + re * n_z + j] += jp_data[e]
+                out[base + rc * n_z + j] += jp_data[c]
+                if so >= 0:
+                    out[base + rc * n_z + j - 1] += jp_data[so]
+                if no >= 0:
+                    out[base + rc * n_z + j + 1] += jp_data[no]
+                continue
+            w = slots[i, j, 0]
+            e = slots[i, j, 6]
+            hc = jh_data[slots[i, j, 3]]
+            for d in (1, 2, 4, 5):
+                sl = slots[i, j, d]
+                if sl >= 0:
+                    hc += jh_data[sl]
             vw = s[iw] * jh_data[w]
             vc = s[i] * hc
             ve = s[ie] * jh_data[e]
             for k in range(n_z):
-                out[base + rw * n_z + k] = vw
-                out[base + rc * n_z + k] = vc
-                out[base + re * n_z + k] = ve
+                wk = mean_w[k]
+                out[base + rw * n_z + k] = vw * wk
+                out[base + rc * n_z + k] = vc * wk
+                out[base + re * n_z + k] = ve * wk
             out[base + rw * n_z + j] += jp_data[w]
             out[base + re * n_z + j] += jp_data[e]
-            out[base + rc * n_z + j] += jp_data[c]
-            if so >= 0:
-                out[base + rc * n_z + j - 1] += jp_data[so]
-            if no >= 0:
-                out[base + rc * n_z + j + 1] += jp_data[no]
+            for d in range(1, 6):
+                sl = slots[i, j, d]
+                if sl >= 0:
+                    out[base + rc * n_z + j + d - 3] += jp_data[sl]
 
 
 @njit(cache=True, inline="always")

@@ -76,6 +76,9 @@ class FilmConstants(NamedTuple):
     c_stack : float
         The stack's compliance ``p_a/(C (k_p + 4k_sp))``: the compression
         ``D_n = c_stack max(lobe_rows_n @ (p̄ − 1), 0)`` in units of C (0 without lobes).
+    axial : AxialStencil (as a plain tuple)
+        The axial discretisation and its mean weights
+        (:attr:`foilbearing.reynolds.grid.FilmGrid.axial`).
     """
 
     cos_t: FloatArray
@@ -91,6 +94,7 @@ class FilmConstants(NamedTuple):
     lobes: FloatArray
     lobe_rows: FloatArray
     c_stack: float
+    axial: Group
 
 
 class StencilPattern(NamedTuple):
