@@ -13,8 +13,10 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   against a finer run (BDF3, 48 steps per revolution, tight Newton): sub-synchronous
   onset, whip frequency and divergence speed, with the case's disturbance (two runs at a
   time, about 6 minutes).
-- ``--full [--repeats N]``: the paper's full 18.2 s speed-up end to end, on the shimmed GFB at
-  150 V, the default case's bearing that reaches 90 krpm (about 6-15 min a run).
+- ``--full [--repeats N] [--on G]``: the paper's full 18.2 s speed-up end to end, on the shimmed
+  GFB at 150 V, the default case's bearing that reaches 90 krpm (about 5-15 min a run);
+  ``--on 96x4o4``: on that orbit grid (as ``--orbit-grid``); ``--refresh-after T``: with
+  ``OrbitSettings.refresh_after = T``.
 - ``--grid``: the grid the orbit needs: cost per step of the full speed-up's orbit (shimmed GFB,
   150 V, 8.5 g·mm, 0.1 s at 50 krpm) and the linear onset at 0 and 150 V, against the axial
   cell count n_z at n_theta = 96, and against n_theta at n_z = 12 (about 1 minute).
@@ -476,22 +478,41 @@ class StepClock:
         )
 
 
-def full_run(repeats: int = 1) -> None:
+def full_run(
+    repeats: int = 1, grid: OrbitGrid | None = None, refresh_after: int | None = None
+) -> None:
     """The paper's speed-up (3 to 90 krpm at 500 rad/s², 18.2 s) end to end.
 
     None of the C-GFB runs of the default case reaches 90 krpm (see the
     report); its shimmed twin at 150 V does (linear onset 90.5 krpm), with the
     paper's 8.5 g·mm imbalance, under lift-off, on the default grid and
     settings. On a shared 2-core machine the same run varies by ±20 %: with
-    ``--repeats N`` the best, the median and the worst are printed.
+    ``--repeats N`` the best, the median and the worst are printed. ``grid``: the orbit's
+    own grid (``--on 96x4o4``: ``[grid] orbit_n_theta``, ``orbit_n_z``, ``orbit_axial_order``);
+    ``refresh_after``: :attr:`OrbitSettings.refresh_after` (``--refresh-after T``).
     """
+    from foilbearing.case import Grid
+    from foilbearing.orbit.analysis import analyse_orbit
+
     case = default_case().with_voltages(150.0).shimmed()
+    if grid is not None:
+        n_theta, n_z, order = grid
+        g = case.grid
+        case = replace(
+            case,
+            grid=Grid(g.n_theta, g.n_z, n_theta, n_z, orbit_axial_order=order),
+        )
     prof = linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0)
     runs = []
     clock = StepClock()
     for k in range(repeats):
         cpu = time.process_time()
-        res = simulate(case, prof, progress=clock if k == 0 else False)
+        res = simulate(
+            case,
+            prof,
+            progress=clock if k == 0 else False,
+            settings=OrbitSettings(refresh_after=refresh_after),
+        )
         runs.append((res.wall_time, time.process_time() - cpu, res))
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     res = runs[0][2]
@@ -499,7 +520,14 @@ def full_run(repeats: int = 1) -> None:
     s = res.settings
     print(
         f"speed-up 3-90 krpm, shimmed GFB at 150 V, 8.5 g·mm, BDF{s.order} at "
-        f"{s.steps_per_rev} steps/rev: {res.message}; peak memory {peak:.0f} MB"
+        f"{s.steps_per_rev} steps/rev, orbit grid {case.grid.orbit_label}: {res.message}; "
+        f"peak memory {peak:.0f} MB"
+    )
+    head = analyse_orbit(res).headline(res)
+    print(
+        f"  readouts: onset {_krpm(head['onset_speed_rpm'])}, whip "
+        f"{_num(head['whip_frequency_Hz'], 'Hz')}, divergence "
+        f"{_krpm(head['divergence_speed_rpm'])}, end {res.speed[-1] / RPM / 1e3:.2f} krpm"
     )
     print(
         f"  wall {', '.join(f'{w:.1f}' for w in walls)} s over {repeats} run(s) (CPU "
@@ -755,4 +783,10 @@ if __name__ == "__main__":
         readouts()
     if "--full" in sys.argv:
         n = int(sys.argv[sys.argv.index("--repeats") + 1]) if "--repeats" in sys.argv else 1
-        full_run(n)
+        on = _orbit_grid(sys.argv[sys.argv.index("--on") + 1]) if "--on" in sys.argv else None
+        refresh = (
+            int(sys.argv[sys.argv.index("--refresh-after") + 1])
+            if "--refresh-after" in sys.argv
+            else None
+        )
+        full_run(n, on, refresh)
