@@ -237,7 +237,7 @@ def _with_lobes(model: FilmModel, P: FloatArray, dp: NDArray) -> NDArray:
     """
     g = model.grid
     assert model.actuator_rows is not None
-    rows = np.repeat(model.actuator_rows, g.n_z, axis=1) / g.n_z
+    rows = g.mean_rows(model.actuator_rows)
     loaded = rows @ (np.ravel(P) - 1.0) > 0.0
     M = model.stack_compliance * loaded[:, None] * rows
     x_e, x_d = dp[:, :2], dp[:, 2:]

@@ -257,5 +257,10 @@ def drag_torque(case: Case, g: FilmGrid, P: FloatArray, H: FloatArray, omega: fl
     mu, pa = case.gas.viscosity, case.gas.ambient_pressure
     r, c = case.bearing.radius, case.bearing.clearance
     dp = (np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)) / (2.0 * g.d_theta)
-    integrand = mu * omega * r / (c * H) + c * H * pa / (2.0 * r) * dp
-    return float(2.0 * r**3 * integrand.sum() * g.d_theta * g.d_z)
+    couette = mu * omega * r / (c * H)
+    poiseuille = c * H * pa / (2.0 * r) * dp
+    if g.axial_order == 2:
+        return float(2.0 * r**3 * (couette + poiseuille).sum() * g.d_theta * g.d_z)
+    # Fourth order: ∂P/∂θ vanishes on the end face, where the axial-mean weights apply.
+    axial = couette.sum() * g.d_z + g.half_length * float(np.sum(poiseuille @ g.axial.mean_w))
+    return float(2.0 * r**3 * axial * g.d_theta)

@@ -447,7 +447,7 @@ class _Equilibrium:
         if self.n_stack:
             assert model.lobe_shapes is not None and model.actuator_rows is not None
             self.lobe_cells = np.repeat(model.lobe_shapes, g.n_z, axis=1).T  # (n, n_stack)
-            self.q_rows = np.repeat(model.actuator_rows, g.n_z, axis=1) / g.n_z  # q_n = · (P − 1)
+            self.q_rows = g.mean_rows(model.actuator_rows)  # q_n = q_rows @ (P − 1)
 
     def _evaluate(
         self, P: FloatArray, eps: FloatArray, D: FloatArray, load: float

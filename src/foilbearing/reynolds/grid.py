@@ -254,6 +254,14 @@ class FilmGrid:
             return g.mean(axis=1) - 1.0
         return np.tensordot(g - 1.0, self.axial.mean_w, axes=([1], [0]))
 
+    def mean_rows(self, rows: FloatArray) -> FloatArray:
+        """``rows`` (k, n_theta) of θ-row weights spread over the cells: the (k, n) matrix
+        that maps ``P − 1`` (flat, ``k = i n_z + j``) to ``rows @ gauge_mean(P)``."""
+        spread = np.repeat(np.asarray(rows, dtype=np.float64), self.n_z, axis=1)
+        if self.axial_order == 2:
+            return spread / self.n_z
+        return spread * np.tile(self.axial.mean_w, self.n_theta)
+
     def axial_mean(self, field: FloatArray) -> FloatArray:
         """Axial mean ``(1/L)∫ G dz`` of a field that vanishes on the end face.
 

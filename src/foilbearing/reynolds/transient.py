@@ -164,11 +164,7 @@ class TransientSystem:
         self.n_lobe = self.lobes.shape[0]
         self.c_stack = float(stack_compliance) if self.n_lobe else 0.0
         # ∂D_n/∂P per unit gain: the interpolation at the stinger of the θ-rows' mean, (n_lobe, n)
-        rows = np.repeat(self.lobe_rows, grid.n_z, axis=1)
-        if grid.axial_order == 2:
-            self.lobe_mean = rows / grid.n_z
-        else:
-            self.lobe_mean = rows * np.tile(grid.axial.mean_w, self.nt)
+        self.lobe_mean = grid.mean_rows(self.lobe_rows)
         self.ws = Workspace(grid)
         self.expand = sp.kron(sp.eye(self.nt), np.ones((grid.n_z, 1)), format="csr")
         self.mean = sp.kron(sp.eye(self.nt), grid.axial.mean_w[None, :], format="csr")
