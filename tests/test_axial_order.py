@@ -1,8 +1,8 @@
 """The fourth-order axial discretisation (``[grid] axial_order = 4``, issue 30 route 2).
 
 Measured convergence rates (suction retained, where the film is smooth in Z), the
-quadrature of the axial means, the orbit against its linear partner on a fourth-order
-grid, and the case fields. The kernels themselves are checked against their twins and
+quadrature of the axial means, the actuator readings and the case fields. The orbit's free
+whirl against its linear eigenvalue on a fourth-order grid is in tests/test_orbit.py. The kernels themselves are checked against their twins and
 finite differences at both orders in tests/test_kernels.py and
 tests/test_transient_kernels.py.
 """
@@ -15,13 +15,10 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from scipy.signal import find_peaks
 
 from foilbearing.case import Grid, default_case, default_case_path
 from foilbearing.case.toml import case_from_dict
-from foilbearing.control import constant_speed
 from foilbearing.errors import InputError
-from foilbearing.orbit import OrbitSettings, OrbitSimulation
 from foilbearing.reynolds.grid import FilmGrid
 from foilbearing.stability import whirl_mode
 from foilbearing.static import solve_equilibrium
@@ -73,40 +70,6 @@ def test_order_2_grid_is_the_default_and_order_4_needs_3_cells() -> None:
         FilmGrid(16, 2, 0.5, axial_order=4)
     with pytest.raises(ValueError, match="axial_order must be 2 or 4"):
         FilmGrid(16, 6, 0.5, axial_order=3)
-
-
-@pytest.mark.slow
-def test_free_whirl_on_a_fourth_order_grid_matches_its_linear_eigenvalue() -> None:
-    """One discretisation for every analysis at order 4 too: the small free motion of the
-    orbit on 32 × 4 at order 4 whirls and decays as the linear analysis on that grid says
-    (lift-off, 150 V, 15 krpm)."""
-    case = default_case().with_voltages(150.0)
-    case = replace(
-        case,
-        grid=Grid(n_theta=32, n_z=4, axial_order=4),
-        disturbance=None,
-        rotor=replace(case.rotor, imbalance=0.0),
-    )
-    speed = 15e3 * RPM
-    mode = whirl_mode(solve_equilibrium(case, speed=speed), case.rotor.mass)
-    sim = OrbitSimulation(
-        case, constant_speed(speed, 0.12), settings=OrbitSettings(steps_per_rev=32)
-    )
-    from foilbearing.orbit.sampling import Samples
-    from foilbearing.orbit.stepper import State, run
-
-    y0 = sim.initial_state()
-    y0[sim.system.n + sim.system.nt] += 0.002  # a kick of 0.002 C in X
-    s = sim.settings
-    res = run(
-        sim.problem(), State(0.0, y0), Samples(1e-4), s.step_rule, s.newton_rule, s.stop_rule()
-    )
-    x = res.e_x - res.e_x[-200:].mean()
-    peaks, _ = find_peaks(x, distance=20)
-    freq = 1.0 / np.median(np.diff(res.time[peaks]))
-    dec = np.median(np.log(x[peaks][:-1] / x[peaks][1:]))
-    assert freq == pytest.approx(mode.whirl_frequency / (2 * math.pi), rel=0.03)
-    assert dec == pytest.approx(mode.log_decrement, rel=0.15, abs=0.02)
 
 
 def test_axial_order_fields_in_the_case_file_with_one_line_errors() -> None:

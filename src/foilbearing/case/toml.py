@@ -156,13 +156,13 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
                 else None
             ),
         )
-        for order, n_z_key in (
-            (grid.axial_order, "n_z"),
-            (grid.orbit_order, "orbit_n_z" if grid.orbit_n_z is not None else "n_z"),
+        orbit_key = "orbit_n_z" if grid.orbit_n_z is not None else "n_z"
+        for order, key, n_z in (
+            (grid.axial_order, "n_z", grid.n_z),
+            (grid.orbit_order, orbit_key, grid.orbit_shape[1]),
         ):
-            n_z = grid.n_z if n_z_key == "n_z" else grid.orbit_shape[1]
             if order == 4 and n_z < 3:
-                raise grid_t.error(n_z_key, n_z, "at least 3 at axial order 4 (the end's cubic)")
+                raise grid_t.error(key, n_z, "at least 3 at axial order 4 (the end's cubic)")
         grid_t.done()
     disturbance = _read_disturbance(root.table("disturbance")) if "disturbance" in data else None
     study = root.raw("study", default=None)

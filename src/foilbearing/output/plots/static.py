@@ -129,7 +129,7 @@ def plot_point(result: Any) -> Figure:
     fig = Figure(figsize=(8, 6), layout="constrained")
     ax_p, ax_h = fig.subplots(2, 1, sharex=True)
     ax_p.plot(theta, result.P[:, 0] * pa / 1e3, label="next to the mid-plane")
-    ax_p.plot(theta, (result.P.mean(axis=1) - 1.0) * pa / 1e3 + pa / 1e3, "--", label="axial mean")
+    ax_p.plot(theta, (g.gauge_mean(result.P) + 1.0) * pa / 1e3, "--", label="axial mean")
     ax_p.set_ylabel("p (kPa, absolute)")
     ax_p.legend(fontsize=8)
     ax_h.plot(theta, result.H[:, 0] * c * 1e6, label="film h")
