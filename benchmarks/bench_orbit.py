@@ -157,7 +157,7 @@ def readouts() -> None:
                     print(f"    {key}: default {100 * (a - b) / b:+.2f} % from converged")
 
 
-OrbitGrid = tuple[int, int, int]  # n_theta, n_z, axial order
+OrbitGrid = tuple[int, int, int, float]  # n_theta, n_z, axial order, lift-off smoothing κ
 
 
 def _grid_readout_run(job: tuple[int, OrbitGrid]) -> tuple[tuple[int, OrbitGrid], dict]:
@@ -165,7 +165,7 @@ def _grid_readout_run(job: tuple[int, OrbitGrid]) -> tuple[tuple[int, OrbitGrid]
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.signals import subsynchronous_amplitude
 
-    k, (n_theta, n_z, order) = job
+    k, (n_theta, n_z, order, kappa) = job
     _label, imbalance, ramp = READOUT_RUNS[k]
     base = default_case()
     grid = Grid(
@@ -174,6 +174,7 @@ def _grid_readout_run(job: tuple[int, OrbitGrid]) -> tuple[tuple[int, OrbitGrid]
         orbit_n_theta=n_theta,
         orbit_n_z=n_z,
         orbit_axial_order=order,
+        lift_off_smoothing=kappa,
     )
     case = replace(base, rotor=replace(base.rotor, imbalance=imbalance), grid=grid)
     program = None if ramp is None else voltage_ramp(*ramp)
@@ -192,10 +193,12 @@ def _grid_readout_run(job: tuple[int, OrbitGrid]) -> tuple[tuple[int, OrbitGrid]
 
 
 def _orbit_grid(text: str) -> OrbitGrid:
-    """``"96x6"`` or ``"96x4o4"`` (axial order 4) as (n_theta, n_z, order)."""
+    """``"96x6"``, ``"96x4o4"`` (axial order 4) or ``"96x4o4k0.1"`` (and a smoothed
+    lift-off edge, ``[grid] lift_off_smoothing = 0.1``) as (n_theta, n_z, order, κ)."""
+    text, _, kappa = text.partition("k")
     shape, _, order = text.partition("o")
     n_theta, n_z = (int(x) for x in shape.split("x"))
-    return n_theta, n_z, int(order or 2)
+    return n_theta, n_z, int(order or 2), float(kappa or 0.0)
 
 
 def orbit_grid_readouts(grids: list[OrbitGrid]) -> None:
@@ -203,7 +206,7 @@ def orbit_grid_readouts(grids: list[OrbitGrid]) -> None:
     from concurrent.futures import ProcessPoolExecutor
 
     base = default_case().grid
-    ref = (base.n_theta, base.n_z, base.axial_order)
+    ref = (base.n_theta, base.n_z, base.axial_order, base.lift_off_smoothing)
     print(
         f"orbit grid: the paper's speed-ups (3-90 krpm, 500 rad/s², default settings) on each "
         f"orbit grid against {ref[0]} x {ref[1]}; two runs at a time"
@@ -236,6 +239,7 @@ def orbit_grid_readouts(grids: list[OrbitGrid]) -> None:
                 else:
                     parts.append(f"{name} {a:.4g} ({100 * (a - b) / b:+.2f} %)")
             label = f"{g[0]:3d} x {g[1]:2d}" + ("" if g[2] == 2 else f", order {g[2]}")
+            label += "" if g[3] == 0.0 else f", κ = {g[3]:g}"
             print(f"    {label} ({head['wall']:.0f} s): " + ", ".join(parts))
 
 
@@ -496,11 +500,13 @@ def full_run(
 
     case = default_case().with_voltages(150.0).shimmed()
     if grid is not None:
-        n_theta, n_z, order = grid
+        n_theta, n_z, order, kappa = grid
         g = case.grid
         case = replace(
             case,
-            grid=Grid(g.n_theta, g.n_z, n_theta, n_z, orbit_axial_order=order),
+            grid=Grid(
+                g.n_theta, g.n_z, n_theta, n_z, orbit_axial_order=order, lift_off_smoothing=kappa
+            ),
         )
     prof = linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0)
     runs = []

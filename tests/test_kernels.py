@@ -182,17 +182,16 @@ def test_coupled_jacobian_kernel_equals_sparse_product(order: int) -> None:
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
 
 
-@pytest.mark.parametrize("coupled", [True, False])
-def test_lift_off_rows_kernel_equals_twin(coupled: bool) -> None:
-    # Cells with P near and below ambient and residuals of both signs: some held, some
-    # free; the held rows become −d e_k with residual −d (P − 1), their film rows zero.
-    rng = np.random.default_rng(11)
-    P, H = _fields(6)
-    P = 1.0 + 0.05 * rng.standard_normal(P.shape)
+def _lift_off_rows_both(seed: int, fields: int, above: bool, coupled: bool, law: tuple) -> tuple:
+    """Pressures near ambient (all above it if ``above``), their residual and Jacobians, and
+    the lift-off rows of the compiled kernel and of its twin (``law``: (δ, d_ref) or ())."""
+    rng = np.random.default_rng(seed)
+    P, H = _fields(fields)
+    noise = rng.standard_normal(P.shape)
+    P = 1.0 + 0.05 * (np.abs(noise) if above else noise)
     indptr, _, slots = kern.stencil_pattern(N_THETA, N_Z)
     diag = slots[:, :, 2].ravel()
-    nnz = indptr[-1]
-    jp, jh = np.empty(nnz), np.empty(nnz)
+    jp, jh = np.empty(indptr[-1]), np.empty(indptr[-1])
     kern.jacobian_P(P, H, 1.5, D_THETA, D_Z, _axial(2), jp)
     kern.jacobian_H(P, H, 1.5, D_THETA, D_Z, _axial(2), jh)
     res = _residual(P, H, 1.5).reshape(P.shape)
@@ -201,8 +200,16 @@ def test_lift_off_rows_kernel_equals_twin(coupled: bool) -> None:
     for kernel in (kern.lift_off_rows, reference.lift_off_rows_py):
         args = [P, res.copy(), jp.copy(), jh.copy(), jc.copy(), diag, indptr, coupled]
         held = np.zeros(P.size, dtype=bool)
-        count = kernel(*args, held)
+        count = kernel(*args, held, *law)
         outs.append((count, held, *args[1:5]))
+    return P, H, jp, jc, diag, indptr, outs
+
+
+@pytest.mark.parametrize("coupled", [True, False])
+def test_lift_off_rows_kernel_equals_twin(coupled: bool) -> None:
+    # Cells with P near and below ambient and residuals of both signs: some held, some
+    # free; the held rows become −d e_k with residual −d (P − 1), their film rows zero.
+    P, _H, jp, _jc, diag, indptr, outs = _lift_off_rows_both(11, 6, False, coupled, ())
     (n_a, held_a, *arrays_a), (n_b, held_b, *arrays_b) = outs
     assert n_a == n_b == held_a.sum() and 0 < n_a < P.size
     np.testing.assert_array_equal(held_a, held_b)
@@ -218,3 +225,36 @@ def test_lift_off_rows_kernel_equals_twin(coupled: bool) -> None:
         )
     ).toarray()
     np.testing.assert_array_equal(matrix[held_a], -np.diag(d)[held_a])
+
+
+@pytest.mark.parametrize("coupled", [True, False])
+def test_smoothed_lift_off_rows_equal_twin_and_are_the_derivative(coupled: bool) -> None:
+    # The smoothed law G = −(d_ref/2)(x + y − √((x − y)² + 4δ²)), x = P − 1, y = −R/d_ref:
+    # compiled rows against the twin, and (on the stencil pattern) the rows against central
+    # differences of G(P) itself, so the Newton matrix is the derivative of what it solves.
+    delta, d_ref = 0.01, 2.0 * D_Z / D_THETA
+    P, H, _jp, jc, diag, indptr, outs = _lift_off_rows_both(12, 7, True, coupled, (delta, d_ref))
+    indices = kern.stencil_pattern(N_THETA, N_Z)[1]
+    (n_a, held_a, *arrays_a), (n_b, held_b, *arrays_b) = outs
+    assert n_a == n_b and 0 < n_a < P.size  # both branches are near
+    np.testing.assert_array_equal(held_a, held_b)
+    for a, b in zip(arrays_a, arrays_b, strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-13 * max(1.0, np.abs(b).max()))
+    if coupled:
+        return
+
+    def smoothed(p: np.ndarray) -> np.ndarray:
+        r = _residual(p.reshape(P.shape), H, 1.5).reshape(P.shape)
+        held = np.zeros(P.size, dtype=bool)
+        scratch = np.empty(indptr[-1])
+        kern.lift_off_rows(p.reshape(P.shape), r, scratch, scratch.copy(), jc.copy(), diag,
+                           indptr, False, held, delta, d_ref)  # fmt: skip
+        return r.ravel()
+
+    fd = np.empty((P.size, P.size))
+    for k in range(P.size):
+        e = np.zeros(P.size)
+        e[k] = 1e-6
+        fd[:, k] = (smoothed(P.ravel() + e) - smoothed(P.ravel() - e)) / 2e-6
+    matrix = sp.csr_matrix((arrays_a[1], indices, indptr), shape=(P.size,) * 2).toarray()
+    np.testing.assert_allclose(matrix, fd, rtol=0, atol=1e-6 * np.abs(fd).max())

@@ -183,6 +183,7 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         n_z=n_z or case.grid.n_z,
         half_length=case.bearing.length / (2.0 * case.bearing.radius),
         axial_order=case.grid.axial_order,
+        lift_off_smoothing=case.grid.lift_off_smoothing,
     )
     theta = grid.theta
     c = case.bearing.clearance

@@ -25,6 +25,7 @@ from foilbearing.structure import (
 
 __all__ = [
     "ACTUATOR_DYNAMICS",
+    "MAX_LIFT_OFF_SMOOTHING",
     "MAX_SPEED_DEFAULT",
     "PRELOAD_RESPONSES",
     "SUBAMBIENT_MODELS",
@@ -47,6 +48,10 @@ __all__ = [
 
 #: Default top of the speeds an analysis may be asked for, rad/s (150 000 rpm, the top
 #: of the default onset scan); a case sets its own with ``[operation] max_speed``.
+#: Largest smoothing κ of the lifted-off edge a case may ask for: δ = κΔθ² is a pressure
+#: (p/p_a), and above about 0.3 it moves the onset by more than the grid's own error on
+#: 96 θ cells (docs/lift-off.md, "The smoothed edge").
+MAX_LIFT_OFF_SMOOTHING = 1.0
 MAX_SPEED_DEFAULT = 150_000 * RPM
 
 
@@ -249,7 +254,9 @@ class Grid:
     linear analysis on that grid is its by-construction partner (:meth:`Case.orbit_case`).
     ``axial_order`` (2 or 4) is the order of the axial discretisation
     (:class:`foilbearing.reynolds.grid.FilmGrid`); ``orbit_axial_order`` the orbit's
-    (None: the same).
+    (None: the same). ``lift_off_smoothing`` (κ >= 0) smooths the lifted-off edge of the
+    film on a length tied to the cell, the same law in every analysis (0: the sharp
+    complementarity; :class:`foilbearing.reynolds.grid.FilmGrid`).
     """
 
     n_theta: int = 96
@@ -258,6 +265,7 @@ class Grid:
     orbit_n_z: int | None = None
     axial_order: int = 2
     orbit_axial_order: int | None = None
+    lift_off_smoothing: float = 0.0
 
     @property
     def orbit_shape(self) -> tuple[int, int]:
@@ -278,8 +286,10 @@ class Grid:
     def orbit_label(self) -> str:
         """The orbit's grid in words, e.g. ``"96 × 4 (axial order 4)"``."""
         n_theta, n_z = self.orbit_shape
-        order = "" if self.orbit_order == 2 else f" (axial order {self.orbit_order})"
-        return f"{n_theta} × {n_z}{order}"
+        notes = [f"axial order {self.orbit_order}"] if self.orbit_order != 2 else []
+        if self.lift_off_smoothing:
+            notes.append(f"lift-off smoothing {self.lift_off_smoothing:g}")
+        return f"{n_theta} × {n_z}" + (f" ({', '.join(notes)})" if notes else "")
 
 
 @dataclass(frozen=True)
@@ -453,7 +463,12 @@ class Case:
             )
         if not g.orbit_is_own:
             return self
-        return replace(self, grid=Grid(n_theta, n_z, axial_order=g.orbit_order))
+        return replace(
+            self,
+            grid=Grid(
+                n_theta, n_z, axial_order=g.orbit_order, lift_off_smoothing=g.lift_off_smoothing
+            ),
+        )
 
     def with_speed(self, speed: float) -> Case:
         """The same case at another rotor speed (rad/s, > 0)."""

@@ -23,6 +23,7 @@ import numpy as np
 
 from foilbearing.case.model import (
     ACTUATOR_DYNAMICS,
+    MAX_LIFT_OFF_SMOOTHING,
     MAX_SPEED_DEFAULT,
     PRELOAD_RESPONSES,
     SUBAMBIENT_MODELS,
@@ -154,6 +155,9 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
                 _axial_order(grid_t, "orbit_axial_order", 2)
                 if "orbit_axial_order" in grid_t.data
                 else None
+            ),
+            lift_off_smoothing=grid_t.number(
+                "lift_off_smoothing", 0.0, MAX_LIFT_OFF_SMOOTHING, default=0.0
             ),
         )
         orbit_key = "orbit_n_z" if grid.orbit_n_z is not None else "n_z"

@@ -65,6 +65,7 @@ class OrbitAnalysis:
             "steps": result.steps,
             "grid": [result.case.grid.n_theta, result.case.grid.n_z],
             "grid_axial_order": result.case.grid.axial_order,
+            "grid_lift_off_smoothing": result.case.grid.lift_off_smoothing,
             "actuator_reading": (None if act is None else f"{act.preload_response}+{act.dynamics}"),
         }
 

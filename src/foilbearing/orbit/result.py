@@ -162,6 +162,7 @@ class OrbitResult:
             grid_n_theta=self.case.grid.n_theta,
             grid_n_z=self.case.grid.n_z,
             grid_axial_order=self.case.grid.axial_order,
+            grid_lift_off_smoothing=self.case.grid.lift_off_smoothing,
         )
         d = self.case.disturbance
         if d is not None:

@@ -49,6 +49,7 @@ def case_summary(case: Case) -> dict[str, Any]:
             "orbit_n_z": case.grid.orbit_shape[1],
             "axial_order": case.grid.axial_order,
             "orbit_axial_order": case.grid.orbit_order,
+            "lift_off_smoothing": case.grid.lift_off_smoothing,
         },
         "bearing_type": BEARING_TYPES[case.kind],
         **(

@@ -27,6 +27,7 @@ __all__ = [
     "film_force",
     "film_thickness",
     "held_cells",
+    "lift_off_weights",
     "set_unit_rows",
 ]
 
@@ -116,8 +117,35 @@ def held_cells(
     h = np.ascontiguousarray(H, dtype=np.float64)
     kern.residual(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.res)
     kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.jp)
-    kern.lift_off_rows(p, ws.res, ws.jp, ws.jh, ws.jp, ws.diag_slots, ws.indptr, False, ws.clamped)
+    g = grid
+    kern.lift_off_rows(
+        p, ws.res, ws.jp, ws.jh, ws.jp, ws.diag_slots, ws.indptr, False, ws.clamped,
+        g.lift_off_delta, g.lift_off_scale,
+    )  # fmt: skip
     return ws.clamped.copy()
+
+
+def lift_off_weights(grid: FilmGrid, P: FloatArray, res: FloatArray) -> FloatArray:
+    """Weight α of each cell's Reynolds row under the smoothed lift-off law (n,).
+
+    With ``x = P − 1``, ``y = −R/d_ref`` and ``δ`` of the grid
+    (:attr:`FilmGrid.lift_off_delta`), the cell's equation ``−(d_ref/2)(x + y −
+    √((x − y)² + 4δ²)) = 0`` has the row ``α ∂R/∂(P, H) − (1 − α) d_ref e_k``,
+    ``α = (1 + (x − y)/√((x − y)² + 4δ²))/2``; at the solution ``α = x/(x + y)``:
+    1 where the film is free, 0 where it is held at ambient. The same weights as the
+    compiled :func:`~foilbearing.reynolds._kernels.lift_off_rows`.
+
+    Parameters
+    ----------
+    grid : FilmGrid
+        With ``lift_off_smoothing`` > 0.
+    P, res : ndarray, shape (n_theta, n_z)
+        Pressure and its Reynolds residual R (cell-integrated net inflow).
+    """
+    x = np.ravel(P) - 1.0
+    y = -np.ravel(res) / grid.lift_off_scale
+    root = np.sqrt((x - y) ** 2 + 4.0 * grid.lift_off_delta**2)
+    return np.asarray(0.5 * (1.0 + (x - y) / root))
 
 
 def set_unit_rows(
@@ -166,8 +194,9 @@ def _assemble(
         kern.coupled_jacobian(ws.jp, ws.jh, ws.s, g.n_z, ws.axial, ws.jc)
     if lift_off:
         kern.lift_off_rows(
-            P, ws.res, ws.jp, ws.jh, ws.jc, ws.diag_slots, ws.indptr, coupled, ws.clamped
-        )
+            P, ws.res, ws.jp, ws.jh, ws.jc, ws.diag_slots, ws.indptr, coupled, ws.clamped,
+            g.lift_off_delta, g.lift_off_scale,
+        )  # fmt: skip
     else:
         ws.clamped[:] = False
     return ws.jc if coupled else ws.jp

@@ -158,12 +158,18 @@ class FilmGrid:
         ``Z_end = L/(2R)``, the dimensionless half length (> 0).
     axial_order : int
         Order of the axial discretisation, 2 (default) or 4 (module docstring).
+    lift_off_smoothing : float
+        κ >= 0, the smoothing of the lifted-off edge under top-foil lift-off: each cell
+        obeys ``(P − 1)·q = δ²`` (q its net outflow in pressure units, ``−R/d_ref``),
+        ``δ = κ Δθ²``, in place of the sharp ``min(P − 1, q) = 0``; 0 (default) is the
+        sharp law (docs/lift-off.md, "The smoothed edge").
     """
 
     n_theta: int
     n_z: int
     half_length: float
     axial_order: int = 2
+    lift_off_smoothing: float = 0.0
 
     def __post_init__(self) -> None:
         if int(self.n_theta) != self.n_theta or self.n_theta < 8:
@@ -179,6 +185,11 @@ class FilmGrid:
             )
         if self.axial_order not in AXIAL_ORDERS:
             raise ValueError(f"FilmGrid.axial_order must be 2 or 4, got {self.axial_order!r}")
+        if not (np.isfinite(self.lift_off_smoothing) and self.lift_off_smoothing >= 0.0):
+            raise ValueError(
+                f"FilmGrid.lift_off_smoothing must be finite and >= 0, got "
+                f"{self.lift_off_smoothing!r}"
+            )
         if self.axial_order == 4 and self.n_z < 3:
             raise ValueError(
                 f"FilmGrid.n_z must be >= 3 at axial order 4 (the end's cubic), got {self.n_z}"
@@ -193,6 +204,20 @@ class FilmGrid:
     def d_z(self) -> float:
         """Axial cell width ``ΔZ = Z_end/n_z`` (dimensionless, units of R)."""
         return self.half_length / self.n_z
+
+    @property
+    def lift_off_delta(self) -> float:
+        """δ = κ Δθ² of the smoothed lift-off law (pressure units p/p_a; 0: sharp)."""
+        return float(self.lift_off_smoothing * self.d_theta**2)
+
+    @property
+    def lift_off_scale(self) -> float:
+        """``d_ref = 2 ΔZ/Δθ``: a cell's residual R per unit of the pressure it stands for.
+
+        ``−R/d_ref = −(R/A)·Δθ²/2``, with ``A = Δθ ΔZ``: the circumferential part of the
+        diagonal of ∂R/∂P at P = H = 1, so the scale does not change with n_z.
+        """
+        return 2.0 * self.d_z / self.d_theta
 
     @property
     def size(self) -> int:

@@ -21,7 +21,10 @@ lift-off the cells held at ambient pressure by the static solution stay there,
 ``ΔP = 0``: their rows are the linearisation of the same complementarity
 condition the static Newton solves (:mod:`foilbearing.reynolds.steady`). At
 ν = 0 and real ``c`` this is exactly the linearisation of the static system,
-so static and dynamic results agree by construction.
+so static and dynamic results agree by construction. With a smoothed edge
+(``FilmGrid.lift_off_smoothing`` > 0) no cell is held: every row is the
+linearisation of the smoothed law, the cell's dynamic row times its weight α
+less ``(1 − α) d_ref`` on the diagonal (docs/lift-off.md, "The smoothed edge").
 """
 
 from __future__ import annotations
@@ -31,7 +34,12 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds.assembly import Workspace, held_cells, set_unit_rows
+from foilbearing.reynolds.assembly import (
+    Workspace,
+    held_cells,
+    lift_off_weights,
+    set_unit_rows,
+)
 from foilbearing.reynolds.blocksolve import factor_coupled
 from foilbearing.reynolds.grid import FilmGrid
 
@@ -117,7 +125,10 @@ def pressure_response(
         per perturbed coordinate (e.g. cos θ and sin θ for ε_X and ε_Y).
     lift_off
         Top-foil lift-off: the cells the steady film holds at ambient
-        (:func:`~foilbearing.reynolds.assembly.held_cells`) keep ΔP = 0.
+        (:func:`~foilbearing.reynolds.assembly.held_cells`) keep ΔP = 0. On a grid
+        with a smoothed edge (``lift_off_smoothing`` > 0) every row is the
+        linearisation of the smoothed law instead
+        (:func:`~foilbearing.reynolds.assembly.lift_off_weights`).
 
     Returns
     -------
@@ -125,7 +136,17 @@ def pressure_response(
     """
     n = grid.size
     ws = workspace if workspace is not None else Workspace(grid)
-    clamped = held_cells(grid, P, H, lam, ws) if lift_off else np.zeros(n, dtype=bool)
+    smoothed = lift_off and grid.lift_off_delta > 0.0
+    if smoothed:
+        kern.residual(
+            np.ascontiguousarray(P, dtype=np.float64),
+            np.ascontiguousarray(H, dtype=np.float64),
+            lam, grid.d_theta, grid.d_z, ws.axial, ws.res,
+        )  # fmt: skip
+        alpha = lift_off_weights(grid, P, ws.res)
+    clamped = (
+        held_cells(grid, P, H, lam, ws) if lift_off and not smoothed else np.zeros(n, dtype=bool)
+    )
     ws = _jacobians_into(ws, grid, P, H, lam)
     jw = 2j * nu * lam * grid.d_theta * grid.d_z
     diag = ws.diag_slots
@@ -133,6 +154,10 @@ def pressure_response(
     j_pressure[diag] -= jw * np.ravel(H)
     j_film = ws.jh.astype(np.complex128)  # ∂/∂H of R − 2Λ A jν P H
     j_film[diag] -= jw * np.ravel(P)
+    if smoothed:  # each row the Reynolds row times α, less (1 − α) d_ref on the diagonal
+        j_pressure *= alpha[ws.entry_rows]
+        j_film *= alpha[ws.entry_rows]
+        j_pressure[diag] -= (1.0 - alpha) * grid.lift_off_scale
     # The system (J_P − jw H₀) + (J_H − jw P₀) S on the foil-coupled pattern, where the
     # compiled block-cyclic LU factorises it (SuperLU if it cannot).
     s_row = np.asarray(compliance, dtype=np.complex128)

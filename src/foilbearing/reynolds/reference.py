@@ -46,6 +46,7 @@ __all__ = [
     "newton_update_py",
     "predict_branches_py",
     "residual_py",
+    "smoothed_lift_off_py",
     "solve_py",
     "switch_branches_py",
 ]
@@ -299,6 +300,20 @@ def coupled_jacobian_py(
     out[:] = full[rows, c_indices]
 
 
+def smoothed_lift_off_py(
+    x: FloatArray, y: FloatArray, delta: float, d_ref: float
+) -> tuple[FloatArray, FloatArray]:
+    """The smoothed lift-off law of each cell: its weight α and its residual G.
+
+    ``x = P − 1`` and ``y`` the net outflow in pressure units (``−R/d_ref``); ``G =
+    −(d_ref/2)(x + y − √((x − y)² + 4δ²))``, zero where x > 0, y > 0 and ``x y = δ²``;
+    ``α = −(∂G/∂y)/d_ref`` is the weight of the Reynolds row in the cell's row
+    (docs/lift-off.md, "The smoothed edge").
+    """
+    root = np.sqrt((x - y) ** 2 + 4.0 * delta**2)
+    return 0.5 * (1.0 + (x - y) / root), -0.5 * d_ref * (x + y - root)
+
+
 def lift_off_rows_py(
     P: FloatArray,
     res: FloatArray,
@@ -309,9 +324,28 @@ def lift_off_rows_py(
     indptr: NDArray[np.int64],
     coupled: bool,
     held: NDArray[np.bool_],
+    delta: float = 0.0,
+    d_ref: float = 1.0,
 ) -> int:
     """Twin of :func:`~foilbearing.reynolds._kernels.lift_off_rows`."""
     n_theta, n_z = P.shape
+    if delta > 0.0:
+        alpha, g = smoothed_lift_off_py(P.ravel() - 1.0, -res.ravel() / d_ref, delta, d_ref)
+        res.ravel()[:] = g
+        held[:] = alpha < 0.5
+        entry_rows = np.repeat(np.arange(n_theta * n_z), np.diff(indptr))
+        jh_data *= alpha[entry_rows]
+        if coupled:
+            block = coupled_data.reshape(n_theta * n_z, 3 * n_z)
+            block *= alpha[:, None]
+            k = np.arange(n_theta * n_z)
+            i = k // n_z
+            own = np.where(i == 0, 0, np.where(i == n_theta - 1, 2, 1))
+            block[k, own * n_z + k % n_z] -= (1.0 - alpha) * d_ref
+        else:
+            jp_data *= alpha[entry_rows]
+            jp_data[diag_slots] -= (1.0 - alpha) * d_ref
+        return int(np.count_nonzero(held))
     d = np.abs(jp_data[diag_slots])
     d = np.where(d > 0.0, d, 1.0)
     gauge = P.ravel() - 1.0
@@ -465,10 +499,13 @@ def newton_residual_py(
     hist: FloatArray,
     lift_state: FloatArray | None = None,
     slack: FloatArray | None = None,
+    *,
+    smooth: bool = True,
 ) -> tuple[FloatArray, float]:
     """Twin of :func:`~foilbearing.reynolds._kernels.transient_residual` (of
     ``TransientSystem.newton_residual``): G = c0·Q(y) + hist − f(y) (1/s) and the
-    minimum film h/C; no ``out`` buffer, fills ``slack`` if given."""
+    minimum film h/C; no ``out`` buffer, fills ``slack`` if given. ``smooth=False``:
+    the BDF equations before the smoothed lift-off law (if the system has one)."""
     P, U, eps, v = system.split(y)
     H, q = system.film(y, inputs.preload)
     g = system.grid
@@ -483,6 +520,10 @@ def newton_residual_py(
     out[n + nt : n + nt + 2] = c0 * eps - v
     out[-2:] = c0 * v - system.force_scale * (system.w @ (P.ravel() - 1.0)) - inputs.force
     out += hist
+    if smooth and system.lift_delta > 0.0:
+        s = system.smooth_scale  # the orbit's sign: (s/2)(x + G/s − √(…)), G ≥ 0 an outflow
+        x = P.ravel() - 1.0
+        out[:n] = -smoothed_lift_off_py(x, out[:n] / s, system.lift_delta, s)[1]
     d = system.lift_state(y, inputs, c0, hist) if lift_state is None else lift_state
     if slack is not None:
         safe = np.where(d > 0.0, d, 1.0)
@@ -537,6 +578,14 @@ def jacobian_blocks_py(
     active = (g.gauge_mean(P) > 0.0).astype(float)
     c_eff = system.c_act + rate * system.c_bump / (c0 + rate)
     n = system.n
+    if system.lift_delta > 0.0:  # the smoothed law: rows times α, (1 − α) s on the diagonal
+        g_p = newton_residual_py(system, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
+        alpha = smoothed_lift_off_py(
+            P.ravel() - 1.0, g_p[:n] / system.smooth_scale, system.lift_delta, system.smooth_scale
+        )[0]
+        jp *= alpha[ws.entry_rows]
+        jh *= alpha[ws.entry_rows]
+        jp[system.diag_slots] += (1.0 - alpha) * system.smooth_scale
     d = system.lift_state(y, inputs, c0, hist)
     clamped = d > 0.0
     jh[clamped[ws.entry_rows]] = 0.0
@@ -652,6 +701,9 @@ def newton_solve_py(
             else:
                 return kern.NEWTON_REFRESH, k, first_change, math.nan
         if fresh:
+            if factor.sys.lift_delta > 0.0 and since > 1 and conv >= 1.0:
+                y += dy  # the smoothed law's kink: back to the better iterate, refresh there
+                return kern.NEWTON_REFRESH, k, first_change, math.nan
             if since >= max_newton or conv >= 1.0:
                 if switches > 0:
                     return kern.NEWTON_REFRESH, k, first_change, math.nan

@@ -38,6 +38,14 @@ with a net inflow, a free one below ambient) to the other branch and goes on
 with the same factor (:func:`~foilbearing.reynolds._kernels.switch_branches`).
 The branches are the ``lift_state`` of the factor: ``d`` held, ``−d`` free,
 0 without lift-off.
+
+On a grid with a smoothed lifted-off edge (``FilmGrid.lift_off_smoothing`` > 0) no cell
+has a branch: each cell's equation is ``(s/2)(x + G/s − √((x − G/s)² + 4δ²)) = 0``
+(x = P − 1, s = d_ref/(Aσ)), whose rows are the BDF rows times α plus ``(1 − α) s`` on
+the diagonal; ``lift_off`` is then False (no branches) and ``lift_delta`` > 0. Its source
+form ``dQ/dt = f + s δ²/(P − 1)`` (:meth:`TransientSystem.lift_source`) is what
+:meth:`TransientSystem.rhs` gives the ``solve_ivp`` references (docs/lift-off.md, "The
+smoothed edge").
 """
 
 from __future__ import annotations
@@ -146,7 +154,12 @@ class TransientSystem:
         self.sigma = sigma
         self.area = grid.d_theta * grid.d_z
         self.gamma = loss_factor
-        self.lift_off = bool(lift_off)
+        #: δ of the smoothed lift-off law (0: none); with it no cell has a branch.
+        self.lift_delta = grid.lift_off_delta if lift_off else 0.0
+        #: s = d_ref/(Aσ): G (1/s) per unit of the pressure it stands for.
+        self.smooth_scale = grid.lift_off_scale / (self.area * sigma)
+        #: The sharp law's branches (lift-off without a smoothed edge).
+        self.lift_off = bool(lift_off) and self.lift_delta == 0.0
         self.dynamic_bump = bool(loss_factor > 0.0 and np.any(c_bump > 0.0))
         self.c_act = np.asarray(c_act, float) + (0.0 if self.dynamic_bump else np.asarray(c_bump))
         self.c_bump = np.asarray(c_bump, float) if self.dynamic_bump else np.zeros(self.nt)
@@ -199,6 +212,8 @@ class TransientSystem:
             self.lobe_rows,
             self.c_stack,
             tuple(grid.axial),
+            self.lift_delta,
+            self.smooth_scale,
         )
         self.pattern = kern.StencilPattern(self.diag_slots, self.jh_rows, self.ws.indptr)
         # ... as the plain tuples the kernels take (kernels/groups.py says why).
@@ -240,6 +255,18 @@ class TransientSystem:
         H, _ = self.film(y, inputs.preload)
         return np.concatenate([(P * H).ravel(), U, eps, v])
 
+    def lift_source(self, P: FloatArray) -> FloatArray:
+        """The smoothed lift-off law as the flow the lifting foil supplies, ``s δ²/(P − 1)`` (1/s).
+
+        ``c0 Q + hist − f = G`` with ``(P − 1)·G/s = δ²`` is the BDF step of ``dQ/dt = f +
+        s δ²/(P − 1)``: the form :meth:`rhs` gives the ``solve_ivp`` reference
+        (:mod:`foilbearing.orbit.reference`), independent of the compiled rows. Infinite
+        at or below ambient, which the smoothed film never reaches.
+        """
+        gauge = np.asarray(P, dtype=np.float64) - 1.0
+        with np.errstate(divide="ignore"):
+            return np.where(gauge > 0.0, self.smooth_scale * self.lift_delta**2 / gauge, np.inf)
+
     def rhs(self, y: FloatArray, inputs: Inputs) -> FloatArray:
         """f(y, t): right-hand side of dQ/dt = f."""
         P, U, _eps, v = self.split(y)
@@ -249,6 +276,9 @@ class TransientSystem:
             np.ascontiguousarray(P), H, inputs.lam, g.d_theta, g.d_z, tuple(g.axial), self._res
         )
         f_p = self._res.ravel() / (self.area * self.sigma)
+        if self.lift_delta > 0.0:
+            # The smoothed law as a source: the lifting foil supplies s δ²/(P − 1), 1/s.
+            f_p = f_p + self.lift_source(P.ravel())
         if self.dynamic_bump:
             f_u = inputs.omega / self.gamma * (self.c_bump * q - U)
         else:
@@ -553,6 +583,17 @@ class TransientSystem:
             [jv_p, None, None, jv_v],
         ]
         full = sp.bmat(blocks, format="csr")
+        if self.lift_delta > 0.0:
+            # The smoothed law: each pressure row times α, plus (1 − α) s on its diagonal.
+            g_p = newton_residual_py(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
+            x = P.ravel() - 1.0
+            yk = g_p[:n] / self.smooth_scale
+            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * self.lift_delta**2))
+            a = np.ones(self.size)
+            a[:n] = alpha
+            b = np.zeros(self.size)
+            b[:n] = (1.0 - alpha) * self.smooth_scale
+            full = sp.diags(a) @ full + sp.diags(b)
         if self.lift_off:
             d = np.zeros(self.size)
             if lift_state is None:

@@ -255,6 +255,7 @@ class _RotorFactor:
             steps.append(tuple(br.sys.step_inputs(inp.bearings[b], c0, br.hist)))
         prev = math.inf
         k = since = switches = 0
+        smoothed = any(br.sys.lift_delta > 0.0 for br in st.bearings)
         try:
             while True:
                 k += 1
@@ -291,6 +292,9 @@ class _RotorFactor:
                     else:
                         return _REFRESH, k, first_change, math.nan
                 if fresh:
+                    if smoothed and since > 1 and conv >= 1.0:
+                        y += dy  # the smoothed law's kink: back to the better iterate
+                        return _REFRESH, k, first_change, math.nan
                     if since >= max_newton or conv >= 1.0:
                         if switches > 0:
                             return _REFRESH, k, first_change, math.nan

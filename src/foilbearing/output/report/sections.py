@@ -107,6 +107,9 @@ def _grid_text(grid: dict[str, Any]) -> str:
         text += f"; the orbits run on {_f(orbit[0], 'd')} × {_f(orbit[1], 'd')}"
         if orbit[2] != 2:
             text += f", axial order {orbit[2]}"
+    kappa = grid.get("lift_off_smoothing", 0.0)
+    if kappa:
+        text += f"; lift-off edge smoothed, κ = {kappa:g} (δ = κΔθ²)"
     return text
 
 

@@ -66,7 +66,7 @@ def _film_rows(
     """
     n_theta = q.shape[0]
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack, axial = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:14]
     n = n_theta * n_z
     e_x = y[n + n_theta]
     e_y = y[n + n_theta + 1]
@@ -149,7 +149,8 @@ def transient_residual(
     """
     c0, hist, lam, rate, preload, force = step
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack, axial = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:14]
+    lift_delta, lift_scale = model[14:16]
     n_theta, n_z = film.shape
     n = n_theta * n_z
     q = np.empty(n_theta)
@@ -169,6 +170,10 @@ def transient_residual(
             p = y[k]
             gk = c0 * (p * h) - res[i, j] / denom + hist[k]
             d = lift_state[k]
+            if lift_delta > 0.0:  # the smoothed law: (P − 1)·G/s = δ², no branches
+                x = p - 1.0
+                yk = gk / lift_scale
+                gk = 0.5 * lift_scale * (x + yk - np.sqrt((x - yk) ** 2 + 4.0 * lift_delta**2))
             if d > 0.0:
                 slack[k] = -gk / d
                 gk = d * (p - 1.0)
@@ -214,7 +219,7 @@ def transient_storage(y: FloatArray, preload: FloatArray, model: Group, out: Flo
     """
     n_theta = preload.shape[0]
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack, axial = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:14]
     q = np.empty(n_theta)
     h_row = np.empty(n_theta)
     h_min = _film_rows(y, preload, model, q, h_row, np.empty(lobes.shape[0]))
@@ -332,7 +337,7 @@ def transient_solve(
     fac, jh_data, a_pe, s_vp, y_border, small_inv, c0, rate, active, lift_state = factor[:10]
     lobe_border, lobe_inv, lobe_gain = factor[10:]
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack, axial = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:14]
     diag_slots, jh_rows, jh_indptr = pattern
     n_theta = active.shape[0]
     n = work.shape[0]
@@ -430,7 +435,7 @@ def transient_jacobian(
     H, jp, jh, active, jc, a_pe, lift_state, a_pl, lobe_gain = blocks
     c0, hist, lam, rate, preload, force = step
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
-    lobes, lobe_rows, c_stack, axial = model[10:]
+    lobes, lobe_rows, c_stack, axial = model[10:14]
     diag_slots, jh_rows, jh_indptr = pattern
     n_theta, n_z = H.shape
     n = n_theta * n_z
@@ -454,6 +459,20 @@ def transient_jacobian(
         d = diag_slots[k]
         jp[d] += c0 * h_row[k // n_z]
         jh[d] += c0 * y[k]
+    lift_delta, lift_scale = model[14:16]
+    if lift_delta > 0.0:
+        # The smoothed law's rows: the BDF row times α, plus (1 − α) s on the diagonal.
+        res_s = np.empty((n_theta, n_z))
+        residual(P, H, lam, d_theta, d_z, axial, res_s)
+        for k in range(n):
+            i = k // n_z
+            x = y[k] - 1.0
+            yk = (c0 * (y[k] * h_row[i]) - res_s[i, k - i * n_z] / denom + hist[k]) / lift_scale
+            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * lift_delta**2))
+            for e in range(jh_indptr[k], jh_indptr[k + 1]):
+                jp[e] *= alpha
+                jh[e] *= alpha
+            jp[diag_slots[k]] += (1.0 - alpha) * lift_scale
     n_clamped = 0
     clamped = np.zeros(n, dtype=np.bool_)
     if lift_off:

@@ -637,6 +637,8 @@ def lift_off_rows(
     indptr: IntArray,
     coupled: bool,
     held: NDArray[np.bool_],
+    delta: float = 0.0,
+    d_ref: float = 1.0,
 ) -> int:
     """Top-foil lift-off rows of the steady system, in place; the number of held cells.
 
@@ -645,6 +647,12 @@ def lift_off_rows(
     at ambient, its residual becomes ``−d (P − 1)`` and its matrix row ``−d e_k``
     (on the coupled pattern if ``coupled``, else on the stencil pattern), and
     its row of ∂R/∂H is zero. Twin: :func:`~foilbearing.reynolds.reference.lift_off_rows_py`.
+
+    With ``delta`` > 0, the smoothed law (docs/lift-off.md, "The smoothed edge"): every
+    cell's equation is ``G = −(d_ref/2) φ(x, y) = 0``, ``φ(x, y) = x + y − √((x − y)² +
+    4δ²)``, ``x = P − 1``, ``y = −R/d_ref`` (so ``x y = δ²``); its rows are the Reynolds
+    rows times ``α = (1 + (x − y)/√(…))/2`` with ``−(1 − α) d_ref`` added on the diagonal,
+    and ``held`` marks the cells nearer the ambient branch (α < 1/2).
 
     Parameters
     ----------
@@ -664,10 +672,40 @@ def lift_off_rows(
         Which matrix holds the system.
     held : ndarray of bool, shape (n,)
         Filled with the held cells.
+    delta : float
+        Smoothing δ of the complementarity, pressure units (0: the sharp law).
+    d_ref : float
+        Scale of the residual in pressure units, ``2 ΔZ/Δθ`` (used with δ > 0 only).
     """
     n_theta, n_z = P.shape
     n = n_theta * n_z
     count = 0
+    if delta > 0.0:
+        width = 3 * n_z
+        for k in range(n):
+            i = k // n_z
+            j = k - i * n_z
+            x = P[i, j] - 1.0
+            y = -res[i, j] / d_ref
+            root = np.sqrt((x - y) * (x - y) + 4.0 * delta * delta)
+            alpha = 0.5 * (1.0 + (x - y) / root)
+            res[i, j] = -0.5 * d_ref * (x + y - root)
+            held[k] = alpha < 0.5
+            if held[k]:
+                count += 1
+            for e in range(indptr[k], indptr[k + 1]):
+                jh_data[e] *= alpha
+            if coupled:
+                own = 0 if i == 0 else (2 if i == n_theta - 1 else 1)
+                base = k * width
+                for c in range(width):
+                    coupled_data[base + c] *= alpha
+                coupled_data[base + own * n_z + j] -= (1.0 - alpha) * d_ref
+            else:
+                for e in range(indptr[k], indptr[k + 1]):
+                    jp_data[e] *= alpha
+                jp_data[diag_slots[k]] -= (1.0 - alpha) * d_ref
+        return count
     for k in range(n):
         i = k // n_z
         j = k - i * n_z

@@ -79,6 +79,13 @@ class FilmConstants(NamedTuple):
     axial : AxialStencil (as a plain tuple)
         The axial discretisation and its mean weights
         (:attr:`foilbearing.reynolds.grid.FilmGrid.axial`).
+    lift_delta : float
+        δ of the smoothed lift-off law (:attr:`~foilbearing.reynolds.grid.FilmGrid.lift_off_delta`);
+        0: no smoothed law (the sharp branches, or the suction retained).
+    lift_scale : float
+        ``s = d_ref/(A σ)``: a pressure cell's BDF equation G (1/s) per unit of the
+        pressure it stands for (``d_ref = 2ΔZ/Δθ``); each cell obeys
+        ``(s/2)(x + G/s − √((x − G/s)² + 4δ²)) = 0``, x = P − 1.
     """
 
     cos_t: FloatArray
@@ -95,6 +102,8 @@ class FilmConstants(NamedTuple):
     lobe_rows: FloatArray
     c_stack: float
     axial: Group
+    lift_delta: float
+    lift_scale: float
 
 
 class StencilPattern(NamedTuple):

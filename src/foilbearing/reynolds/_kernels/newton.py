@@ -229,6 +229,7 @@ def transient_newton_solve(
     c0, hist, lam, rate, preload, force = step
     prev = np.inf
     k = 0
+    smoothed = model[14] > 0.0
     since = 0  # iterations since the last change of branches
     switches = 0
     while True:
@@ -261,6 +262,13 @@ def transient_newton_solve(
             else:
                 return NEWTON_REFRESH, k, first_change, np.nan
         if fresh:
+            if smoothed and since > 1 and conv >= 1.0:
+                # Cells crossed the smoothed law's kink at ambient in the factor's own
+                # step: its rows no longer fit them, and its next step undoes the first.
+                # Take that one back and refresh at the better iterate.
+                for m in range(y.shape[0]):
+                    y[m] += dy[m]
+                return NEWTON_REFRESH, k, first_change, np.nan
             if since >= max_newton or conv >= 1.0:
                 if switches > 0:
                     # Diverging since cells changed branch: the factor's rows no longer
