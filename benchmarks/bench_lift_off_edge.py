@@ -3,15 +3,18 @@ the linear onset's convergence, and to the orbit's cost. Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_lift_off_edge.py [--onsets] [--steps]
 
+The law: each cell obeys (P − 1)·y/Λ = δ², δ = κΔθ² (``[grid] lift_off_smoothing = κ``).
+
 - ``--onsets`` (about 1 minute): the 0 V linear onset of the default case
-  - on 96 θ cells against n_z (order 4), sharp and smoothed (κ = 0.05, 0.1);
+  - on 96 θ cells against n_z (order 4), sharp and smoothed (κ = 0.1, 0.2, 0.3);
   - on 96 to 768 θ cells (4 axial cells, order 4), sharp and smoothed, with the ratio of
     successive differences (4: second order);
   - against κ on 96 x 4 (order 4) and 192 x 12 (order 4);
-  - at 0 and 150 V on the orbit-sized grids against 192 x 24 (order 2), sharp and smoothed.
+  - at 0 and 150 V on the orbit-sized grids against 192 x 24 (order 2), sharp and at
+    κ = 0.2.
 - ``--steps`` (about 1 minute): ms a step on a smooth orbit (C-GFB, 0 V, 1 g·mm, 30 krpm)
   and a large one (shimmed GFB, 150 V, 8.5 g·mm, 50 krpm), 0.05 s each, best of 3, on
-  96 x 4 (order 4) and 96 x 12, sharp and smoothed (κ = 0.1), with the Newton iterations
+  96 x 4 (order 4) and 96 x 12, sharp and smoothed (κ = 0.2), with the Newton iterations
   and factorisations a step.
 
 Without an option both run. The figures and what they mean: docs/lift-off.md, "The
@@ -33,6 +36,11 @@ from foilbearing.stability import onset_speed
 #: Speeds of the onset scan around the 0 V onset (rpm): the sharp law finds no equilibrium
 #: at 5 krpm on 768 θ cells, where the default scan starts.
 SCAN_RPM = (30e3, 35e3, 40e3, 42e3, 44e3, 46e3, 48e3, 50e3, 55e3, 60e3, 70e3, 80e3, 90e3)
+#: The smoothings compared (κ; δ = κΔθ², the law (P − 1)·y/Λ = δ²), and the one the
+#: comparisons against 192 x 24 and the step costs use.
+KAPPAS = (0.1, 0.2, 0.3)
+CHOSEN = 0.2
+SWEEP = (0.0, 0.05, 0.1, 0.2, 0.3, 0.5)
 
 
 def _onset(volts: float, n_theta: int, n_z: int, order: int, kappa: float) -> float | None:
@@ -53,7 +61,7 @@ def _krpm(x: float | None) -> str:
 def onsets() -> None:
     """The linear onset against the grid and κ, sharp and smoothed."""
     print("0 V linear onset (krpm), 96 θ cells, order 4, against n_z:")
-    for kappa in (0.0, 0.05, 0.1):
+    for kappa in (0.0, *KAPPAS):
         values = [_onset(0.0, 96, n_z, 4, kappa) for n_z in (3, 4, 5, 6, 8, 12, 24)]
         known = [v for v in values if v is not None]
         spread = 100 * (max(known) - min(known)) / min(known)
@@ -62,7 +70,7 @@ def onsets() -> None:
             + f" on n_z = 3/4/5/6/8/12/24 (spread {spread:.2f} %)"
         )  # fmt: skip
     print("0 V linear onset (krpm), 4 axial cells, order 4, against n_theta:")
-    for kappa in (0.0, 0.05, 0.1):
+    for kappa in (0.0, *KAPPAS):
         values = [_onset(0.0, n, 4, 4, kappa) for n in (96, 192, 384, 768)]
         text = " / ".join(_krpm(v) for v in values)
         if None not in values:
@@ -71,14 +79,14 @@ def onsets() -> None:
         print(f"  κ = {kappa:<4g}: {text} on 96/192/384/768")
     print("0 V linear onset (krpm) against κ:")
     for n_theta, n_z in ((96, 4), (192, 12)):
-        values = [_onset(0.0, n_theta, n_z, 4, k) for k in (0.0, 0.025, 0.05, 0.1, 0.2, 0.3)]
+        values = [_onset(0.0, n_theta, n_z, 4, k) for k in SWEEP]
         print(
             f"  {n_theta} x {n_z}, order 4: " + " / ".join(_krpm(v) for v in values)
-            + " at κ = 0/0.025/0.05/0.1/0.2/0.3"
+            + " at κ = " + "/".join(f"{k:g}" for k in SWEEP)
         )  # fmt: skip
     print("linear onset (krpm) against 192 x 24 (order 2) of the same law:")
     for volts in (0.0, 150.0):
-        for kappa in (0.0, 0.1):
+        for kappa in (0.0, CHOSEN):
             ref = _onset(volts, 192, 24, 2, kappa)
             parts = []
             for n_theta, n_z, order in ((96, 4, 4), (96, 6, 4), (96, 12, 2), (192, 4, 4)):
@@ -99,7 +107,7 @@ def steps() -> None:
     for name, case0, rpm in runs:
         print(f"  {name}:")
         for n_theta, n_z, order in ((96, 4, 4), (96, 12, 2)):
-            for kappa in (0.0, 0.1):
+            for kappa in (0.0, CHOSEN):
                 grid = Grid(n_theta, n_z, axial_order=order, lift_off_smoothing=kappa)
                 case = replace(case0, grid=grid)
                 simulate(case, constant_speed(rpm * RPM, 2e-3))  # compile, warm up

@@ -156,7 +156,7 @@ def test_settles_at_the_static_equilibrium() -> None:
         ("lift-off", 0.1, 2, 0.0),
         ("retained", 0.0, 2, 0.0),
         ("lift-off", None, 4, 0.0),
-        ("lift-off", None, 4, 0.1),
+        ("lift-off", None, 4, 0.2),
     ],
 )
 def test_free_whirl_matches_the_linear_eigenvalue(
@@ -166,7 +166,7 @@ def test_free_whirl_matches_the_linear_eigenvalue(
     # small-amplitude free motion must whirl at the frequency and decay with the log
     # decrement of the linear analysis (lift-off, γ = 0.1: 114.9 Hz against 115.3 Hz, log
     # decrement 0.50 against 0.48). One discretisation at axial order 4 too (32 × 4), and
-    # with the smoothed lift-off edge (κ = 0.1).
+    # with the smoothed lift-off edge (κ = 0.2).
     case = coarse(150.0, imbalance=0.0).with_subambient(subambient)
     grid = Grid(n_theta=32, n_z=4, axial_order=order, lift_off_smoothing=smoothing)
     case = replace(case, grid=grid)

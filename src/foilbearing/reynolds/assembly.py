@@ -120,16 +120,16 @@ def held_cells(
     g = grid
     kern.lift_off_rows(
         p, ws.res, ws.jp, ws.jh, ws.jp, ws.diag_slots, ws.indptr, False, ws.clamped,
-        g.lift_off_delta, g.lift_off_scale,
+        g.lift_off_width(lam), g.lift_off_scale,
     )  # fmt: skip
     return ws.clamped.copy()
 
 
-def lift_off_weights(grid: FilmGrid, P: FloatArray, res: FloatArray) -> FloatArray:
+def lift_off_weights(grid: FilmGrid, P: FloatArray, res: FloatArray, lam: float) -> FloatArray:
     """Weight α of each cell's Reynolds row under the smoothed lift-off law (n,).
 
-    With ``x = P − 1``, ``y = −R/d_ref`` and ``δ`` of the grid
-    (:attr:`FilmGrid.lift_off_delta`), the cell's equation ``−(d_ref/2)(x + y −
+    With ``x = P − 1``, ``y = −R/d_ref`` and the law's width δ√Λ at bearing number
+    ``lam`` (:meth:`FilmGrid.lift_off_width`), the cell's equation ``−(d_ref/2)(x + y −
     √((x − y)² + 4δ²)) = 0`` has the row ``α ∂R/∂(P, H) − (1 − α) d_ref e_k``,
     ``α = (1 + (x − y)/√((x − y)² + 4δ²))/2``; at the solution ``α = x/(x + y)``:
     1 where the film is free, 0 where it is held at ambient. The same weights as the
@@ -141,10 +141,12 @@ def lift_off_weights(grid: FilmGrid, P: FloatArray, res: FloatArray) -> FloatArr
         With ``lift_off_smoothing`` > 0.
     P, res : ndarray, shape (n_theta, n_z)
         Pressure and its Reynolds residual R (cell-integrated net inflow).
+    lam : float
+        Bearing number Λ.
     """
     x = np.ravel(P) - 1.0
     y = -np.ravel(res) / grid.lift_off_scale
-    root = np.sqrt((x - y) ** 2 + 4.0 * grid.lift_off_delta**2)
+    root = np.sqrt((x - y) ** 2 + 4.0 * grid.lift_off_width(lam) ** 2)
     return np.asarray(0.5 * (1.0 + (x - y) / root))
 
 
@@ -195,7 +197,7 @@ def _assemble(
     if lift_off:
         kern.lift_off_rows(
             P, ws.res, ws.jp, ws.jh, ws.jc, ws.diag_slots, ws.indptr, coupled, ws.clamped,
-            g.lift_off_delta, g.lift_off_scale,
+            g.lift_off_width(lam), g.lift_off_scale,
         )  # fmt: skip
     else:
         ws.clamped[:] = False

@@ -160,9 +160,9 @@ class FilmGrid:
         Order of the axial discretisation, 2 (default) or 4 (module docstring).
     lift_off_smoothing : float
         κ >= 0, the smoothing of the lifted-off edge under top-foil lift-off: each cell
-        obeys ``(P − 1)·q = δ²`` (q its net outflow in pressure units, ``−R/d_ref``),
-        ``δ = κ Δθ²``, in place of the sharp ``min(P − 1, q) = 0``; 0 (default) is the
-        sharp law (docs/lift-off.md, "The smoothed edge").
+        obeys ``(P − 1)·q/Λ = δ²`` (q its net outflow in pressure units, ``−R/d_ref``,
+        Λ the bearing number), ``δ = κ Δθ²``, in place of the sharp ``min(P − 1, q) = 0``;
+        0 (default) is the sharp law (docs/lift-off.md, "The smoothed edge").
     """
 
     n_theta: int
@@ -207,8 +207,20 @@ class FilmGrid:
 
     @property
     def lift_off_delta(self) -> float:
-        """δ = κ Δθ² of the smoothed lift-off law (pressure units p/p_a; 0: sharp)."""
+        """δ = κ Δθ² of the smoothed lift-off law (0: sharp); the law at bearing number Λ
+        has the width :meth:`lift_off_width`."""
         return float(self.lift_off_smoothing * self.d_theta**2)
+
+    def lift_off_width(self, lam: float) -> float:
+        """``δ √Λ``: the smoothed law ``(P − 1)·y = δ² Λ`` at bearing number Λ, in the
+        form ``(P − 1)·y = width²`` (y the outflow in pressure units, ``−R/d_ref``).
+
+        The outflow of the lifted-off film is the Couette flow, proportional to Λ, and
+        the gauge pressure is set by the load: so the law measures the outflow in units
+        of Λ, ``(P − 1)·y/Λ = δ²``, and its blend spans the same share of a cell at
+        every speed (docs/lift-off.md, "The smoothed edge").
+        """
+        return float(self.lift_off_delta * np.sqrt(abs(lam)))
 
     @property
     def lift_off_scale(self) -> float:

@@ -143,7 +143,7 @@ def pressure_response(
             np.ascontiguousarray(H, dtype=np.float64),
             lam, grid.d_theta, grid.d_z, ws.axial, ws.res,
         )  # fmt: skip
-        alpha = lift_off_weights(grid, P, ws.res)
+        alpha = lift_off_weights(grid, P, ws.res, lam)
     clamped = (
         held_cells(grid, P, H, lam, ws) if lift_off and not smoothed else np.zeros(n, dtype=bool)
     )

@@ -523,7 +523,8 @@ def newton_residual_py(
     if smooth and system.lift_delta > 0.0:
         s = system.smooth_scale  # the orbit's sign: (s/2)(x + G/s − √(…)), G ≥ 0 an outflow
         x = P.ravel() - 1.0
-        out[:n] = -smoothed_lift_off_py(x, out[:n] / s, system.lift_delta, s)[1]
+        width = system.grid.lift_off_width(inputs.lam)
+        out[:n] = -smoothed_lift_off_py(x, out[:n] / s, width, s)[1]
     d = system.lift_state(y, inputs, c0, hist) if lift_state is None else lift_state
     if slack is not None:
         safe = np.where(d > 0.0, d, 1.0)
@@ -581,7 +582,10 @@ def jacobian_blocks_py(
     if system.lift_delta > 0.0:  # the smoothed law: rows times α, (1 − α) s on the diagonal
         g_p = newton_residual_py(system, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
         alpha = smoothed_lift_off_py(
-            P.ravel() - 1.0, g_p[:n] / system.smooth_scale, system.lift_delta, system.smooth_scale
+            P.ravel() - 1.0,
+            g_p[:n] / system.smooth_scale,
+            system.grid.lift_off_width(inputs.lam),
+            system.smooth_scale,
         )[0]
         jp *= alpha[ws.entry_rows]
         jh *= alpha[ws.entry_rows]

@@ -31,8 +31,8 @@ semismooth Newton method: a cell on the ambient branch has the row
 same rows give the linearisation (ΔP = 0 on clamped cells) used by the
 dynamic coefficients, and the orbit's BDF step solves the same condition.
 On a grid with ``lift_off_smoothing`` κ > 0 each cell obeys the smoothed law
-``(P − 1)(−R/d_ref) = δ²`` (δ = κΔθ²) instead, solved as
-``−(d_ref/2)(x + y − √((x − y)² + 4δ²)) = 0`` with the same Newton iteration
+``(P − 1)(−R/d_ref)/Λ = δ²`` (δ = κΔθ²) instead, solved as
+``−(d_ref/2)(x + y − √((x − y)² + 4δ²Λ)) = 0`` with the same Newton iteration
 (:func:`~foilbearing.reynolds._kernels.lift_off_rows`; docs/lift-off.md).
 
 The functions take arrays, not domain objects; all quantities are

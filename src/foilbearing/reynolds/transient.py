@@ -40,10 +40,10 @@ The branches are the ``lift_state`` of the factor: ``d`` held, ``−d`` free,
 0 without lift-off.
 
 On a grid with a smoothed lifted-off edge (``FilmGrid.lift_off_smoothing`` > 0) no cell
-has a branch: each cell's equation is ``(s/2)(x + G/s − √((x − G/s)² + 4δ²)) = 0``
+has a branch: each cell's equation is ``(s/2)(x + G/s − √((x − G/s)² + 4δ²Λ)) = 0``
 (x = P − 1, s = d_ref/(Aσ)), whose rows are the BDF rows times α plus ``(1 − α) s`` on
 the diagonal; ``lift_off`` is then False (no branches) and ``lift_delta`` > 0. Its source
-form ``dQ/dt = f + s δ²/(P − 1)`` (:meth:`TransientSystem.lift_source`) is what
+form ``dQ/dt = f + s δ²Λ/(P − 1)`` (:meth:`TransientSystem.lift_source`) is what
 :meth:`TransientSystem.rhs` gives the ``solve_ivp`` references (docs/lift-off.md, "The
 smoothed edge").
 """
@@ -255,17 +255,18 @@ class TransientSystem:
         H, _ = self.film(y, inputs.preload)
         return np.concatenate([(P * H).ravel(), U, eps, v])
 
-    def lift_source(self, P: FloatArray) -> FloatArray:
-        """The smoothed lift-off law as the flow the lifting foil supplies, ``s δ²/(P − 1)`` (1/s).
+    def lift_source(self, P: FloatArray, lam: float) -> FloatArray:
+        """The smoothed lift-off law as the flow the lifting foil supplies, ``s δ²Λ/(P − 1)`` (1/s).
 
-        ``c0 Q + hist − f = G`` with ``(P − 1)·G/s = δ²`` is the BDF step of ``dQ/dt = f +
-        s δ²/(P − 1)``: the form :meth:`rhs` gives the ``solve_ivp`` reference
+        ``c0 Q + hist − f = G`` with ``(P − 1)·G/s = δ²Λ`` (Λ = ``lam``) is the BDF step of
+        ``dQ/dt = f + s δ²Λ/(P − 1)``: the form :meth:`rhs` gives the ``solve_ivp`` reference
         (:mod:`foilbearing.orbit.reference`), independent of the compiled rows. Infinite
         at or below ambient, which the smoothed film never reaches.
         """
         gauge = np.asarray(P, dtype=np.float64) - 1.0
         with np.errstate(divide="ignore"):
-            return np.where(gauge > 0.0, self.smooth_scale * self.lift_delta**2 / gauge, np.inf)
+            width = self.grid.lift_off_width(lam)
+            return np.where(gauge > 0.0, self.smooth_scale * width**2 / gauge, np.inf)
 
     def rhs(self, y: FloatArray, inputs: Inputs) -> FloatArray:
         """f(y, t): right-hand side of dQ/dt = f."""
@@ -278,7 +279,7 @@ class TransientSystem:
         f_p = self._res.ravel() / (self.area * self.sigma)
         if self.lift_delta > 0.0:
             # The smoothed law as a source: the lifting foil supplies s δ²/(P − 1), 1/s.
-            f_p = f_p + self.lift_source(P.ravel())
+            f_p = f_p + self.lift_source(P.ravel(), inputs.lam)
         if self.dynamic_bump:
             f_u = inputs.omega / self.gamma * (self.c_bump * q - U)
         else:
@@ -588,7 +589,8 @@ class TransientSystem:
             g_p = newton_residual_py(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
             x = P.ravel() - 1.0
             yk = g_p[:n] / self.smooth_scale
-            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * self.lift_delta**2))
+            width = self.grid.lift_off_width(inputs.lam)
+            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * width**2))
             a = np.ones(self.size)
             a[:n] = alpha
             b = np.zeros(self.size)

@@ -151,6 +151,7 @@ def transient_residual(
     cos_t, sin_t, c_act, c_bump, w, force_scale, denom, d_theta, d_z, n_z = model[:10]
     lobes, lobe_rows, c_stack, axial = model[10:14]
     lift_delta, lift_scale = model[14:16]
+    width2 = lift_delta**2 * abs(lam)  # (δ√Λ)², the law's width at this Λ
     n_theta, n_z = film.shape
     n = n_theta * n_z
     q = np.empty(n_theta)
@@ -170,10 +171,10 @@ def transient_residual(
             p = y[k]
             gk = c0 * (p * h) - res[i, j] / denom + hist[k]
             d = lift_state[k]
-            if lift_delta > 0.0:  # the smoothed law: (P − 1)·G/s = δ², no branches
+            if lift_delta > 0.0:  # the smoothed law: (P − 1)·G/s = δ²Λ, no branches
                 x = p - 1.0
                 yk = gk / lift_scale
-                gk = 0.5 * lift_scale * (x + yk - np.sqrt((x - yk) ** 2 + 4.0 * lift_delta**2))
+                gk = 0.5 * lift_scale * (x + yk - np.sqrt((x - yk) ** 2 + 4.0 * width2))
             if d > 0.0:
                 slack[k] = -gk / d
                 gk = d * (p - 1.0)
@@ -460,6 +461,7 @@ def transient_jacobian(
         jp[d] += c0 * h_row[k // n_z]
         jh[d] += c0 * y[k]
     lift_delta, lift_scale = model[14:16]
+    width2 = lift_delta**2 * abs(lam)  # (δ√Λ)², the law's width at this Λ
     if lift_delta > 0.0:
         # The smoothed law's rows: the BDF row times α, plus (1 − α) s on the diagonal.
         res_s = np.empty((n_theta, n_z))
@@ -468,7 +470,7 @@ def transient_jacobian(
             i = k // n_z
             x = y[k] - 1.0
             yk = (c0 * (y[k] * h_row[i]) - res_s[i, k - i * n_z] / denom + hist[k]) / lift_scale
-            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * lift_delta**2))
+            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * width2))
             for e in range(jh_indptr[k], jh_indptr[k + 1]):
                 jp[e] *= alpha
                 jh[e] *= alpha

@@ -648,9 +648,11 @@ def lift_off_rows(
     (on the coupled pattern if ``coupled``, else on the stencil pattern), and
     its row of ∂R/∂H is zero. Twin: :func:`~foilbearing.reynolds.reference.lift_off_rows_py`.
 
-    With ``delta`` > 0, the smoothed law (docs/lift-off.md, "The smoothed edge"): every
-    cell's equation is ``G = −(d_ref/2) φ(x, y) = 0``, ``φ(x, y) = x + y − √((x − y)² +
-    4δ²)``, ``x = P − 1``, ``y = −R/d_ref`` (so ``x y = δ²``); its rows are the Reynolds
+    With ``delta`` > 0, the smoothed law of width ``delta`` = δ√Λ
+    (:meth:`~foilbearing.reynolds.grid.FilmGrid.lift_off_width`; docs/lift-off.md, "The
+    smoothed edge"): every cell's equation is ``G = −(d_ref/2) φ(x, y) = 0``, ``φ(x, y) =
+    x + y − √((x − y)² + 4 delta²)``, ``x = P − 1``, ``y = −R/d_ref`` (so ``x y =
+    delta²``); its rows are the Reynolds
     rows times ``α = (1 + (x − y)/√(…))/2`` with ``−(1 − α) d_ref`` added on the diagonal,
     and ``held`` marks the cells nearer the ambient branch (α < 1/2).
 
@@ -673,7 +675,7 @@ def lift_off_rows(
     held : ndarray of bool, shape (n,)
         Filled with the held cells.
     delta : float
-        Smoothing δ of the complementarity, pressure units (0: the sharp law).
+        Width δ√Λ of the smoothed complementarity, pressure units (0: the sharp law).
     d_ref : float
         Scale of the residual in pressure units, ``2 ΔZ/Δθ`` (used with δ > 0 only).
     """

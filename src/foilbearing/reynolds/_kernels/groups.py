@@ -85,7 +85,8 @@ class FilmConstants(NamedTuple):
     lift_scale : float
         ``s = d_ref/(A σ)``: a pressure cell's BDF equation G (1/s) per unit of the
         pressure it stands for (``d_ref = 2ΔZ/Δθ``); each cell obeys
-        ``(s/2)(x + G/s − √((x − G/s)² + 4δ²)) = 0``, x = P − 1.
+        ``(s/2)(x + G/s − √((x − G/s)² + 4δ²Λ)) = 0``, x = P − 1, Λ the step's bearing
+        number.
     """
 
     cos_t: FloatArray
