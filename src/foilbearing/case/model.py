@@ -46,12 +46,12 @@ __all__ = [
 ]
 
 
-#: Default top of the speeds an analysis may be asked for, rad/s (150 000 rpm, the top
-#: of the default onset scan); a case sets its own with ``[operation] max_speed``.
 #: Largest smoothing κ of the lifted-off edge a case may ask for (δ = κΔθ², the law
 #: (P − 1)·y/Λ = δ²): at 0.5 the smoothing's own error moves the 0 V onset on 96 θ cells
 #: by 5 %, beyond the grid's (docs/lift-off.md, "The smoothed edge").
 MAX_LIFT_OFF_SMOOTHING = 1.0
+#: Default top of the speeds an analysis may be asked for, rad/s (150 000 rpm, the top
+#: of the default onset scan); a case sets its own with ``[operation] max_speed``.
 MAX_SPEED_DEFAULT = 150_000 * RPM
 
 

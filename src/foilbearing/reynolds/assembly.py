@@ -117,10 +117,9 @@ def held_cells(
     h = np.ascontiguousarray(H, dtype=np.float64)
     kern.residual(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.res)
     kern.jacobian_P(p, h, lam, grid.d_theta, grid.d_z, ws.axial, ws.jp)
-    g = grid
     kern.lift_off_rows(
         p, ws.res, ws.jp, ws.jh, ws.jp, ws.diag_slots, ws.indptr, False, ws.clamped,
-        g.lift_off_width(lam), g.lift_off_scale,
+        grid.lift_off_width(lam), grid.lift_off_scale,
     )  # fmt: skip
     return ws.clamped.copy()
 
@@ -128,10 +127,10 @@ def held_cells(
 def lift_off_weights(grid: FilmGrid, P: FloatArray, res: FloatArray, lam: float) -> FloatArray:
     """Weight α of each cell's Reynolds row under the smoothed lift-off law (n,).
 
-    With ``x = P − 1``, ``y = −R/d_ref`` and the law's width δ√Λ at bearing number
-    ``lam`` (:meth:`FilmGrid.lift_off_width`), the cell's equation ``−(d_ref/2)(x + y −
-    √((x − y)² + 4δ²)) = 0`` has the row ``α ∂R/∂(P, H) − (1 − α) d_ref e_k``,
-    ``α = (1 + (x − y)/√((x − y)² + 4δ²))/2``; at the solution ``α = x/(x + y)``:
+    With ``x = P − 1``, ``y = −R/d_ref`` and the law's width ``w = δ√Λ`` at bearing
+    number ``lam`` (:meth:`FilmGrid.lift_off_width`), the cell's equation ``−(d_ref/2)(x + y
+    − √((x − y)² + 4w²)) = 0`` has the row ``α ∂R/∂(P, H) − (1 − α) d_ref e_k``,
+    ``α = (1 + (x − y)/√((x − y)² + 4w²))/2``; at the solution ``α = x/(x + y)``:
     1 where the film is free, 0 where it is held at ambient. The same weights as the
     compiled :func:`~foilbearing.reynolds._kernels.lift_off_rows`.
 

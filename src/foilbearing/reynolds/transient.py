@@ -61,7 +61,7 @@ from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.assembly import Workspace
 from foilbearing.reynolds.blocksolve import BlockCyclicLU, factor_coupled
 from foilbearing.reynolds.grid import FilmGrid
-from foilbearing.reynolds.reference import border_py, newton_residual_py
+from foilbearing.reynolds.reference import border_py, newton_residual_py, smoothed_lift_off_py
 from foilbearing.reynolds.transient_factor import TransientFactor
 
 __all__ = [
@@ -278,7 +278,7 @@ class TransientSystem:
         )
         f_p = self._res.ravel() / (self.area * self.sigma)
         if self.lift_delta > 0.0:
-            # The smoothed law as a source: the lifting foil supplies s δ²/(P − 1), 1/s.
+            # The smoothed law as a source: the lifting foil supplies s δ²Λ/(P − 1), 1/s.
             f_p = f_p + self.lift_source(P.ravel(), inputs.lam)
         if self.dynamic_bump:
             f_u = inputs.omega / self.gamma * (self.c_bump * q - U)
@@ -587,14 +587,13 @@ class TransientSystem:
         if self.lift_delta > 0.0:
             # The smoothed law: each pressure row times α, plus (1 − α) s on its diagonal.
             g_p = newton_residual_py(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
-            x = P.ravel() - 1.0
-            yk = g_p[:n] / self.smooth_scale
+            s = self.smooth_scale
             width = self.grid.lift_off_width(inputs.lam)
-            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * width**2))
+            alpha = smoothed_lift_off_py(P.ravel() - 1.0, g_p[:n] / s, width, s)[0]
             a = np.ones(self.size)
             a[:n] = alpha
             b = np.zeros(self.size)
-            b[:n] = (1.0 - alpha) * self.smooth_scale
+            b[:n] = (1.0 - alpha) * s
             full = sp.diags(a) @ full + sp.diags(b)
         if self.lift_off:
             d = np.zeros(self.size)
