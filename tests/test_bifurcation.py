@@ -273,6 +273,24 @@ def test_under_lift_off_the_0V_onset_is_subcritical_as_transients_confirm() -> N
     assert outside[1] > 1.3 * outside[0]  # grows away from the unstable cycle
 
 
+def test_an_iterate_past_the_case_speeds_has_no_flow_and_ends_its_newton() -> None:
+    """A shooting or continuation iterate whose speed leaves ``(0, max_speed]`` (a corrector
+    diverging in the speed) has no flow: NaN, and its Newton iteration ends in a
+    :class:`ShootingError` that halves the continuation's step, where it used to stop the
+    whole branch with the case's speed error."""
+    from foilbearing.bifurcation.bearing import bearing_flow
+    from foilbearing.case import Grid, default_case
+
+    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4))
+    flow, parts = bearing_flow(case, 2 * np.pi * 60.0, 1e-4)
+    top = case.operation.max_speed
+    y = np.array(parts.equilibrium(0.3 * top))
+    assert np.all(np.isnan(parts.advance(y, 0.01, 1.2 * top)))
+    assert np.all(np.isnan(parts.tangent(y, 0.01, 1.2 * top, np.eye(y.size)[:, :2])))
+    with pytest.raises(ShootingError, match="did not converge"):
+        periodic_orbit(flow, y, 0.01, 1.2 * top, normal=np.ones(y.size))
+
+
 def test_the_bifurcation_command(write_case, capsys, tmp_path) -> None:
     """``foilbearing bifurcation --json`` gives the issue's keys, with the branch's cycles
     the API's; its figure is written, with a speed-up's sub-synchronous amplitude laid over

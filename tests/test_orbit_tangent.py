@@ -23,8 +23,9 @@ from foilbearing.static import solve_equilibrium
 RPM = math.pi / 30.0
 
 
-def _case(subambient: str):
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)
+def _case(subambient: str, smoothing: float = 0.0):
+    grid = Grid(n_theta=32, n_z=4, lift_off_smoothing=smoothing)
+    case = replace(default_case(), grid=grid, disturbance=None)
     case = case.with_subambient(subambient)
     return replace(case, rotor=replace(case.rotor, imbalance=0.0))
 
@@ -43,11 +44,22 @@ def _end(sim: OrbitSimulation, y: np.ndarray, duration: float) -> np.ndarray:
     return np.asarray(res.checkpoint["y"], float)
 
 
-def test_run_derivative_equals_central_differences_of_the_run() -> None:
-    # On a smooth flow (suction retained) the variational equations of the steps the run
-    # took are the derivative of its end state: central differences of whole runs agree
-    # to their own truncation (measured 4e-6 to 5e-5 at steps of 1e-3 to 1e-4).
-    sim = _sim(_case("retained"), 45e3 * RPM)
+@pytest.mark.parametrize(
+    ("subambient", "smoothing", "tol"),
+    [("retained", 0.0, 2e-4), ("lift-off", 0.2, 1e-2)],
+    ids=["retained", "smoothed"],
+)
+def test_run_derivative_equals_central_differences_of_the_run(
+    subambient: str, smoothing: float, tol: float
+) -> None:
+    # On a smooth flow (suction retained, or lift-off under the smoothed law) the
+    # variational equations of the steps the run took are the derivative of its end
+    # state: central differences of whole runs agree to their own truncation (measured
+    # 4e-6 to 5e-5 at steps of 1e-3 to 1e-4 with suction retained). Under the smoothed
+    # law the runs' step choices scatter the differences more (measured 1e-4 to 4e-3 of
+    # the derivative at steps of 1e-2 to 1e-5); a film row's history enters times α, and
+    # without it the derivative is off by 138 % at every step.
+    sim = _sim(_case(subambient, smoothing), 45e3 * RPM)
     y0 = sim.initial_state()
     y0[sim.system.n + sim.system.nt] += 0.01  # off the equilibrium: a whirl under way
     duration = 1.0 / 59.0
@@ -71,7 +83,7 @@ def test_run_derivative_equals_central_differences_of_the_run() -> None:
         h = 1e-3
         fd = (_end(sim, y0 + h * v, duration) - _end(sim, y0 - h * v, duration)) / (2 * h)
         ex = exact[:, k] / np.linalg.norm(block[:, k])
-        assert np.linalg.norm(fd - ex) < 2e-4 * np.linalg.norm(ex)
+        assert np.linalg.norm(fd - ex) < tol * np.linalg.norm(ex)
 
 
 @pytest.mark.parametrize("subambient", ["lift-off", "retained"])

@@ -210,6 +210,8 @@ def hopf_branch(
         for it in range(1, max_iter + 1):
             end = flow.advance(y, T, p)
             res = float(np.linalg.norm(end - y)) / (1.0 + float(np.linalg.norm(y)))
+            if not np.isfinite(res):  # no flow there (contact, or a speed off the case's)
+                break
             g = constraints(y, T, p)
             hp = fd * (1.0 + abs(p))
             dphi_dp = (flow.advance(y, T, p + hp) - end) / hp

@@ -260,6 +260,8 @@ def periodic_orbit(
     for it in range(1, max_iter + 1):
         end = flow.advance(y, T, p)
         res = float(np.linalg.norm(end - y)) / (1.0 + float(np.linalg.norm(y)))
+        if not np.isfinite(res):  # no flow from this iterate (contact, say)
+            break
         rhs = -np.concatenate([end - y, [n_vec @ (y - ref)]])
         cols, rows = flow.field(end, p)[:, None], n_vec[None, :]
         step = bordered_solve(flow, y, T, p, end, cols, rows, np.zeros((1, 1)), rhs)

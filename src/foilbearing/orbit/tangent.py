@@ -20,6 +20,10 @@ history: its row of J is ``d e_k`` and its right-hand side 0, so its pressure do
 not vary (the generalised derivative of the complementarity, branches fixed at each
 step). A cell that is held or set free between steps changes its equation there,
 which is the event's own linearisation (its pressure is 1 at the switch either way).
+Under the smoothed lift-off law (docs/lift-off.md, "The smoothed edge") a film cell's
+equation is ``G(P − 1, g) = 0`` of its BDF row g, so its history enters times
+``α = ∂G/∂g`` (:meth:`~foilbearing.reynolds.transient.TransientSystem.smoothed_weights`):
+0 where the foil has lifted, 1 where the film is held off ambient.
 
 For a periodic orbit this is the monodromy ``M = ∂φ_T/∂y₀`` of shooting
 (:mod:`foilbearing.bifurcation`): exact products ``M V`` where finite differences of
@@ -50,7 +54,7 @@ class _Step:
     """One accepted step as its variational equation needs it."""
 
     factor: Any  # the Newton matrix factorised at the new state (a TransientFactor)
-    held: NDArray[np.bool_]  # rows of the cells held at ambient (no history)
+    history: FloatArray  # ∂(row)/∂(history) of each row: 1, 0 held, α smoothed
     weights: FloatArray  # w_j of the k past storages, newest first
 
 
@@ -84,7 +88,7 @@ class RunTangent:
         dy = block
         for i, step in enumerate(self.steps):
             rhs = -sum(w * q for w, q in zip(step.weights, past, strict=False))
-            rhs[step.held] = 0.0
+            rhs *= step.history[:, None]
             if rhs.shape[1] == 1:  # one direction (a Krylov product): the compiled solve
                 dy = step.factor.solve(np.ascontiguousarray(rhs[:, 0]))[:, None]
             else:
@@ -147,9 +151,9 @@ def run_tangent(sim: Any, y0: FloatArray, duration: float) -> RunTangent | None:
         hist = sum(wj * storage[j] for wj, j in zip(w, past, strict=True))
         # A fresh factor at the accepted state, its lift-off branches decided there.
         factor = system.factorize(states[i], inputs[i], c0, hist)
-        held = np.zeros(system.size, dtype=bool)
-        held[: system.n] = factor.lift_state > 0.0
-        steps.append(_Step(factor, held, w))
+        history = system.smoothed_weights(states[i], inputs[i], c0, hist)
+        history[: system.n][factor.lift_state > 0.0] = 0.0
+        steps.append(_Step(factor, history, w))
 
     products = [
         system.storage_operator(y, inp.preload) for y, inp in zip(states, inputs, strict=True)

@@ -533,6 +533,27 @@ class TransientSystem:
 
         return apply
 
+    def smoothed_weights(
+        self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray
+    ) -> FloatArray:
+        """α of each row of the BDF equations under the smoothed lift-off law, shape (size,).
+
+        A film cell's row ``G = −(s/2)(x + g/s − √((x − g/s)² + 4δ²Λ))``, x = P − 1 and
+        g = c0 Q + hist − f its BDF row, depends on g, and so on y and on the history,
+        through α = ∂G/∂g (0 where the foil has lifted, 1 where the film is held off
+        ambient: docs/lift-off.md, "The smoothed edge"); the other rows' α is 1. All ones
+        without the smoothed law.
+        """
+        a = np.ones(self.size)
+        if self.lift_delta > 0.0:
+            n = self.n
+            g_p = newton_residual_py(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
+            P = np.asarray(y[:n], dtype=np.float64)
+            s = self.smooth_scale
+            width = self.grid.lift_off_width(inputs.lam)
+            a[:n] = smoothed_lift_off_py(P - 1.0, g_p[:n] / s, width, s)[0]
+        return a
+
     def jacobian(
         self,
         y: FloatArray,
@@ -586,15 +607,8 @@ class TransientSystem:
         full = sp.bmat(blocks, format="csr")
         if self.lift_delta > 0.0:
             # The smoothed law: each pressure row times α, plus (1 − α) s on its diagonal.
-            g_p = newton_residual_py(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
-            s = self.smooth_scale
-            width = self.grid.lift_off_width(inputs.lam)
-            alpha = smoothed_lift_off_py(P.ravel() - 1.0, g_p[:n] / s, width, s)[0]
-            a = np.ones(self.size)
-            a[:n] = alpha
-            b = np.zeros(self.size)
-            b[:n] = (1.0 - alpha) * s
-            full = sp.diags(a) @ full + sp.diags(b)
+            a = self.smoothed_weights(y, inputs, c0, hist)
+            full = sp.diags(a) @ full + sp.diags((1.0 - a) * self.smooth_scale)
         if self.lift_off:
             d = np.zeros(self.size)
             if lift_state is None:
