@@ -3,7 +3,7 @@ figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [--profile]
      [--divergence] [--disturbance] [--steps] [--newton] [--refresh] [--readings]
-     [--axial-order] [--orbit-grid G ...]
+     [--axial-order] [--orbit-grid G ...] [--seeds S,S,... G ...]
 
 - (always) the benchmark segment: 0.01 s at 20 krpm, 100 V, 8.5 g·mm imbalance, applied
   at t = 0 from the static equilibrium. max |Δe_X| in % of the orbit's peak-to-peak for
@@ -32,6 +32,10 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   ``orbit_axial_order``) against the case's 96 x 12: onset,
   whip frequency, divergence or contact, and the 1X amplitude at 5 and 10 krpm and at its
   peak; the issue-30 target is 1 % (two runs at a time, about 2 minutes a grid).
+- ``--seeds 1,2,3 [--run K] G [G ...]`` (e.g. ``96x12 96x12k0.2 96x4o4k0.2``): the 0 V,
+  1 g·mm speed-up (``--run 0``: 0 V, 8.5 g·mm; 2: the 150 V ramp) under each seed of the case's disturbance on each orbit grid: onset, whip and divergence,
+  their spread over the seeds and each grid's means against the first grid's (two runs at a
+  time, about 1 minute a run).
 - ``--axial-order``: route 2 of issue 30 built (``[grid] axial_order = 4``): the cost per step
   of a smooth and a large orbit on 96 x 12 (order 2) and 96 x 4, 6, 8 (order 4), and the
   linear onsets on them against 192 x 24, under lift-off and with suction retained (about
@@ -160,14 +164,19 @@ def readouts() -> None:
 OrbitGrid = tuple[int, int, int, float]  # n_theta, n_z, axial order, lift-off smoothing κ
 
 
-def _grid_readout_run(job: tuple[int, OrbitGrid]) -> tuple[tuple[int, OrbitGrid], dict]:
+def _grid_readout_run(
+    job: tuple[int, OrbitGrid] | tuple[int, OrbitGrid, int],
+) -> tuple[tuple[int, OrbitGrid] | tuple[int, OrbitGrid, int], dict]:
+    """One paper speed-up on an orbit grid (and, as a third item, the disturbance's seed)."""
     from foilbearing.case import Grid
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.signals import subsynchronous_amplitude
 
-    k, (n_theta, n_z, order, kappa) = job
+    k, (n_theta, n_z, order, kappa) = job[0], job[1]
     _label, imbalance, ramp = READOUT_RUNS[k]
     base = default_case()
+    if len(job) == 3 and base.disturbance is not None:
+        base = replace(base, disturbance=replace(base.disturbance, seed=job[2]))
     grid = Grid(
         base.grid.n_theta,
         base.grid.n_z,
@@ -241,6 +250,49 @@ def orbit_grid_readouts(grids: list[OrbitGrid]) -> None:
             label = f"{g[0]:3d} x {g[1]:2d}" + ("" if g[2] == 2 else f", order {g[2]}")
             label += "" if g[3] == 0.0 else f", κ = {g[3]:g}"
             print(f"    {label} ({head['wall']:.0f} s): " + ", ".join(parts))
+
+
+def seed_readouts(seeds: list[int], grids: list[OrbitGrid], k: int = 1) -> None:
+    """One paper speed-up (default: 0 V, 1 g·mm) under several seeds of the case's
+    disturbance on each orbit grid: how far its readings move with the random force alone,
+    against how far they move with the grid."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    print(
+        f"{READOUT_RUNS[k][0]} speed-up (3-90 krpm, 500 rad/s²) under the disturbance seeds "
+        f"{', '.join(map(str, seeds))}, on each orbit grid; two runs at a time"
+    )
+    jobs = [(k, g, seed) for g in grids for seed in seeds]
+    keys = (
+        ("onset_speed_rpm", "onset"),
+        ("whip_frequency_Hz", "whip"),
+        ("divergence_speed_rpm", "divergence/contact"),
+    )
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        out = {job[1:]: head for job, head in pool.map(_grid_readout_run, jobs)}
+    means: dict[OrbitGrid, dict[str, float]] = {}
+    for g in grids:
+        label = f"{g[0]} x {g[1]}" + ("" if g[2] == 2 else f", order {g[2]}")
+        label += "" if g[3] == 0.0 else f", κ = {g[3]:g}"
+        print(f"  {label}:")
+        means[g] = {}
+        for key, name in keys:
+            values = [out[g, seed].get(key) for seed in seeds]
+            shown = ", ".join("none" if v is None else f"{v:.5g}" for v in values)
+            got = np.array([v for v in values if v is not None], float)
+            if got.size:
+                means[g][key] = float(got.mean())
+                spread = 100 * (got.max() - got.min()) / got.mean()
+                shown += f" (mean {got.mean():.5g}, spread {spread:.1f} %)"
+            print(f"    {name}: {shown}")
+    first = grids[0]
+    for g in grids[1:]:
+        parts = [
+            f"{name} {100 * (means[g][key] - means[first][key]) / means[first][key]:+.2f} %"
+            for key, name in keys
+            if key in means[g] and key in means[first]
+        ]
+        print(f"  means of {g} against {first}: " + ", ".join(parts))
 
 
 def axial_order_study() -> None:
@@ -761,6 +813,15 @@ if __name__ == "__main__":
         sys.exit(0)
     if "--profile" in sys.argv:
         step_profile()
+        sys.exit(0)
+    if "--seeds" in sys.argv:
+        run_k = 1
+        if "--run" in sys.argv:
+            run_k = int(sys.argv[sys.argv.index("--run") + 1])
+            del sys.argv[sys.argv.index("--run") : sys.argv.index("--run") + 2]
+        at = sys.argv.index("--seeds")
+        seeds = [int(x) for x in sys.argv[at + 1].split(",")]
+        seed_readouts(seeds, [_orbit_grid(g) for g in sys.argv[at + 2 :]], run_k)
         sys.exit(0)
     if "--orbit-grid" in sys.argv:
         names = sys.argv[sys.argv.index("--orbit-grid") + 1 :]

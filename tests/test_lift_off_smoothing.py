@@ -154,3 +154,21 @@ def test_orbit_agrees_with_solve_ivp_on_the_source_form_of_the_law() -> None:
 def test_orbit_outputs_name_the_smoothing() -> None:
     grid = _case(0.0, 0.1, 96, 4, 4).grid
     assert grid.orbit_label == "96 × 4 (axial order 4, lift-off smoothing 0.1)"
+
+
+def test_the_hopf_type_no_longer_depends_on_the_grid() -> None:
+    # Sharp, the 0 V branch on 32 x 4 is subcritical (tests/test_bifurcation.py) and on
+    # 96 x 12 supercritical, and three of the study's eight branches change type between
+    # grids: the staircase decides on which side of the onset the first cycles lie.
+    # Smoothed at κ = 0.2 it is supercritical with stable cycles on 32 x 4 and 48 x 4, as
+    # on 96 x 4 (order 4) and 96 x 12 (docs/bifurcation.md), and its first cycle lies at
+    # the linear onset of its grid (measured 38.99 krpm on 32 x 4, within 1e-4).
+    from foilbearing.bifurcation.bearing import whirl_branch
+
+    scan = [r * RPM for r in range(30000, 50001, 2500)]
+    for n_theta in (32, 48):
+        wb = whirl_branch(_case(0.0, 0.2, n_theta, 4, 2), scan=scan, steps=0)
+        head = wb.headline()
+        assert head["bifurcation_type"] == "supercritical", n_theta
+        assert all(head["stable"])
+        assert head["speeds_rpm"][0] * RPM == pytest.approx(wb.hopf_speed, rel=1e-3)
