@@ -33,9 +33,10 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   whip frequency, divergence or contact, and the 1X amplitude at 5 and 10 krpm and at its
   peak; the issue-30 target is 1 % (two runs at a time, about 2 minutes a grid).
 - ``--seeds 1,2,3 [--run K] G [G ...]`` (e.g. ``96x12 96x12k0.2 96x4o4k0.2``): the 0 V,
-  1 g·mm speed-up (``--run 0``: 0 V, 8.5 g·mm; 2: the 150 V ramp) under each seed of the case's disturbance on each orbit grid: onset, whip and divergence,
-  their spread over the seeds and each grid's means against the first grid's (two runs at a
-  time, about 1 minute a run).
+  1 g·mm speed-up (``--run 0``: 0 V, 8.5 g·mm; 2: the 150 V ramp) under each seed of the
+  case's disturbance on each orbit grid: onset, whip and divergence, their spread over the
+  seeds and each grid's means against the first grid's (two runs at a time, about 1 minute
+  a run).
 - ``--axial-order``: route 2 of issue 30 built (``[grid] axial_order = 4``): the cost per step
   of a smooth and a large orbit on 96 x 12 (order 2) and 96 x 4, 6, 8 (order 4), and the
   linear onsets on them against 192 x 24, under lift-off and with suction retained (about
@@ -201,6 +202,12 @@ def _grid_readout_run(
     return job, head | one_x | {"wall": res.wall_time}
 
 
+def _grid_label(g: OrbitGrid) -> str:
+    """An orbit grid in words, e.g. ``"96 x  4, order 4, κ = 0.2"``."""
+    label = f"{g[0]:3d} x {g[1]:2d}" + ("" if g[2] == 2 else f", order {g[2]}")
+    return label + ("" if g[3] == 0.0 else f", κ = {g[3]:g}")
+
+
 def _orbit_grid(text: str) -> OrbitGrid:
     """``"96x6"``, ``"96x4o4"`` (axial order 4) or ``"96x4o4k0.1"`` (and a smoothed
     lift-off edge, ``[grid] lift_off_smoothing = 0.1``) as (n_theta, n_z, order, κ)."""
@@ -247,9 +254,7 @@ def orbit_grid_readouts(grids: list[OrbitGrid]) -> None:
                     parts.append(f"{name} {a:.4g}")
                 else:
                     parts.append(f"{name} {a:.4g} ({100 * (a - b) / b:+.2f} %)")
-            label = f"{g[0]:3d} x {g[1]:2d}" + ("" if g[2] == 2 else f", order {g[2]}")
-            label += "" if g[3] == 0.0 else f", κ = {g[3]:g}"
-            print(f"    {label} ({head['wall']:.0f} s): " + ", ".join(parts))
+            print(f"    {_grid_label(g)} ({head['wall']:.0f} s): " + ", ".join(parts))
 
 
 def seed_readouts(seeds: list[int], grids: list[OrbitGrid], k: int = 1) -> None:
@@ -272,9 +277,7 @@ def seed_readouts(seeds: list[int], grids: list[OrbitGrid], k: int = 1) -> None:
         out = {job[1:]: head for job, head in pool.map(_grid_readout_run, jobs)}
     means: dict[OrbitGrid, dict[str, float]] = {}
     for g in grids:
-        label = f"{g[0]} x {g[1]}" + ("" if g[2] == 2 else f", order {g[2]}")
-        label += "" if g[3] == 0.0 else f", κ = {g[3]:g}"
-        print(f"  {label}:")
+        print(f"  {_grid_label(g)}:")
         means[g] = {}
         for key, name in keys:
             values = [out[g, seed].get(key) for seed in seeds]
@@ -292,7 +295,7 @@ def seed_readouts(seeds: list[int], grids: list[OrbitGrid], k: int = 1) -> None:
             for key, name in keys
             if key in means[g] and key in means[first]
         ]
-        print(f"  means of {g} against {first}: " + ", ".join(parts))
+        print(f"  means of {_grid_label(g)} against {_grid_label(first)}: " + ", ".join(parts))
 
 
 def axial_order_study() -> None:

@@ -23,7 +23,7 @@ which is the event's own linearisation (its pressure is 1 at the switch either w
 Under the smoothed lift-off law (docs/lift-off.md, "The smoothed edge") a film cell's
 equation is ``G(P − 1, g) = 0`` of its BDF row g, so its history enters times
 ``α = ∂G/∂g`` (:meth:`~foilbearing.reynolds.transient.TransientSystem.smoothed_weights`):
-0 where the foil has lifted, 1 where the film is held off ambient.
+0 where the foil has lifted, 1 where the film is above ambient and obeys Reynolds.
 
 For a periodic orbit this is the monodromy ``M = ∂φ_T/∂y₀`` of shooting
 (:mod:`foilbearing.bifurcation`): exact products ``M V`` where finite differences of

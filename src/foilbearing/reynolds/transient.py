@@ -538,11 +538,11 @@ class TransientSystem:
     ) -> FloatArray:
         """α of each row of the BDF equations under the smoothed lift-off law, shape (size,).
 
-        A film cell's row ``G = −(s/2)(x + g/s − √((x − g/s)² + 4δ²Λ))``, x = P − 1 and
+        A film cell's row ``G = (s/2)(x + g/s − √((x − g/s)² + 4δ²Λ))``, x = P − 1 and
         g = c0 Q + hist − f its BDF row, depends on g, and so on y and on the history,
-        through α = ∂G/∂g (0 where the foil has lifted, 1 where the film is held off
-        ambient: docs/lift-off.md, "The smoothed edge"); the other rows' α is 1. All ones
-        without the smoothed law.
+        through α = ∂G/∂g: 0 where the foil has lifted (P at ambient), 1 where the film is
+        above ambient and obeys Reynolds (docs/lift-off.md, "The smoothed edge"). The
+        other rows' α is 1; all are 1 without the smoothed law.
         """
         a = np.ones(self.size)
         if self.lift_delta > 0.0:
