@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+import xarray as xr
 
 from foilbearing.output.report import write_report
 
@@ -323,6 +324,34 @@ def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
     write_report(out)  # the folder alone gives the same page
     assert (out / "report.html").read_text(encoding="utf-8") == page
     return out
+
+
+@pytest.mark.slow
+def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> None:
+    """The main job on the default case: every paper figure, the static sweep converged at
+    every point of its 9 speeds × 4 voltages, the comparison with the paper, and an onset
+    for every voltage of the C-GFB."""
+    for name in (
+        "fig05b_stack_displacement.png",
+        "fig06_stack_stiffness.png",
+        "fig07_stiffness_function.png",
+        "fig08_preloads.png",
+        "fig09_midplane.png",
+        "fig10_actuator_pressure.png",
+        "fig11_preload.png",
+        "fig12_eccentricity.png",
+    ):
+        assert (study_out / name).stat().st_size > 10_000, name
+    with xr.open_dataset(study_out / "static_sweep.nc") as ds:
+        assert bool(ds.converged.all())
+        assert ds.sizes["speed"] == 9 and ds.sizes["voltage"] == 4
+    summary = json.loads((study_out / "summary.json").read_text())
+    rows = {r["quantity"]: r for r in summary["paper_comparison"]}
+    assert "k_assy (N/m³)" in rows
+    assert (study_out / "paper_comparison.md").read_text().count("|") > 50
+    assert summary["structure"]["k_b_N_per_m3"] > 0
+    onsets = [e["onset_speed_rpm"] for e in summary["stability"]["C-GFB"]]
+    assert all(o is not None and o > 5000 for o in onsets)
 
 
 @pytest.mark.slow

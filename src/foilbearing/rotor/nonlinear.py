@@ -17,14 +17,16 @@ state_derivative`: the same semi-discrete film, foil, actuators and lift-off law
 rotor's angular acceleration enters only through the unbalance force (ROSS's Ksdt, the
 shaft's own, is left out).
 
-This first form integrates the whole system with ``scipy.integrate.solve_ivp`` (BDF, a
-finite-difference Jacobian on the known sparsity): slow, and the reference the compiled
-stepper will be checked against. At small amplitude its free whirl is the linear analysis'
+This first form integrates the whole system with ``scipy.integrate.solve_ivp`` (BDF, the
+films' Jacobian by grouped differences and the rotor's exact: :meth:`RotorOrbitSystem.
+jacobian`): slow, and the reference the compiled stepper is checked against. At small
+amplitude its free whirl is the linear analysis'
 mode (``tests/test_rotor_nonlinear.py``).
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Sequence
@@ -47,6 +49,7 @@ from foilbearing.rotor.reduced import ReducedRotor, lateral_dofs, reduce_rotor
 __all__ = ["RotorOrbit", "RotorOrbitSystem", "Unbalance", "load_rotor_orbit"]
 
 FloatArray = NDArray[np.float64]
+IndexArray = NDArray[np.intp]
 
 #: The shortest run (s) whose sub-synchronous onset the signal analysis reads.
 READ_AFTER = 1.0
@@ -337,6 +340,71 @@ class RotorOrbitSystem:
         )
         return sp.vstack([*rows, top, bottom]).tocsr()
 
+    def jacobian(self, t: float, y: FloatArray) -> sp.csr_matrix:
+        """The Jacobian of :meth:`derivative` for solve_ivp.
+
+        The films' rows are forward differences, their columns grouped so that no two
+        columns of a group share a film row: a cell's rate depends only on its neighbours'
+        rows, its foil and its journal. The rotor's rows are exact, for they are linear in
+        the pressures and in q, q̇. Left to solve_ivp, the differences would take one
+        derivative a column: the rotor's rows join every column, so no two columns share a
+        group. The Jacobian only steers solve_ivp's Newton iterations; the run solves
+        :meth:`derivative` to its tolerances whatever it is.
+        """
+        f0 = self.derivative(t, y)
+        nf, m = self.n_film, self.m
+        step = math.sqrt(np.finfo(float).eps) * np.maximum(np.abs(y), self.atol())
+        rows, cols, vals = [], [], []
+        for members, (r, c) in self._film_groups:
+            dy = np.zeros_like(y)
+            dy[members] = step[members]
+            df = self.derivative(t, y + dy)[:nf] - f0[:nf]
+            rows.append(r)
+            cols.append(c)
+            vals.append(df[r] / step[c])
+        films = sp.csr_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(self.size, self.size),
+        )
+        rotor = np.zeros((2 * m, self.size))
+        rotor[:m, nf + m :] = np.eye(m)
+        for b, sim in enumerate(self.sims):
+            lo = self.offsets[b]
+            f_x, f_y = self.force_per_pressure[b]  # ours: X, Y; ROSS x = Y, y = −X
+            rotor[m:, lo : lo + sim.system.n] = np.outer(self.mass_inv[:, 2 * b], f_y)
+            rotor[m:, lo : lo + sim.system.n] -= np.outer(self.mass_inv[:, 2 * b + 1], f_x)
+        rotor[m:, nf : nf + m] = -self.mass_inv @ self.reduced.stiffness
+        rotor[m:, nf + m :] = -self.speed.omega(t) * self.mass_inv @ self.reduced.gyroscopic
+        return films + sp.vstack([sp.csr_matrix((nf, self.size)), sp.csr_matrix(rotor)]).tocsr()
+
+    @functools.cached_property
+    def _film_groups(self) -> list[tuple[IndexArray, tuple[IndexArray, IndexArray]]]:
+        """The columns of :meth:`jacobian`'s differences in groups (greedy colouring of the
+        films' rows of :meth:`sparsity`), each with the (row, column) pairs it fills."""
+        films = self.sparsity()[: self.n_film].tocsc()
+        taken: list[NDArray[np.bool_]] = []
+        members: list[list[int]] = []
+        for j in range(films.shape[1]):
+            r = films.indices[films.indptr[j] : films.indptr[j + 1]]
+            if r.size == 0:
+                continue
+            for mask, group in zip(taken, members, strict=True):
+                if not mask[r].any():
+                    mask[r] = True
+                    group.append(j)
+                    break
+            else:
+                mask = np.zeros(films.shape[0], bool)
+                mask[r] = True
+                taken.append(mask)
+                members.append([j])
+        groups: list[tuple[IndexArray, tuple[IndexArray, IndexArray]]] = []
+        for group in members:
+            cols = np.asarray(group, np.intp)
+            sub = films[:, cols].tocoo()
+            groups.append((cols, (sub.row.astype(np.intp), cols[sub.col])))
+        return groups
+
     def initial_state(self) -> FloatArray:
         """Each bearing's static equilibrium at the start, the shaft bent by its weight."""
         y = np.zeros(self.size)
@@ -395,7 +463,7 @@ class RotorOrbitSystem:
             t_eval=times,
             rtol=rtol,
             atol=self.atol() * atol_factor,
-            jac_sparsity=self.sparsity(),
+            jac=self.jacobian,
         )
         wall = time.perf_counter() - clock
         if not sol.success:

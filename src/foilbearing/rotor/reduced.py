@@ -150,26 +150,88 @@ def reduce_rotor(model: Any, bearing_nodes: Sequence[int], n_modes: int) -> Redu
     )
 
 
+_COEFFICIENTS = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
+
+
+class _BearingTables:
+    """The ROSS bearing elements' X, Y stiffness and damping tables, to be taken at one
+    speed (rad/s) as functions of the whirl frequency (rad/s): :meth:`at`.
+
+    A table over speed and frequency is ROSS's own interpolation: along the speed (each
+    frequency's column), then along the frequency. Here the columns' interpolants are built
+    once and the row's once a speed, each a ROSS 1-D table; ROSS builds both at every call,
+    which made the matched whirl's iterations cost 0.5 ms a coefficient."""
+
+    def __init__(self, bearings: Sequence[Any]) -> None:
+        from ross.bearing_seal_element import BearingCoefficient
+
+        self._tables: list[dict[str, tuple[Any, list[Any] | None]]] = []
+        for element in bearings:
+            table: dict[str, tuple[Any, list[Any] | None]] = {}
+            for name in _COEFFICIENTS:
+                coefficient = getattr(element, f"{name}_interpolated")
+                columns = None
+                if coefficient.kind == "grid":
+                    values = np.asarray(coefficient.values, float)
+                    columns = [
+                        BearingCoefficient(
+                            values[:, j],
+                            speed=coefficient.speed,
+                            interpolation=coefficient.interpolation,
+                        )
+                        for j in range(values.shape[1])
+                    ]
+                table[name] = (coefficient, columns)
+            self._tables.append(table)
+
+    def at(self, speed: float) -> list[dict[str, Any]]:
+        """Each bearing's coefficients at ``speed``, by name, as functions of the
+        frequency."""
+        from ross.bearing_seal_element import BearingCoefficient
+
+        out = []
+        for table in self._tables:
+            at: dict[str, Any] = {}
+            for name, (coefficient, columns) in table.items():
+                if columns is None:
+                    at[name] = lambda f, c=coefficient: c(frequency=f, speed=speed)
+                else:
+                    row = np.array([float(column(speed=speed)) for column in columns])
+                    at[name] = BearingCoefficient(
+                        row,
+                        frequency=coefficient.frequency,
+                        interpolation=coefficient.interpolation,
+                    )
+            out.append(at)
+        return out
+
+
 def _bearing_matrices(
-    reduced: ReducedRotor, bearings: Sequence[Any], frequency: float, speed: float
+    reduced: ReducedRotor, tables: Sequence[dict[str, Any]], frequency: float
 ) -> tuple[FloatArray, FloatArray]:
     """The bearings' stiffness and damping on the reduced coordinates at a whirl frequency
-    (rad/s) and speed (rad/s), from the ROSS bearing elements' X, Y rows."""
+    (rad/s), from their tables at one speed (:meth:`_BearingTables.at`: the ROSS bearing
+    elements' X, Y rows)."""
     k = np.zeros((reduced.size, reduced.size))
     c = np.zeros_like(k)
-    for b, element in enumerate(bearings):
+    for b, at in enumerate(tables):
         s = slice(2 * b, 2 * b + 2)
-        k[s, s] = np.asarray(element.K(frequency, speed), float)[:2, :2]
-        c[s, s] = np.asarray(element.C(frequency, speed), float)[:2, :2]
+        k[s, s] = [
+            [float(at[n](frequency)) for n in row] for row in (("kxx", "kxy"), ("kyx", "kyy"))
+        ]
+        c[s, s] = [
+            [float(at[n](frequency)) for n in row] for row in (("cxx", "cxy"), ("cyx", "cyy"))
+        ]
     return k, c
 
 
 def _eigen(
-    reduced: ReducedRotor, bearings: Sequence[Any], frequency: float, speed: float
+    reduced: ReducedRotor, tables: Sequence[dict[str, Any]], frequency: float, speed: float
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """Eigenvalues (1/s) and vectors of the state matrix with the bearings at ``frequency``:
-    those whirling forward or backward with Im s > 0, ascending in Im s."""
-    kb, cb = _bearing_matrices(reduced, bearings, frequency, speed)
+    """Eigenvalues (1/s) and vectors of the state matrix with the bearings' tables at
+    ``speed`` (:meth:`_BearingTables.at`) taken at ``frequency``: those whirling forward or backward
+    with Im s > 0, ascending in Im s."""
+    kb, cb = _bearing_matrices(reduced, tables, frequency)
     m = reduced.size
     mass_inv = np.linalg.inv(reduced.mass)
     a = np.zeros((2 * m, 2 * m))
@@ -187,12 +249,13 @@ def _mac(u: NDArray[np.complex128], v: NDArray[np.complex128]) -> float:
 
 
 def _matched(
-    reduced: ReducedRotor, bearings: Sequence[Any], speed: float, num_modes: int
+    reduced: ReducedRotor, bearings: _BearingTables, speed: float, num_modes: int
 ) -> tuple[FloatArray, FloatArray, NDArray[np.bool_]]:
     """(whirl frequency rad/s, log decrement, forward) of the ``num_modes`` lowest modes,
     each iterated to its own whirl frequency (the same fixed point and mode tracking by the
     modal assurance criterion as ROSS's ``run_modal(matched_whirl=True)``)."""
-    values0, vectors0 = _eigen(reduced, bearings, speed, speed)
+    tables = bearings.at(speed)
+    values0, vectors0 = _eigen(reduced, tables, speed, speed)
     count = min(num_modes, values0.size)
     wd = np.zeros(count)
     dec = np.zeros(count)
@@ -201,7 +264,7 @@ def _matched(
         value, vector = values0[i], vectors0[:, i]
         whirl = value.imag
         for _ in range(_WHIRL_MAX_ITER):
-            values, vectors = _eigen(reduced, bearings, whirl, speed)
+            values, vectors = _eigen(reduced, tables, whirl, speed)
             j = int(np.argmax([_mac(vector, vectors[:, c]) for c in range(values.size)]))
             value, vector = values[j], vectors[:, j]
             done = abs(value.imag - whirl) <= _WHIRL_RTOL * value.imag
@@ -231,12 +294,12 @@ def _forward(reduced: ReducedRotor, vector: NDArray[np.complex128]) -> bool:
     return bool((np.conj(x) * y).imag < 0.0)
 
 
-def _bearings_of(model: Any, reduced: ReducedRotor) -> list[Any]:
+def _bearings_of(model: Any, reduced: ReducedRotor) -> _BearingTables:
     by_node = {int(e.n): e for e in model.bearing_elements}
     missing = [n for n in reduced.bearing_nodes if n not in by_node]
     if missing:
         raise InputError(f"bearing_nodes {missing}: the ROSS rotor has no bearing there")
-    return [by_node[n] for n in reduced.bearing_nodes]
+    return _BearingTables([by_node[n] for n in reduced.bearing_nodes])
 
 
 def reduced_modes(
@@ -258,7 +321,7 @@ def reduced_modes(
 
 
 def _modes_on(
-    reduced: ReducedRotor, bearings: Sequence[Any], speeds: Sequence[float], num_modes: int
+    reduced: ReducedRotor, bearings: _BearingTables, speeds: Sequence[float], num_modes: int
 ) -> RotorModes:
     rows = [_matched(reduced, bearings, float(w), num_modes) for w in speeds]
     return RotorModes(
