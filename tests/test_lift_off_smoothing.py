@@ -22,7 +22,7 @@ from foilbearing.film import film_model
 from foilbearing.orbit import OrbitSimulation, simulate
 from foilbearing.orbit.reference import reference_orbit
 from foilbearing.orbit.settings import OrbitSettings
-from foilbearing.reynolds import coupled_system
+from foilbearing.reynolds import coupled_system, reference
 from foilbearing.stability import _Scanner, onset_speed
 from foilbearing.static import solve_equilibrium
 
@@ -149,6 +149,45 @@ def test_orbit_agrees_with_solve_ivp_on_the_source_form_of_the_law() -> None:
     assert fast.status == "completed" and ref["success"]
     for ours, theirs in ((fast.e_x, ref["e_x"]), (fast.e_y, ref["e_y"])):
         assert np.max(np.abs(ours - theirs)) < 0.01 * np.ptp(theirs)
+
+
+def test_a_cell_on_its_factor_s_scale_obeys_the_same_law() -> None:
+    # The orbit's factor measures each cell's row on its own scale s_k, its Reynolds
+    # diagonal at the factorisation, in place of the law's one s
+    # (TransientSystem.smoothed_scales): (s_k/2)(x + g/s_k − √((x − g/s_k)² + 4δ²Λ s/s_k))
+    # vanishes on the same curve x g = s δ²Λ. So at any state each cell's row has the sign
+    # of the law's row, and the two vanish together. The scales differ from s by orders of
+    # magnitude (that is their point: docs/orbit-performance.md, "One scale a cell").
+    case = _case(100.0, 0.2, 32, 4, 2)
+    sim = OrbitSimulation(case, constant_speed(20e3 * RPM, 0.01))
+    sys_, n = sim.system, sim.system.n
+    y = sim.initial_state()
+    inp = sim.inputs(1e-4, sim.volts(1e-4))
+    c0 = 3000.0
+    rng = np.random.default_rng(7)
+    hist = -c0 * sys_.storage(y, inp)
+    scales = sys_.factorize(y, inp, c0, hist).lift_state
+    s_k = sys_.smoothed_scales(scales)
+    assert np.all(scales < 0.0) and np.ptp(np.log10(s_k / sys_.smooth_scale)) > 1.0
+    for spread in (1e-4, 1e-2):  # near the curve and far from it
+        hist_k = hist + spread * c0 * rng.standard_normal(sys_.size)
+        y_k = y.copy()
+        y_k[:n] = 1.0 + (y[:n] - 1.0) * np.exp(spread * 10 * rng.standard_normal(n))
+        law = sys_.newton_residual(y_k, inp, c0, hist_k)[0][:n].copy()
+        own = sys_.newton_residual(y_k, inp, c0, hist_k, lift_state=scales)[0][:n]
+        assert np.all(np.sign(own) == np.sign(law))
+    # On the curve: a history that puts each cell above ambient at x g = s δ²Λ.
+    x = y[:n] - 1.0
+    above = x > 0.0
+    assert above.sum() > n // 2
+    raw = reference.newton_residual_py(sys_, y, inp, c0, hist, np.zeros(n), smooth=False)[0]
+    width2 = sys_.grid.lift_off_width(inp.lam) ** 2
+    hist_c = hist.copy()
+    hist_c[:n][above] += sys_.smooth_scale * width2 / x[above] - raw[:n][above]
+    for state in (np.zeros(n), scales):
+        row = sys_.newton_residual(y, inp, c0, hist_c, lift_state=state)[0][:n]
+        size = sys_.smoothed_scales(state) * np.abs(x)
+        assert np.all(np.abs(row[above]) <= 1e-9 * size[above].max())
 
 
 def test_orbit_outputs_name_the_smoothing() -> None:

@@ -151,7 +151,7 @@ def run_tangent(sim: Any, y0: FloatArray, duration: float) -> RunTangent | None:
         hist = sum(wj * storage[j] for wj, j in zip(w, past, strict=True))
         # A fresh factor at the accepted state, its lift-off branches decided there.
         factor = system.factorize(states[i], inputs[i], c0, hist)
-        history = system.smoothed_weights(states[i], inputs[i], c0, hist)
+        history = system.smoothed_weights(states[i], inputs[i], c0, hist, factor.lift_state)
         history[: system.n][factor.lift_state > 0.0] = 0.0
         steps.append(_Step(factor, history, w))
 

@@ -301,9 +301,10 @@ def coupled_jacobian_py(
 
 
 def smoothed_lift_off_py(
-    x: FloatArray, y: FloatArray, delta: float, d_ref: float
+    x: FloatArray, y: FloatArray, delta: float | FloatArray, d_ref: float | FloatArray
 ) -> tuple[FloatArray, FloatArray]:
-    """The smoothed lift-off law of each cell: its weight α and its residual G.
+    """The smoothed lift-off law of each cell: its weight α and its residual G (δ and
+    d_ref one for all cells, or one a cell).
 
     ``x = P − 1`` and ``y`` the net outflow in pressure units (``−R/d_ref``); ``G =
     −(d_ref/2)(x + y − √((x − y)² + 4δ²))``, zero where x > 0, y > 0 and ``x y = δ²``;
@@ -520,12 +521,18 @@ def newton_residual_py(
     out[n + nt : n + nt + 2] = c0 * eps - v
     out[-2:] = c0 * v - system.force_scale * (system.w @ (P.ravel() - 1.0)) - inputs.force
     out += hist
-    if smooth and system.lift_delta > 0.0:
-        s = system.smooth_scale  # the orbit's sign: (s/2)(x + G/s − √(…)), G ≥ 0 an outflow
-        x = P.ravel() - 1.0
-        width = system.grid.lift_off_width(inputs.lam)
-        out[:n] = -smoothed_lift_off_py(x, out[:n] / s, width, s)[1]
     d = system.lift_state(y, inputs, c0, hist) if lift_state is None else lift_state
+    if system.lift_delta > 0.0:
+        if smooth:
+            # the orbit's sign: (s_k/2)(x + G/s_k − √(…)), G ≥ 0 an outflow; s_k a
+            # factor's own scale where lift_state holds one (TransientSystem.smoothed_scales)
+            s = system.smoothed_scales(lift_state)
+            x = P.ravel() - 1.0
+            width = system.grid.lift_off_width(inputs.lam) * np.sqrt(system.smooth_scale / s)
+            out[:n] = -smoothed_lift_off_py(x, out[:n] / s, width, s)[1]
+        if slack is not None:
+            slack[:] = 0.0
+        return out, float(H.min())
     if slack is not None:
         safe = np.where(d > 0.0, d, 1.0)
         slack[:] = np.where(d > 0.0, -out[:n] / safe, np.where(d < 0.0, 1.0 - P.ravel(), 0.0))
@@ -579,18 +586,16 @@ def jacobian_blocks_py(
     active = (g.gauge_mean(P) > 0.0).astype(float)
     c_eff = system.c_act + rate * system.c_bump / (c0 + rate)
     n = system.n
-    if system.lift_delta > 0.0:  # the smoothed law: rows times α, (1 − α) s on the diagonal
-        g_p = newton_residual_py(system, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
-        alpha = smoothed_lift_off_py(
-            P.ravel() - 1.0,
-            g_p[:n] / system.smooth_scale,
-            system.grid.lift_off_width(inputs.lam),
-            system.smooth_scale,
-        )[0]
+    d = system.lift_state(y, inputs, c0, hist)
+    if system.lift_delta > 0.0:
+        # the smoothed law: rows times α, (1 − α) s_k on the diagonal, s_k each row's own
+        # diagonal, kept as −s_k in the branches (TransientSystem.smoothed_scales)
+        s_k = np.abs(jp[system.diag_slots])
+        d = -np.where(s_k > 0.0, s_k, system.smooth_scale)
+        alpha = system.smoothed_weights(y, inputs, c0, hist, d)[:n]
         jp *= alpha[ws.entry_rows]
         jh *= alpha[ws.entry_rows]
-        jp[system.diag_slots] += (1.0 - alpha) * system.smooth_scale
-    d = system.lift_state(y, inputs, c0, hist)
+        jp[system.diag_slots] += (1.0 - alpha) * -d
     clamped = d > 0.0
     jh[clamped[ws.entry_rows]] = 0.0
     jc = np.empty(system._jc.size)

@@ -533,24 +533,47 @@ class TransientSystem:
 
         return apply
 
+    def smoothed_scales(self, lift_state: FloatArray | None = None) -> FloatArray:
+        """s_k of each film cell's row under the smoothed lift-off law, shape (n,), 1/s.
+
+        The law's s, or a factor's own scale of the cell where ``lift_state`` (the
+        factor's) holds one: −d, the diagonal of the cell's Reynolds row at the
+        factorisation. A cell's row ``G = (s_k/2)(x + g/s_k − √((x − g/s_k)² +
+        4δ²Λ s/s_k))`` vanishes on the same curve ``x g = s δ²Λ`` whatever s_k, so the
+        law and its solutions do not depend on it; the rows' sizes do, and a factor
+        whose rows keep their size when a cell crosses the kink stays good
+        (docs/orbit-performance.md, "One scale a cell").
+        """
+        s = np.full(self.n, self.smooth_scale)
+        if lift_state is not None:
+            own = np.asarray(lift_state, dtype=np.float64) < 0.0
+            s[own] = -np.asarray(lift_state)[own]
+        return s
+
     def smoothed_weights(
-        self, y: FloatArray, inputs: Inputs, c0: float, hist: FloatArray
+        self,
+        y: FloatArray,
+        inputs: Inputs,
+        c0: float,
+        hist: FloatArray,
+        lift_state: FloatArray | None = None,
     ) -> FloatArray:
         """α of each row of the BDF equations under the smoothed lift-off law, shape (size,).
 
-        A film cell's row ``G = (s/2)(x + g/s − √((x − g/s)² + 4δ²Λ))``, x = P − 1 and
-        g = c0 Q + hist − f its BDF row, depends on g, and so on y and on the history,
-        through α = ∂G/∂g: 0 where the foil has lifted (P at ambient), 1 where the film is
-        above ambient and obeys Reynolds (docs/lift-off.md, "The smoothed edge"). The
-        other rows' α is 1; all are 1 without the smoothed law.
+        A film cell's row ``G = (s_k/2)(x + g/s_k − √((x − g/s_k)² + 4δ²Λ s/s_k))``,
+        x = P − 1 and g = c0 Q + hist − f its BDF row, depends on g, and so on y and on
+        the history, through α = ∂G/∂g: 0 where the foil has lifted (P at ambient), 1
+        where the film is above ambient and obeys Reynolds (docs/lift-off.md, "The
+        smoothed edge"). s_k: :meth:`smoothed_scales` of ``lift_state`` (a factor's: the
+        weights of its rows). The other rows' α is 1; all are 1 without the smoothed law.
         """
         a = np.ones(self.size)
         if self.lift_delta > 0.0:
             n = self.n
             g_p = newton_residual_py(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
             P = np.asarray(y[:n], dtype=np.float64)
-            s = self.smooth_scale
-            width = self.grid.lift_off_width(inputs.lam)
+            s = self.smoothed_scales(lift_state)
+            width = self.grid.lift_off_width(inputs.lam) * np.sqrt(self.smooth_scale / s)
             a[:n] = smoothed_lift_off_py(P - 1.0, g_p[:n] / s, width, s)[0]
         return a
 
@@ -606,9 +629,12 @@ class TransientSystem:
         ]
         full = sp.bmat(blocks, format="csr")
         if self.lift_delta > 0.0:
-            # The smoothed law: each pressure row times α, plus (1 − α) s on its diagonal.
-            a = self.smoothed_weights(y, inputs, c0, hist)
-            full = sp.diags(a) @ full + sp.diags((1.0 - a) * self.smooth_scale)
+            # The smoothed law: each pressure row times α, plus (1 − α) s_k on its diagonal
+            # (s_k a factor's own where ``lift_state`` is a factor's).
+            a = self.smoothed_weights(y, inputs, c0, hist, lift_state)
+            s = np.zeros(self.size)
+            s[:n] = self.smoothed_scales(lift_state)
+            full = sp.diags(a) @ full + sp.diags((1.0 - a) * s)
         if self.lift_off:
             d = np.zeros(self.size)
             if lift_state is None:

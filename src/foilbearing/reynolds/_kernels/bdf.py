@@ -171,10 +171,19 @@ def transient_residual(
             p = y[k]
             gk = c0 * (p * h) - res[i, j] / denom + hist[k]
             d = lift_state[k]
-            if lift_delta > 0.0:  # the smoothed law: (P − 1)·G/s = δ²Λ, no branches
+            if lift_delta > 0.0:
+                # The smoothed law: (P − 1)·G = s·δ²Λ, no branches. A factor's cell is
+                # measured on its own scale s_k = −d (its Reynolds diagonal at the
+                # factorisation): the same root, with rows of the size its factor has.
+                s_k = -d if d < 0.0 else lift_scale
                 x = p - 1.0
-                yk = gk / lift_scale
-                gk = 0.5 * lift_scale * (x + yk - np.sqrt((x - yk) ** 2 + 4.0 * width2))
+                yk = gk / s_k
+                root = np.sqrt((x - yk) ** 2 + 4.0 * width2 * lift_scale / s_k)
+                out[k] = 0.5 * s_k * (x + yk - root)
+                slack[k] = 0.0
+                fx += w[0, k] * (p - 1.0)
+                fy += w[1, k] * (p - 1.0)
+                continue
             if d > 0.0:
                 slack[k] = -gk / d
                 gk = d * (p - 1.0)
@@ -463,18 +472,26 @@ def transient_jacobian(
     lift_delta, lift_scale = model[14:16]
     width2 = lift_delta**2 * abs(lam)  # (δ√Λ)², the law's width at this Λ
     if lift_delta > 0.0:
-        # The smoothed law's rows: the BDF row times α, plus (1 − α) s on the diagonal.
+        # The smoothed law's rows: the BDF row times α, plus (1 − α) s_k on the diagonal,
+        # each cell on its own scale s_k, its row's diagonal here (kept as −s_k in
+        # lift_state, for the residual): a cell that crosses the kink after this
+        # factorisation then keeps the size of its row, as under the sharp law.
         res_s = np.empty((n_theta, n_z))
         residual(P, H, lam, d_theta, d_z, axial, res_s)
         for k in range(n):
             i = k // n_z
+            s_k = abs(jp[diag_slots[k]])
+            if s_k == 0.0:
+                s_k = lift_scale
+            lift_state[k] = -s_k
             x = y[k] - 1.0
-            yk = (c0 * (y[k] * h_row[i]) - res_s[i, k - i * n_z] / denom + hist[k]) / lift_scale
-            alpha = 0.5 * (1.0 + (x - yk) / np.sqrt((x - yk) ** 2 + 4.0 * width2))
+            yk = (c0 * (y[k] * h_row[i]) - res_s[i, k - i * n_z] / denom + hist[k]) / s_k
+            root = np.sqrt((x - yk) ** 2 + 4.0 * width2 * lift_scale / s_k)
+            alpha = 0.5 * (1.0 + (x - yk) / root)
             for e in range(jh_indptr[k], jh_indptr[k + 1]):
                 jp[e] *= alpha
                 jh[e] *= alpha
-            jp[diag_slots[k]] += (1.0 - alpha) * lift_scale
+            jp[diag_slots[k]] += (1.0 - alpha) * s_k
     n_clamped = 0
     clamped = np.zeros(n, dtype=np.bool_)
     if lift_off:
@@ -496,7 +513,7 @@ def transient_jacobian(
                 n_clamped += 1
                 for e in range(jh_indptr[k], jh_indptr[k + 1]):
                     jh[e] = 0.0
-    else:
+    elif lift_delta == 0.0:
         for k in range(n):
             lift_state[k] = 0.0
     s = np.empty(n_theta)
