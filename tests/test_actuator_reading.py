@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from foilbearing.case import Grid, default_case
+from foilbearing.case import Grid, default_case, load_case
 from foilbearing.coefficients import force_coefficients
 from foilbearing.errors import InputError
 from foilbearing.paper import PAPER
@@ -292,7 +292,8 @@ def test_the_cli_takes_the_reading_and_refuses_bad_values(write_case, capsys) ->
     assert main([*args, "--preload-response", "lobe", "--actuator-dynamics", "held"]) == 0
     out = json.loads(capsys.readouterr().out)
     case = reading_case("lobe", "held", grid=(48, 6))
-    st = solve_equilibrium(replace(case, foil=default_case().foil), speed=90e3 * RPM)
+    case = replace(case, foil=default_case().foil, grid=load_case(path).grid)
+    st = solve_equilibrium(case, speed=90e3 * RPM)
     np.testing.assert_allclose(out["preload_um"], st.preload * 1e6, rtol=1e-9)
     assert main([*args, "--preload-response", "pocket"]) == 2
     err = capsys.readouterr().err.strip().splitlines()

@@ -352,7 +352,10 @@ def test_the_study_stage_runs_each_reading_as_a_dask_sweep(tmp_path) -> None:
     assert all(r["status"] == "ok" and r["cycles"] == 2 for r in out["rows"])
     start, stop, step = (parse_quantity(s, "speed", field="scan") for s in SCAN)
     scan = list(np.arange(start, stop + 0.5 * step, step))
-    coarse = replace(case, grid=Grid(32, 4)).with_voltages(150.0)
+    g = case.grid
+    coarse = replace(
+        case, grid=Grid(32, 4, axial_order=g.orbit_order, lift_off_smoothing=g.lift_off_smoothing)
+    ).with_voltages(150.0)
     for row, reading in zip(out["rows"], READINGS, strict=True):
         direct, _ = whirl_branch_headline(coarse.with_actuator_reading(*reading), scan, 0)
         assert row["hopf_speed_rpm"] == pytest.approx(direct["hopf_speed_rpm"], rel=1e-6)
@@ -360,3 +363,28 @@ def test_the_study_stage_runs_each_reading_as_a_dask_sweep(tmp_path) -> None:
     assert all(Path(f).exists() for f in out["sweep_files"] + out["figures"])
     html = _TABLES["bifurcation"](out, {})
     assert "lobe + held" in html and "32 × 4" in html and "foilbearing sweep" in html
+
+
+def test_the_study_stage_s_sweep_file_carries_the_whole_orbit_grid(tmp_path) -> None:
+    """The stage's sweep file runs its branches on the case's orbit grid as a whole: its
+    shape, axial order and lift-off smoothing (the study on an order-4, κ = 0.2 orbit grid
+    had run its branches on the sharp law at order 2)."""
+    from foilbearing.case import default_case
+    from foilbearing.study.bifurcation import READINGS, _sweep_file
+    from foilbearing.sweep.spec import load_sweep
+
+    case = default_case()
+    case = replace(
+        case,
+        grid=replace(case.grid, orbit_n_z=4, orbit_axial_order=4, lift_off_smoothing=0.15),
+    )
+    on = case.orbit_case().grid
+    path = tmp_path / "branches.toml"
+    path.write_text(_sweep_file(case, (0.0, 150.0), READINGS[1], 1, on), encoding="utf-8")
+    spec = load_sweep(path)
+    for index in range(spec.n_points):
+        point = spec.point_case(index).orbit_case()
+        assert point.grid.orbit_shape == (96, 4)
+        assert point.grid.orbit_order == 4
+        assert point.grid.lift_off_smoothing == 0.15
+        assert (point.actuators.preload_response, point.actuators.dynamics) == READINGS[1]

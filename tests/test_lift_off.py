@@ -24,8 +24,9 @@ RPM = math.pi / 30.0
 
 
 def _case(volts: float, subambient: str = "lift-off", **grid: int):
+    """The default case under the sharp lift-off law (κ = 0), on its grid or ``grid``."""
     case = default_case().with_voltages(volts).with_subambient(subambient)
-    return replace(case, grid=Grid(**grid)) if grid else case
+    return replace(case, grid=Grid(**grid) if grid else replace(case.grid, lift_off_smoothing=0.0))
 
 
 def test_static_film_satisfies_the_complementarity_conditions() -> None:

@@ -79,7 +79,7 @@ def test_orbit_grid_fields_in_the_case_file_with_one_line_errors() -> None:
     data = _case_data()
     case = case_from_dict(data | {"grid": {"n_theta": 96, "n_z": 12, "orbit_n_z": 6}})
     assert case.grid.orbit_shape == (96, 6) and case.grid.orbit_is_own
-    assert not case_from_dict(data).grid.orbit_is_own
+    assert not case_from_dict(data | {"grid": {"n_theta": 96, "n_z": 12}}).grid.orbit_is_own
     with pytest.raises(InputError, match=r"grid\.orbit_n_z = 1.*integer from 2 to 256"):
         case_from_dict(data | {"grid": {"orbit_n_z": 1}})
     coarse = case_from_dict(data | {"grid": {"orbit_n_theta": 24}})
@@ -96,6 +96,22 @@ def test_a_run_resumed_on_another_orbit_grid_is_refused(tmp_path: Path) -> None:
     first = simulate(_case(), constant_speed(30e3 * RPM, 0.004), stop_time=0.001)
     with pytest.raises(InputError, match="resume it with the case it started with"):
         simulate(_case(orbit_n_z=3), constant_speed(30e3 * RPM, 0.004), resume=first)
+
+
+def test_a_run_on_an_orbit_order_of_its_own_resumes_to_the_whole_run() -> None:
+    """An orbit of axial order 4 under a case grid of order 2 resumes with its own case, as
+    `foilbearing orbit --resume` gives it (the check compares the orbit's grid, not the
+    static one: the CLI refused every such run before) and ends where the
+    uninterrupted run ends (to 1e-3 C, as the CLI's resume: the step history restarts)."""
+    case = _case(orbit_n_z=4, orbit_axial_order=4)
+    speed = constant_speed(30e3 * RPM, 0.004)
+    whole = simulate(case, speed)
+    first = simulate(case, speed, stop_time=0.002)
+    first = replace(first, case=case)  # as `--resume` loads it: the case file's whole case
+    resumed = simulate(case, speed, resume=first)
+    assert resumed.case.grid.orbit_order == 4 and resumed.status == whole.status
+    clearance = case.bearing.clearance
+    np.testing.assert_allclose(resumed.e_x[-1], whole.e_x[-1], rtol=0, atol=1e-3 * clearance)
 
 
 def test_the_report_names_the_orbits_grid() -> None:

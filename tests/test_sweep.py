@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from foilbearing.case import Grid, default_case
+from foilbearing.case import default_case
 from foilbearing.cli.sweep import register
 from foilbearing.errors import InputError
 from foilbearing.static import solve_equilibrium
@@ -47,7 +47,8 @@ def _direct(n_theta: int, n_z: int, speed: str, voltage: str, **bearing: str) ->
     """The headline of a direct ``solve_equilibrium`` call, without the sweep machinery."""
     case = default_case()
     b = {k: parse_quantity(v, "length", field=k) for k, v in bearing.items()}
-    case = replace(case, grid=Grid(n_theta, n_z), bearing=replace(case.bearing, **b))
+    grid = replace(case.grid, n_theta=n_theta, n_z=n_z)  # the case file's law and orbit grid
+    case = replace(case, grid=grid, bearing=replace(case.bearing, **b))
     case = case.with_voltages(parse_quantity(voltage, "voltage", field="v"))
     return solve_equilibrium(case, speed=parse_quantity(speed, "speed", field="s")).headline()
 
@@ -271,7 +272,8 @@ def test_a_bifurcation_sweep_runs_branches_on_dask_as_the_api_does(tmp_path: Pat
     ds = xr.load_dataset(tmp_path / "res.nc")
     assert ds["actuators_dynamics"].values.tolist() == ["compliant", "held"]
     assert ds["amplitude_um"].dims == ("actuators_dynamics", "cycle")
-    case = replace(default_case(), grid=Grid(32, 4)).with_subambient("retained")
+    case = default_case()
+    case = replace(case, grid=replace(case.grid, n_theta=32, n_z=4)).with_subambient("retained")
     scan = spec.options["speeds_rad_s"]
     for dynamics in ("compliant", "held"):
         direct, _ = whirl_branch_headline(case.with_actuator_reading(dynamics=dynamics), scan, 0)

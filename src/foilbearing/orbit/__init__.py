@@ -71,15 +71,16 @@ def simulate(
         if not resume.checkpoint:
             raise InputError("the run to resume has no checkpoint")
         state = State.from_checkpoint(resume.checkpoint)
-        g, here = resume.case.grid, sim.system.grid
+        g, here = resume.case.grid, sim.system.grid  # the run's case: its orbit's grid
+        (n_theta, n_z), order = g.orbit_shape, g.orbit_order
         if (
             state.y.size != sim.system.size
-            or g.axial_order != here.axial_order
+            or order != here.axial_order
             or g.lift_off_smoothing != here.lift_off_smoothing
         ):
             raise InputError(
-                f"the run to resume was on a {g.n_theta} x {g.n_z} grid of axial order "
-                f"{g.axial_order}, lift-off smoothing {g.lift_off_smoothing:g}; this case's "
+                f"the run to resume was on a {n_theta} x {n_z} grid of axial order "
+                f"{order}, lift-off smoothing {g.lift_off_smoothing:g}; this case's "
                 f"orbit runs on {here.n_theta} x {here.n_z} of order {here.axial_order}, "
                 f"smoothing {here.lift_off_smoothing:g}: resume it with the case it started with",
                 source=case.source,

@@ -17,7 +17,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from foilbearing.case import Case
+from foilbearing.case import Case, Grid
 
 __all__ = ["BIFURCATION_STEPS", "READINGS", "bifurcation_stage"]
 
@@ -34,19 +34,27 @@ def _sweep_file(
     voltages: Sequence[float],
     reading: tuple[str, str],
     steps: int,
-    grid: tuple[int, int],
+    grid: Grid,
 ) -> str:
+    """The stage's sweep file: the case file with the orbit's grid as its whole grid
+    (shape, axial order, lift-off smoothing), so that the file alone reruns the stage."""
     volts = ", ".join(f'"{v:g} V"' for v in voltages)
     speeds = ", ".join(f'"{s}"' for s in SCAN)
+    (n_theta, n_z), order = grid.orbit_shape, grid.orbit_order
     return f'''# The whirl's limit cycles under the reading {reading[0]} + {reading[1]}: a stage of
 # `foilbearing study`; rerun or extend it with `foilbearing sweep THIS_FILE --out RESULT`.
 title = "Hopf type and limit cycles against voltage, {reading[0]} + {reading[1]}"
 case = "{Path(str(case.source)).resolve().as_posix()}"
 analysis = "bifurcation"
 
-[set]
-"grid.n_theta" = {grid[0]}
-"grid.n_z" = {grid[1]}
+[set]  # the orbit's grid, for the static and linear analyses too
+"grid.n_theta" = {n_theta}
+"grid.n_z" = {n_z}
+"grid.axial_order" = {order}
+"grid.orbit_n_theta" = {n_theta}
+"grid.orbit_n_z" = {n_z}
+"grid.orbit_axial_order" = {order}
+"grid.lift_off_smoothing" = {grid.lift_off_smoothing!r}
 "actuators.preload_response" = "{reading[0]}"
 "actuators.dynamics" = "{reading[1]}"
 
@@ -69,7 +77,8 @@ def bifurcation_stage(
 ) -> dict[str, Any]:
     """Run the branches of every voltage under both readings; their table and figure.
 
-    ``grid`` (n_theta, n_z) defaults to the case's orbit grid.
+    ``grid`` (n_theta, n_z) replaces the shape of the case's orbit grid (None: the
+    case's), which keeps its axial order and lift-off smoothing.
 
     Returns the stage's summary: ``rows`` (reading, voltage, type, onset, speed limit,
     the largest stable cycle, status), ``branches`` (each point's headline by reading and
@@ -79,12 +88,12 @@ def bifurcation_stage(
     from foilbearing.output.plots.bifurcation import plot_whirl_branches
     from foilbearing.sweep.runner import _client, done_points, load_sweep, output_paths, run_sweep
 
-    if grid is None:
-        on = case.orbit_case().grid
-        grid = (on.n_theta, on.n_z)
+    g = case.orbit_case().grid
+    n_theta, n_z = grid or g.orbit_shape
+    on = Grid(n_theta, n_z, axial_order=g.orbit_order, lift_off_smoothing=g.lift_off_smoothing)
     stage(
         f"whirl limit cycles: Hopf type and branch at {len(voltages)} voltages under "
-        f"{len(READINGS)} readings ({grid[0]} x {grid[1]}, "
+        f"{len(READINGS)} readings ({on.orbit_label}, "
         f"{steps + 2} cycles a branch) on a local Dask cluster"
     )
     rows: list[dict[str, Any]] = []
@@ -94,9 +103,7 @@ def bifurcation_stage(
         for reading in READINGS:
             name = f"{reading[0]}+{reading[1]}"
             tag = f"bifurcation_{reading[0]}-{reading[1]}"
-            path = write_text(
-                out / f"{tag}.toml", _sweep_file(case, voltages, reading, steps, grid)
-            )
+            path = write_text(out / f"{tag}.toml", _sweep_file(case, voltages, reading, steps, on))
             files.append(str(path))
             spec = load_sweep(path)
             summary = run_sweep(spec, out / tag, client=client, resume=_resumable(spec, out / tag))
@@ -115,7 +122,8 @@ def bifurcation_stage(
     return {
         "rows": rows,
         "branches": branches,
-        "grid": list(grid),
+        "grid": [on.n_theta, on.n_z],
+        "grid_label": on.orbit_label,
         "steps": steps,
         "sweep_files": files,
         "figures": [str(fig)],

@@ -32,12 +32,13 @@ _KINDS_FIELDS = {
     "foil.bump.height foil.bump.pitch foil.bump.half_length actuators.holder_pre_extension "
     "shims.thickness",
     "dimensionless": "foil.loss_factor foil.bump.poisson_ratio foil.bump.friction_coefficient "
-    "actuators.smoothness",
+    "actuators.smoothness grid.lift_off_smoothing",
     "pressure": "gas.ambient_pressure foil.bump.youngs_modulus",
     "stiffness_per_area": "foil.bump_stiffness actuators.holder_spring_stiffness",
     "angle": "actuators.stinger_arc shims.arc",
     "voltage": "actuators.voltages actuators.max_voltage",
-    "integer": "grid.n_theta grid.n_z",
+    "integer": "grid.n_theta grid.n_z grid.axial_order grid.orbit_n_theta grid.orbit_n_z "
+    "grid.orbit_axial_order",
     "viscosity": "gas.viscosity",
     "area": "actuators.contact_area",
     "length_per_voltage2": "actuators.d33_quadratic",

@@ -284,7 +284,7 @@ def _inputs(table: Any, base: dict[str, Any], src: str) -> tuple[UncertainInput,
     allowed = [
         f
         for f, k in FIELD_KINDS.items()
-        if k not in ("integer", "choice") and f not in _SET_BY_OUTPUTS
+        if k not in ("integer", "choice") and not f.startswith("grid.") and f not in _SET_BY_OUTPUTS
     ]
     out = []
     for name, spec in _flatten_inputs(table):
@@ -292,8 +292,8 @@ def _inputs(table: Any, base: dict[str, Any], src: str) -> tuple[UncertainInput,
             why = (
                 "set by the outputs (their speeds and voltages)"
                 if name in _SET_BY_OUTPUTS
-                else "an integer (grid) field"
-                if FIELD_KINDS.get(name) == "integer"
+                else "a numerical (grid) setting, not an input of the bearing"
+                if name.startswith("grid.")
                 else "a modelling choice, not a quantity (set it in the case)"
                 if name in FIELD_KINDS
                 else "unknown field"

@@ -342,6 +342,7 @@ def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
         ("status", _key("status"), ""),
     ]
     grid = d.get("grid") or ["?", "?"]
+    label = d.get("grid_label") or f"{grid[0]} × {grid[1]}"
     files = ", ".join(f"<code>{escape(Path(f).name)}</code>" for f in d.get("sweep_files", []))
     note = (
         '<p class="note">Past a <b>supercritical</b> Hopf bifurcation the whirl grows into a '
@@ -352,7 +353,7 @@ def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
         "on the orbit's own stepper, its stability from Floquet multipliers of the exact "
         "monodromy. Speed limit: the lowest fold of a subcritical branch, the first fold "
         "of a supercritical one (past it no bounded cycle is left), or contact. "
-        f"Grid {grid[0]} × {grid[1]} (the speed-ups'), {d.get('steps', 0) + 2} cycles a "
+        f"Grid {escape(label)} (the speed-ups'), {d.get('steps', 0) + 2} cycles a "
         "branch for this stage's time. Under top-foil lift-off the type near the onset "
         "is sensitive to the grid (the lift-off boundary moves cell by cell): "
         "docs/bifurcation.md measures it from 32 × 4 to 128 × 16. "
