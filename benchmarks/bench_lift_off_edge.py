@@ -1,7 +1,7 @@
 """Benchmark of the smoothed lift-off edge (``[grid] lift_off_smoothing``): what it does to
 the linear onset's convergence, and to the orbit's cost. Prints its figures.
 
-Run: .venv/bin/python benchmarks/bench_lift_off_edge.py [--onsets] [--steps]
+Run: .venv/bin/python benchmarks/bench_lift_off_edge.py [--onsets] [--steps] [--voltages]
 
 The law: each cell obeys (P − 1)·y/Λ = δ², δ = κΔθ² (``[grid] lift_off_smoothing = κ``).
 
@@ -16,8 +16,13 @@ The law: each cell obeys (P − 1)·y/Λ = δ², δ = κΔθ² (``[grid] lift_of
   and a large one (shimmed GFB, 150 V, 8.5 g·mm, 50 krpm), 0.05 s each, best of 3, on
   96 x 4 (order 4) and 96 x 12, sharp and smoothed (κ = 0.2), with the Newton iterations
   and factorisations a step.
+- ``--voltages`` (about 5 minutes): the linear onsets at the study's voltages (0, 50, 100,
+  150 V), C-GFB and its shimmed twin, on the old default (96 x 12, sharp), the new static
+  grid (96 x 12, κ = 0.2), the new orbit grid (96 x 4 order 4, κ = 0.2) and 192 x 24 of
+  each law (docs/orbit-performance.md, "κ = 0.2 and the orbits on 96 × 4 at order 4 as
+  the default").
 
-Without an option both run. The figures and what they mean: docs/lift-off.md, "The
+Without an option ``--onsets`` and ``--steps`` run. The figures and what they mean: docs/lift-off.md, "The
 smoothed edge".
 """
 
@@ -96,6 +101,37 @@ def onsets() -> None:
             print(f"  {volts:3.0f} V, κ = {kappa:g}: 192x24 {_krpm(ref)}; " + ", ".join(parts))
 
 
+#: The grids of ``--voltages``: (label, n_theta, n_z, axial order, κ).
+DEFAULT_GRIDS = (
+    ("96 x 12, sharp (old default)", 96, 12, 2, 0.0),
+    ("96 x 12, κ = 0.2 (static)", 96, 12, 2, CHOSEN),
+    ("96 x 4 o4, κ = 0.2 (orbit)", 96, 4, 4, CHOSEN),
+    ("192 x 24, sharp", 192, 24, 2, 0.0),
+    ("192 x 24, κ = 0.2", 192, 24, 2, CHOSEN),
+)
+
+
+def voltages() -> None:
+    """The linear onsets at the study's voltages, C-GFB and shimmed, on the default's grids."""
+    import numpy as np
+
+    scan = [s * RPM for s in np.arange(20e3, 100e3 + 1.0, 2.5e3)]
+    print("linear onset (krpm) at 0 / 50 / 100 / 150 V, C-GFB | shimmed twin:")
+    for label, n_theta, n_z, order, kappa in DEFAULT_GRIDS:
+        grid = Grid(n_theta, n_z, axial_order=order, lift_off_smoothing=kappa)
+        row = []
+        for shimmed in (False, True):
+            for volts in (0.0, 50.0, 100.0, 150.0):
+                case = replace(default_case(), grid=grid).with_voltages(volts)
+                res = onset_speed(case.shimmed() if shimmed else case, scan)
+                row.append(None if res.onset_speed is None else res.onset_speed / RPM / 1e3)
+        print(
+            f"  {label:30s} " + " / ".join(_krpm(v) for v in row[:4]) + " | "
+            + " / ".join(_krpm(v) for v in row[4:]),
+            flush=True,
+        )  # fmt: skip
+
+
 def steps() -> None:
     """ms a step, sharp and smoothed, on a smooth and a large orbit (best of 3)."""
     base = default_case()
@@ -124,8 +160,11 @@ def steps() -> None:
 
 
 if __name__ == "__main__":
-    chosen = [a for a in sys.argv[1:] if a in ("--onsets", "--steps")] or ["--onsets", "--steps"]
+    options = ("--onsets", "--steps", "--voltages")
+    chosen = [a for a in sys.argv[1:] if a in options] or ["--onsets", "--steps"]
     if "--onsets" in chosen:
         onsets()
     if "--steps" in chosen:
         steps()
+    if "--voltages" in chosen:
+        voltages()

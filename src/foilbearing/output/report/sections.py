@@ -354,9 +354,10 @@ def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
         "monodromy. Speed limit: the lowest fold of a subcritical branch, the first fold "
         "of a supercritical one (past it no bounded cycle is left), or contact. "
         f"Grid {escape(label)} (the speed-ups'), {d.get('steps', 0) + 2} cycles a "
-        "branch for this stage's time. Under top-foil lift-off the type near the onset "
-        "is sensitive to the grid (the lift-off boundary moves cell by cell): "
-        "docs/bifurcation.md measures it from 32 × 4 to 128 × 16. "
+        "branch for this stage's time. Under the sharp lift-off law the type near the "
+        "onset is sensitive to the grid (the lift-off boundary moves cell by cell; "
+        "docs/bifurcation.md measures it from 32 × 4 to 128 × 16); with the edge smoothed "
+        "the types no longer change between 96 × 4 and 96 × 12. "
         f"Each reading is a Dask sweep: rerun or extend {files} with "
         "<code>foilbearing sweep FILE --out RESULT</code>.</p>"
     )
