@@ -188,20 +188,26 @@ def test_free_whirl_matches_the_linear_eigenvalue(
     assert dec == pytest.approx(mode.log_decrement, rel=0.15, abs=0.02)
 
 
-@pytest.mark.parametrize("volts", [0.0, 100.0])
-def test_forced_response_to_a_disturbance_tone_matches_the_force_coefficients(volts: float) -> None:
+@pytest.mark.parametrize(
+    ("volts", "order", "smoothing"), [(0.0, 2, 0.0), (100.0, 2, 0.0), (100.0, 4, 0.2)]
+)
+def test_forced_response_to_a_disturbance_tone_matches_the_force_coefficients(
+    volts: float, order: int, smoothing: float
+) -> None:
     # Two methods: the orbit's response to a one-tone disturbance, read by lock-in over
     # whole periods once the free transient has decayed, and the receptance
     # (K + iΩC − mΩ²I)⁻¹ F of the force coefficients at that frequency (the linearisation of
     # the same residual, with the bump's damper at Ω). Measured 0.2-0.8 % apart (0.3 N at
     # 150 Hz, 20 krpm: an orbit of about 1 µm, so the film's nonlinearity is that small).
     # Asserted within 2 %; a force scaled wrongly (per m, per C) would be off by orders.
+    # Also on the built-in orbit grid's discretisation (axial order 4, κ = 0.2) at 32 × 4.
     from foilbearing.case import Disturbance
     from foilbearing.coefficients import force_coefficients
     from foilbearing.orbit.disturbance import DisturbanceForce
 
     tone = Disturbance(0.3, 150.0, 150.001, seed=3, tones=1)
     case = replace(coarse(volts, imbalance=0.0), disturbance=tone)
+    case = replace(case, grid=Grid(32, 4, axial_order=order, lift_off_smoothing=smoothing))
     speed, duration = 20e3 * RPM, 0.5
     res = simulate(case, constant_speed(speed, duration))
     force = DisturbanceForce(tone)

@@ -31,7 +31,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         choices=("quick", "full", "none"),
         default="quick",
         help="envelopes of what the paper leaves open, on the paper's case: quick (64 "
-        "evaluations, RBD-FAST first-order indices, ~4 min on 2 cores), full (252, Sobol' "
+        "evaluations, RBD-FAST first-order indices, about 1 min on 2 cores), full (252, Sobol' "
         "first-order and total indices) or none (default quick)",
     )
     study.add_argument(
@@ -46,8 +46,8 @@ def register(sub: Any) -> argparse.ArgumentParser:
         choices=("full", "none"),
         default="full",
         help="is the whirl past the onset bounded? The Hopf type and limit-cycle branch at "
-        "each voltage, the case's reading and the paper's, on Dask (paper's case; about 2 "
-        "minutes on 2 cores; default full)",
+        "each voltage, the case's reading and the paper's, on Dask (paper's case; under a "
+        "minute on 2 cores; default full)",
     )
     study.add_argument(
         "--paper-reading",
@@ -57,7 +57,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         default="full",
         help="also run the speed-ups of Figs. 13-15 under the paper's reading of the actuator "
         "in the film (lobe + held, 1 g·mm; docs/model.md §3.8): the paper's own protocol, "
-        "about 3 minutes more on 2 cores (paper's case, with --orbits full; default full)",
+        "about a minute more on 2 cores (paper's case, with --orbits full; default full)",
     )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=cmd_study)

@@ -89,7 +89,7 @@ def run_study_result(
     uncertainty
         The envelopes of what the paper leaves open (the built-in uncertainty
         file, on the paper's case only): ``"quick"`` (64 evaluations of a Latin
-        hypercube, RBD-FAST first-order indices, about 2.5 minutes on 2 cores), ``"full"`` (the file's
+        hypercube, RBD-FAST first-order indices, about a minute on 2 cores), ``"full"`` (the file's
         256, 252 with the Sobol' estimator's first-order and total indices) or
         ``"none"``.
     schedule
@@ -97,8 +97,8 @@ def run_study_result(
         paper), verified in speed-ups when ``orbits`` is set.
     paper_reading
         With ``orbits``, also run the protocol under the paper's reading of the actuator
-        (lobe + held, 1 g·mm; :func:`paper_reading_orbits`), about 3 minutes more on 2
-        cores (2.7 minutes measured on 2026-12-02).
+        (lobe + held, 1 g·mm; :func:`paper_reading_orbits`), about a minute more on 2
+        cores on the built-in case's orbit grid (2.7 minutes on 96 × 12, 2026-12-02).
     bifurcation
         Is the whirl past the onset bounded? The Hopf type and the branch of limit
         cycles at each voltage under the case's reading and the paper's, on Dask
