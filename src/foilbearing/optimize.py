@@ -170,7 +170,13 @@ class EvaluationCache:
 def local_search(
     cache: EvaluationCache, starts: Sequence[Voltages], method: str, xatol: float, fatol: float
 ) -> tuple[bool, str]:
-    """Evaluate ``starts``, then a bounded local search from the best; returns (converged, msg)."""
+    """Evaluate ``starts``, then a bounded local search from the best; returns (converged, msg).
+
+    Nelder-Mead is restarted with a fresh simplex from where it stopped until a restart
+    no longer improves the merit (a simplex collapsed against a bound, e.g. at a corner
+    of the voltage box, stops short of a descent along a diagonal). The budget of
+    ``cache`` bounds the restarts.
+    """
     lo, hi = cache.lo, cache.hi
     try:
         for v in starts:
@@ -178,7 +184,11 @@ def local_search(
         x0 = np.array(cache.best(), dtype=float)
         bounds = list(zip(lo, hi, strict=True))
         options: dict[str, Any]
-        if method == "Nelder-Mead":
+        if method != "Nelder-Mead":
+            options = {"xtol": xatol / max(float(np.max(hi - lo)), 1.0), "ftol": 1e-6}
+            res = minimize(cache.merit, x0, method=method, bounds=bounds, options=options)
+            return bool(res.success), f"{method}: {res.message}"
+        while True:
             # A simplex a quarter of the box wide, pointing inwards from x0.
             step = 0.25 * (hi - lo)
             simplex = [x0]
@@ -187,10 +197,11 @@ def local_search(
                 x[i] += step[i] if x0[i] + step[i] <= hi[i] else -step[i]
                 simplex.append(x)
             options = {"xatol": xatol, "fatol": fatol, "initial_simplex": np.array(simplex)}
-        else:
-            options = {"xtol": xatol / max(float(np.max(hi - lo)), 1.0), "ftol": 1e-6}
-        res = minimize(cache.merit, x0, method=method, bounds=bounds, options=options)
-        return bool(res.success), f"{method}: {res.message}"
+            before = cache.merit(tuple(x0.tolist()))
+            res = minimize(cache.merit, x0, method=method, bounds=bounds, options=options)
+            x0 = np.array(cache.best(), dtype=float)
+            if not (res.success and cache.merit(tuple(x0.tolist())) < before - fatol):
+                return bool(res.success), f"{method}: {res.message}"
     except _BudgetSpent:
         return False, (
             f"stopped at the budget of {cache.max_evaluations} evaluations before the "
