@@ -356,6 +356,11 @@ def test_estimator_override(tmp_path: Path) -> None:
             "set by the outputs",
         ),
         (
+            '[inputs]\n"grid.lift_off_smoothing" = { distribution = "uniform", low = 0.05, '
+            "high = 0.2 }\n",
+            "a numerical (grid) setting",
+        ),
+        (
             '[inputs]\n"foil.loss_factor" = { distribution = "uniform", low = 0.1, high = 0.2 }\n'
             '[outputs.static]\nvoltages = ["200 V"]\n',
             "expected voltages in [0, 150] V",
