@@ -34,7 +34,7 @@ def one_run(ulp: int) -> dict[str, float]:
     from foilbearing.case import Grid, default_case
     from foilbearing.control import constant_speed
     from foilbearing.orbit import OrbitSettings, OrbitSimulation, simulate
-    from foilbearing.orbit.reference import reference_orbit
+    from foilbearing.testing.ivp_orbit import reference_orbit
 
     case = default_case().with_voltages(100.0)
     case = replace(case, grid=Grid(n_theta=32, n_z=4), disturbance=None)

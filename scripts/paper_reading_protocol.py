@@ -61,7 +61,8 @@ def imbalance_check(reading: str, imbalances: tuple[float, ...]) -> None:
 
 
 def one(args: tuple[str, float, float, str, float | None]) -> dict[str, Any]:
-    from foilbearing.study.orbits import RAMP, OrbitRun, run_one
+    from foilbearing.study.orbits import RAMP
+    from foilbearing.study.runs import OrbitRun, run_one
 
     reading, volts, imbalance, out, stop = args
     case = case_for(reading)

@@ -248,7 +248,7 @@ def test_the_stingers_follow_a_voltage_ramp_as_the_reference_integrator_does(
     # lobe + compliant: 0.006 %).
     from foilbearing.control import constant_speed, voltage_ramp
     from foilbearing.orbit import OrbitSettings, OrbitSimulation, simulate
-    from foilbearing.orbit.reference import reference_orbit
+    from foilbearing.testing.ivp_orbit import reference_orbit
 
     case = orbit_case(response, dynamics, volts=100.0, imbalance=1e-6)
     prof = constant_speed(20e3 * RPM, 0.01)

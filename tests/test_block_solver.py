@@ -10,8 +10,8 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu, spsolve
 
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds import reference
 from foilbearing.reynolds.blocksolve import BlockCyclicLU
+from foilbearing.testing import twins
 
 SIZES = [(3, 1), (3, 2), (4, 3), (8, 4), (96, 12)]
 
@@ -37,7 +37,7 @@ def test_kernel_matches_twin_and_spsolve(n_theta: int, n_z: int) -> None:
     fac = kern.block_cyclic_alloc(n_theta, n_z)
     fac_py = kern.block_cyclic_alloc(n_theta, n_z)
     res = kern.block_cyclic_factor(data, n_theta, n_z, fac)
-    res_py = reference.block_cyclic_factor_py(data, n_theta, n_z, fac_py)
+    res_py = twins.block_cyclic_factor_py(data, n_theta, n_z, fac_py)
     assert res[0] == res_py[0] == kern.BC_OK
     assert res[1] == res_py[1]
     np.testing.assert_allclose(res[2:], res_py[2:], rtol=1e-12)
@@ -49,7 +49,7 @@ def test_kernel_matches_twin_and_spsolve(n_theta: int, n_z: int) -> None:
         out = np.empty_like(rhs)
         out_py = np.empty_like(rhs)
         kern.block_cyclic_solve(fac, rhs, out)
-        reference.block_cyclic_solve_py(fac_py, rhs, out_py)
+        twins.block_cyclic_solve_py(fac_py, rhs, out_py)
         assert _rel(out, out_py) < 1e-12
         ref = spsolve(mat.tocsc(), rhs).reshape(n, ncol)
         assert _rel(out, ref) < 1e-10
@@ -116,10 +116,10 @@ def test_singular_matrix_raises() -> None:
         BlockCyclicLU(data, n_theta, n_z)
     fac = kern.block_cyclic_alloc(n_theta, n_z)
     assert kern.block_cyclic_factor(data, n_theta, n_z, fac)[:2] == (kern.BC_ZERO_PIVOT, 1)
-    assert reference.block_cyclic_factor_py(data, n_theta, n_z, fac)[:2] == (kern.BC_ZERO_PIVOT, 1)
+    assert twins.block_cyclic_factor_py(data, n_theta, n_z, fac)[:2] == (kern.BC_ZERO_PIVOT, 1)
     d4[1, 1, :, :] = 1.0
     d4[5, 0, :, :] = 0.0  # an empty row in a separator: S is singular
-    for factor in (kern.block_cyclic_factor, reference.block_cyclic_factor_py):
+    for factor in (kern.block_cyclic_factor, twins.block_cyclic_factor_py):
         status, block = factor(data, n_theta, n_z, fac)[:2]
         assert status == kern.BC_ZERO_PIVOT and block in (2, 5)
 

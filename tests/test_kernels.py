@@ -7,8 +7,8 @@ import pytest
 import scipy.sparse as sp
 
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds import reference
 from foilbearing.reynolds.grid import FilmGrid
+from foilbearing.testing import twins
 
 N_THETA, N_Z = 10, 4
 D_THETA = 2.0 * np.pi / N_THETA
@@ -64,8 +64,8 @@ def test_bernoulli_matches_definition_and_identities() -> None:
     x = np.array([-800.0, -50.0, -3.0, -0.0101, -0.0099, -1e-5, 0.0, 1e-5, 0.0099, 0.0101, 3.0])
     b = np.array([kern.bernoulli(v) for v in x])
     db = np.array([kern.bernoulli_deriv(v) for v in x])
-    np.testing.assert_allclose(b, reference.bernoulli_py(x), rtol=1e-14, atol=0)
-    np.testing.assert_allclose(db, reference.bernoulli_deriv_py(x), rtol=1e-14, atol=1e-300)
+    np.testing.assert_allclose(b, twins.bernoulli_py(x), rtol=1e-14, atol=0)
+    np.testing.assert_allclose(db, twins.bernoulli_deriv_py(x), rtol=1e-14, atol=1e-300)
     nz = x != 0
     np.testing.assert_allclose(b[nz], x[nz] / np.expm1(x[nz]), rtol=1e-13)
     assert kern.bernoulli(0.0) == 1.0
@@ -127,7 +127,7 @@ def test_residual_kernel_equals_twin(lam: float, order: int) -> None:
     P, H = _fields(1)
     a, b = np.empty_like(P), np.empty_like(P)
     kern.residual(P, H, lam, D_THETA, D_Z, _axial(order), a)
-    reference.residual_py(P, H, lam, D_THETA, D_Z, _axial(order), b)
+    twins.residual_py(P, H, lam, D_THETA, D_Z, _axial(order), b)
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
 
 
@@ -139,9 +139,9 @@ def test_jacobian_kernels_equal_twins(lam: float, which: str, order: int) -> Non
     nnz = kern.stencil_pattern(N_THETA, N_Z, order)[1].size
     a, b = np.empty(nnz), np.empty(nnz)
     kernel, twin = (
-        (kern.jacobian_P, reference.jacobian_P_py)
+        (kern.jacobian_P, twins.jacobian_P_py)
         if which == "P"
-        else (kern.jacobian_H, reference.jacobian_H_py)
+        else (kern.jacobian_H, twins.jacobian_H_py)
     )
     kernel(P, H, lam, D_THETA, D_Z, _axial(order), a)
     twin(P, H, lam, D_THETA, D_Z, _axial(order), b)
@@ -178,7 +178,7 @@ def test_coupled_jacobian_kernel_equals_sparse_product(order: int) -> None:
     _, c_indices = kern.coupled_pattern(N_THETA, N_Z)
     a, b = np.empty(c_indices.size), np.empty(c_indices.size)
     kern.coupled_jacobian(jp, jh, s, N_Z, axial, a)
-    reference.coupled_jacobian_py(jp, jh, s, N_Z, axial, b)
+    twins.coupled_jacobian_py(jp, jh, s, N_Z, axial, b)
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(b).max())
 
 
@@ -197,7 +197,7 @@ def _lift_off_rows_both(seed: int, fields: int, above: bool, coupled: bool, law:
     res = _residual(P, H, 1.5).reshape(P.shape)
     jc = rng.standard_normal(kern.coupled_pattern(N_THETA, N_Z)[1].size)
     outs = []
-    for kernel in (kern.lift_off_rows, reference.lift_off_rows_py):
+    for kernel in (kern.lift_off_rows, twins.lift_off_rows_py):
         args = [P, res.copy(), jp.copy(), jh.copy(), jc.copy(), diag, indptr, coupled]
         held = np.zeros(P.size, dtype=bool)
         count = kernel(*args, held, *law)

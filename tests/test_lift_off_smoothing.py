@@ -20,11 +20,12 @@ from foilbearing.control import constant_speed
 from foilbearing.errors import InputError
 from foilbearing.film import film_model
 from foilbearing.orbit import OrbitSimulation, simulate
-from foilbearing.orbit.reference import reference_orbit
 from foilbearing.orbit.settings import OrbitSettings
-from foilbearing.reynolds import coupled_system, reference
+from foilbearing.reynolds import coupled_system
 from foilbearing.stability import _Scanner, onset_speed
 from foilbearing.static import solve_equilibrium
+from foilbearing.testing import twins
+from foilbearing.testing.ivp_orbit import reference_orbit
 
 RPM = math.pi / 30.0
 
@@ -182,7 +183,7 @@ def test_a_cell_on_its_factor_s_scale_obeys_the_same_law() -> None:
     x = y[:n] - 1.0
     above = x > 0.0
     assert above.sum() > n // 2
-    raw = reference.newton_residual_py(sys_, y, inp, c0, hist, np.zeros(n), smooth=False)[0]
+    raw = twins.newton_residual_py(sys_, y, inp, c0, hist, np.zeros(n), smooth=False)[0]
     width2 = sys_.grid.lift_off_width(inp.lam) ** 2
     hist_c = hist.copy()
     hist_c[:n][above] += sys_.smooth_scale * width2 / x[above] - raw[:n][above]

@@ -25,9 +25,9 @@ from foilbearing.control import (
 )
 from foilbearing.errors import InputError
 from foilbearing.orbit import OrbitSettings, OrbitSimulation, simulate
-from foilbearing.orbit.reference import reference_orbit
 from foilbearing.stability import whirl_mode
 from foilbearing.static import solve_equilibrium
+from foilbearing.testing.ivp_orbit import reference_orbit
 
 RPM = math.pi / 30.0
 

@@ -17,6 +17,7 @@ from foilbearing.constants import RPM
 from foilbearing.control import constant_speed
 from foilbearing.errors import InputError
 from foilbearing.rotor import RotorCase, load_rotor
+from foilbearing.testing.ivp_rotor import RotorIVP
 
 pytest.importorskip("ross", minversion="3.0")
 
@@ -63,9 +64,10 @@ def test_the_nonlinear_rotor_linearised_is_the_linear_analysis() -> None:
     model = ross_rotor(rotor, [speed - 1e3 * RPM, speed, speed + 1e3 * RPM])
     linear = reduced_modes(model, [0, 6], [speed], n_modes=8, num_modes=6)
     system = RotorOrbitSystem(rotor, model, constant_speed(speed, 1.0), n_modes=8)
+    ivp = RotorIVP(system)
     y0 = system.initial_state()
-    assert np.abs(system.derivative(0.0, y0)[-system.m :]).max() < 1e-6
-    values = np.linalg.eigvals(_jacobian(lambda y: system.derivative(0.0, y), y0))
+    assert np.abs(ivp.derivative(0.0, y0)[-system.m :]).max() < 1e-6
+    values = np.linalg.eigvals(_jacobian(lambda y: ivp.derivative(0.0, y), y0))
     for f, d in zip(linear.frequency[0], linear.log_decrement[0], strict=True):
         w = 2 * math.pi * f
         s = values[np.argmin(np.abs(values - complex(-d * f, w)))]
@@ -154,7 +156,7 @@ def test_the_rotor_on_the_orbit_stepper_agrees_with_solve_ivp() -> None:
     y0[system.n_film] += 0.005 * c
     y0[system.n_film + 2] += 0.005 * c
     fast = run_rotor(system, 0.05, y0=y0)
-    reference = system.run(0.05, y0=y0, atol_factor=1e-2)
+    reference = RotorIVP(system).run(0.05, y0=y0, atol_factor=1e-2)
     assert fast.status == "completed" and fast.steps > 100
     k = min(fast.time.size, reference.time.size)
     assert np.allclose(fast.time[:k], reference.time[:k])
@@ -279,7 +281,7 @@ def test_the_flexible_rotor_on_the_stepper_agrees_with_solve_ivp() -> None:
         rotor, None, constant_speed(speed, duration), n_modes=8, unbalances=[Unbalance(2, 1e-6)]
     )
     fast = run_rotor(system, duration)
-    reference = system.run(duration, atol_factor=1e-2)
+    reference = RotorIVP(system).run(duration, atol_factor=1e-2)
     k = min(fast.time.size, reference.time.size)
     extent = np.ptp(reference.journals[:, :, :k], axis=2).max()
     assert np.abs(fast.journals[:, :, :k] - reference.journals[:, :, :k]).max() < 0.1 * extent
@@ -348,7 +350,7 @@ def test_a_controller_on_each_bearing_stops_the_rotor_s_whirl() -> None:
         end = solve_equilibrium(case.orbit_case().with_voltages(150.0), speed=speed)
         assert abs(run.journals[b, 0, -1] / c - end.eps_x) < 1e-3
     with pytest.raises(InputError, match=r"closed-loop controller reads the run's samples"):
-        system.run(0.01)
+        RotorIVP(system).run(0.01)
 
 
 def test_a_stopped_rotor_run_resumes_where_it_stopped(tmp_path: Path) -> None:

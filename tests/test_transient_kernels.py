@@ -13,8 +13,9 @@ from foilbearing.case import Grid, default_case
 from foilbearing.control import constant_speed
 from foilbearing.orbit import OrbitSimulation
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds import reference, transient
+from foilbearing.reynolds import transient
 from foilbearing.reynolds.grid import FilmGrid
+from foilbearing.testing import twins
 
 RPM = math.pi / 30.0
 
@@ -105,7 +106,7 @@ def test_residual_and_storage_match_twins(setup) -> None:
     else:
         assert not np.any(branches)
     g, h_min = sys_.newton_residual(y, inp, c0, hist, buf)
-    g_py, h_min_py = reference.newton_residual_py(sys_, y, inp, c0, hist)
+    g_py, h_min_py = twins.newton_residual_py(sys_, y, inp, c0, hist)
     assert g is buf
     assert _rel(g, g_py) < 1e-12
     assert h_min == pytest.approx(h_min_py, rel=1e-14)
@@ -125,7 +126,7 @@ def test_solve_matches_twin_and_jacobian(setup) -> None:
     out = np.empty(sys_.size)
     dy = factor.solve(rhs, out)
     assert dy is out
-    assert _rel(dy, reference.solve_py(factor, rhs)) < 1e-12
+    assert _rel(dy, twins.solve_py(factor, rhs)) < 1e-12
     jac = sys_.jacobian(y, inp, c0, hist, lift_state=factor.lift_state)
     assert _rel(dy, spsolve(jac, rhs)) < 1e-9
     # A block of right-hand sides in one solve equals the column-by-column solves.
@@ -206,7 +207,7 @@ def test_newton_update_matches_twin() -> None:
     w = rng.uniform(1.0, 1e4, 50)
     y_py = y.copy()
     err, p_min = kern.newton_update(y, dy, w, 40)
-    err_py, p_min_py = reference.newton_update_py(y_py, dy, w, 40)
+    err_py, p_min_py = twins.newton_update_py(y_py, dy, w, 40)
     np.testing.assert_array_equal(y, y_py)
     assert err == pytest.approx(err_py, rel=1e-15)
     assert p_min == p_min_py
@@ -225,14 +226,14 @@ def test_lift_off_branch_prediction_matches_twins(known: int) -> None:
     slack = rng.uniform(0.0, 1.0, n)
     coord, coord_py = np.empty(n), np.empty(n)
     assert kern.lift_coordinate(state, slack, coord)
-    assert reference.lift_coordinate_py(state, slack, coord_py)
+    assert twins.lift_coordinate_py(state, slack, coord_py)
     np.testing.assert_array_equal(coord, coord_py)
     assert not kern.lift_coordinate(np.zeros(n), slack, coord)  # suction retained
     s = [coord, coord + 0.1 * rng.standard_normal(n), coord + 0.2 * rng.standard_normal(n)]
     weights = (1.7, -0.9, 0.2) if known == 3 else (0.8, 0.0, 0.0)
     out, out_py = np.empty(n), np.empty(n)
     kern.predict_branches(*s, known, weights, out)
-    reference.predict_branches_py(*s, known, weights, out_py)
+    twins.predict_branches_py(*s, known, weights, out_py)
     np.testing.assert_array_equal(out, out_py)
     assert set(np.unique(out)) <= {-1.0, 1.0}
     # a prediction that moves few cells is adopted, one that moves many is not
@@ -241,7 +242,7 @@ def test_lift_off_branch_prediction_matches_twins(known: int) -> None:
         branches[:flips] *= -1.0
         kept, kept_py = state.copy(), state.copy()
         moved = kern.adopt_branches(kept, branches, most)
-        assert moved == reference.adopt_branches_py(kept_py, branches, most) == flips
+        assert moved == twins.adopt_branches_py(kept_py, branches, most) == flips
         np.testing.assert_array_equal(kept, kept_py)
         np.testing.assert_array_equal(np.abs(kept), np.abs(state))
         adopted = np.array_equal(np.sign(kept), branches)
@@ -272,7 +273,7 @@ def test_jacobian_blocks_match_twin(setup) -> None:
         y, tuple(step), *sys_.kernel_groups, sys_.lift_off, True, tuple(blocks)
     )
     (H_py, jp_py, jh_py, active_py, jc_py, a_pe_py, state_py, held_py, a_pl_py, gain_py) = (
-        reference.jacobian_blocks_py(sys_, y, inp, c0, hist)
+        twins.jacobian_blocks_py(sys_, y, inp, c0, hist)
     )
     assert active.any() and not active.all()
     np.testing.assert_array_equal(active, active_py)
@@ -295,7 +296,7 @@ def test_border_matches_twin(setup) -> None:
     factor = sys_.factorize(y, inp, c0, _hist(sim, y, inp, c0))
     a = factor.arrays
     lobe = (a.lobe_border, a.lobe_inv, a.lobe_gain)
-    y_border, small_inv = reference.border_py(sys_, factor.lu, a.a_pe, c0, lobe)
+    y_border, small_inv = twins.border_py(sys_, factor.lu, a.a_pe, c0, lobe)
     assert _rel(factor.arrays.y_border, y_border) < 1e-12
     assert _rel(factor.arrays.small_inv, small_inv) < 1e-12
 
@@ -312,7 +313,7 @@ def test_newton_step_matches_twin(setup, stale: bool) -> None:
     g, dy = np.empty(sys_.size), np.empty(sys_.size)
     g_py, dy_py = np.empty(sys_.size), np.empty(sys_.size)
     h_min, err, p_min = factor.newton_step(y_c, inp, c0, hist, w, g, dy)
-    h_py, err_py, p_py = reference.newton_step_py(factor, y_py, inp, c0, hist, w, g_py, dy_py)
+    h_py, err_py, p_py = twins.newton_step_py(factor, y_py, inp, c0, hist, w, g_py, dy_py)
     assert h_min == pytest.approx(h_py, rel=1e-14)
     assert err == pytest.approx(err_py, rel=1e-9)
     assert p_min == pytest.approx(p_py, rel=1e-12)
@@ -334,7 +335,7 @@ def test_newton_step_leaves_a_closed_film(setup) -> None:
     h_min, err, p_min = factor.newton_step(closed, inp, 3000.0, hist, w, g, dy)
     assert h_min <= 0.0 and math.isnan(err) and math.isnan(p_min)
     np.testing.assert_array_equal(closed, before)
-    twin = reference.newton_step_py(factor, closed, inp, 3000.0, hist, w, g, dy)[0]
+    twin = twins.newton_step_py(factor, closed, inp, 3000.0, hist, w, g, dy)[0]
     assert twin == pytest.approx(h_min, rel=1e-14)  # the axial means summed in another order
     np.testing.assert_array_equal(closed, before)
 
@@ -368,7 +369,7 @@ def test_newton_solve_matches_twin(setup) -> None:
     w = sim.weights(y)
     controls = (3.0, 0.1, 6)
     results = []
-    for newton_solve in (transient.TransientFactor.newton_solve, reference.newton_solve_py):
+    for newton_solve in (transient.TransientFactor.newton_solve, twins.newton_solve_py):
         factor = sys_.factorize(y, inp, c0, hist)
         y_k = y.copy()
         work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
@@ -434,7 +435,7 @@ def test_slowly_contracting_fresh_factor_is_refreshed_not_abandoned(setup) -> No
     w = sim.weights(y)
     controls = (0.3, 0.001, 10)
     outcomes = []
-    for newton_solve in (transient.TransientFactor.newton_solve, reference.newton_solve_py):
+    for newton_solve in (transient.TransientFactor.newton_solve, twins.newton_solve_py):
         factor = sys_.factorize(far, inp, c0, hist)
         y_k = y.copy()
         work = (np.empty(sys_.size), np.empty(sys_.size), np.empty(sys_.size))
@@ -483,7 +484,7 @@ def test_bdf_setup_is_exact_for_polynomials_of_its_order(order: int, count: int)
     outs = [np.empty((3, n)) for _ in range(2)]
     c0s = [
         setup_(t_new, tuple(kern.BdfHistory(times, ys, qs, count)), order, atol, 1e-4, *out)
-        for setup_, out in zip((kern.bdf_setup, reference.bdf_setup_py), outs, strict=True)
+        for setup_, out in zip((kern.bdf_setup, twins.bdf_setup_py), outs, strict=True)
     ]
     assert c0s[0] == pytest.approx(c0s[1], rel=1e-12)
     np.testing.assert_allclose(outs[0], outs[1], rtol=1e-9, atol=1e-9)

@@ -58,10 +58,10 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
+from foilbearing.reynolds import fallback
 from foilbearing.reynolds.assembly import Workspace
 from foilbearing.reynolds.blocksolve import BlockCyclicLU, factor_coupled
 from foilbearing.reynolds.grid import FilmGrid
-from foilbearing.reynolds.reference import border_py, newton_residual_py, smoothed_lift_off_py
 from foilbearing.reynolds.transient_factor import TransientFactor
 
 __all__ = [
@@ -299,7 +299,7 @@ class TransientSystem:
         """G = c0·Q(y) + hist − f(y) (the BDF equations) and the minimum film, in one pass.
 
         Compiled (:func:`~foilbearing.reynolds._kernels.transient_residual`);
-        :func:`~foilbearing.reynolds.reference.newton_residual_py` is its NumPy twin.
+        :func:`~foilbearing.reynolds.fallback.newton_residual` is its NumPy form.
 
         Parameters
         ----------
@@ -361,7 +361,7 @@ class TransientSystem:
             return np.zeros(self.n)
         d = self.lift_scale(y, inputs, c0)
         free = -d
-        g_p = newton_residual_py(self, y, inputs, c0, hist, free)[0][: self.n]
+        g_p = fallback.newton_residual(self, y, inputs, c0, hist, free)[0][: self.n]
         P = self.split(y)[0].ravel()
         return np.where(d * (P - 1.0) < g_p, d, free)
 
@@ -398,10 +398,10 @@ class TransientSystem:
         the journal's film force. :meth:`TransientFactor.solve` equals a solve
         with :meth:`jacobian` (tested). The blocks come from one compiled call
         (:func:`~foilbearing.reynolds._kernels.transient_jacobian`, twin
-        :func:`~foilbearing.reynolds.reference.jacobian_blocks_py`), the border solve
+        :func:`~foilbearing.testing.twins.jacobian_blocks_py`), the border solve
         and the 2×2 Woodbury inverse from another
         (:func:`~foilbearing.reynolds._kernels.transient_border`, twin
-        :func:`~foilbearing.reynolds.reference.border_py`, also the path of the
+        :func:`~foilbearing.reynolds.fallback.border`, also the path of the
         SuperLU fallback). ``hist`` (the BDF history) decides which cells lift-off
         holds at ambient, unless ``branches`` (a factor's ``lift_state``, e.g. the
         last step's) gives them.
@@ -434,7 +434,7 @@ class TransientSystem:
             small_inv = np.empty((2, 2))
             kern.transient_border(fac, a_pe, self.s_vp, c0, lobe, y_border, small_inv)
         else:
-            y_border, small_inv = border_py(self, lu, a_pe, c0, lobe)
+            y_border, small_inv = fallback.border(self, lu, a_pe, c0, lobe)
         arrays = kern.FactorArrays(
             fac,  # type: ignore[arg-type]  # None for the fallback, which is not compiled
             blocks.jh,
@@ -570,11 +570,11 @@ class TransientSystem:
         a = np.ones(self.size)
         if self.lift_delta > 0.0:
             n = self.n
-            g_p = newton_residual_py(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
+            g_p = fallback.newton_residual(self, y, inputs, c0, hist, np.zeros(n), smooth=False)[0]
             P = np.asarray(y[:n], dtype=np.float64)
             s = self.smoothed_scales(lift_state)
             width = self.grid.lift_off_width(inputs.lam) * np.sqrt(self.smooth_scale / s)
-            a[:n] = smoothed_lift_off_py(P - 1.0, g_p[:n] / s, width, s)[0]
+            a[:n] = fallback.smoothed_lift_off(P - 1.0, g_p[:n] / s, width, s)[0]
         return a
 
     def jacobian(

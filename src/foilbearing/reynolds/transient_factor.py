@@ -6,24 +6,20 @@ block cyclic factors of the pressure block B (or a SuperLU fallback), the
 eliminated bump and journal blocks and the Woodbury border of the film force.
 It solves ``J Δy = g`` and runs the modified-Newton iteration of a BDF step on
 them, compiled (:mod:`foilbearing.reynolds._kernels`) on the block cyclic
-factors, with the NumPy twins of :mod:`foilbearing.reynolds.reference` on the
-fallback. Time in s, c0 and rates in 1/s; the state as in
+factors, with the SciPy path of :mod:`foilbearing.reynolds.fallback` on the
+SuperLU fallback. Time in s, c0 and rates in 1/s; the state as in
 :mod:`foilbearing.reynolds.transient`.
 """
 
 from __future__ import annotations
-
-from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from foilbearing.reynolds import _kernels as kern
-from foilbearing.reynolds.reference import newton_solve_py, newton_step_py, solve_py
-
-if TYPE_CHECKING:
-    from foilbearing.reynolds.transient import Inputs, TransientSystem
+from foilbearing.reynolds import fallback
+from foilbearing.reynolds.transient_protocol import InputsLike, SystemLike
 
 __all__ = ["TransientFactor"]
 
@@ -55,7 +51,7 @@ class TransientFactor:
         branches (``d`` held, ``−d`` free, 0 without lift-off), 1/s.
     """
 
-    def __init__(self, system: TransientSystem, lu: object, arrays: kern.FactorArrays) -> None:
+    def __init__(self, system: SystemLike, lu: object, arrays: kern.FactorArrays) -> None:
         self.sys, self.lu, self.arrays = system, lu, arrays
         self._jh: sp.csr_matrix | None = None
         #: CSR data of the factorised pressure block B (on the coupled pattern).
@@ -84,7 +80,7 @@ class TransientFactor:
     def newton_step(
         self,
         y: FloatArray,
-        inputs: Inputs,
+        inputs: InputsLike,
         c0: float,
         hist: FloatArray,
         weights: FloatArray,
@@ -94,8 +90,8 @@ class TransientFactor:
         """One modified-Newton iteration on the BDF equations, y updated in place.
 
         Compiled (:func:`~foilbearing.reynolds._kernels.transient_newton_step`) on the
-        block cyclic factors; :func:`~foilbearing.reynolds.reference.newton_step_py`
-        (its NumPy twin) with the SuperLU fallback.
+        block cyclic factors; :func:`~foilbearing.reynolds.fallback.newton_step`
+        (its NumPy form) with the SuperLU fallback.
 
         Parameters
         ----------
@@ -122,7 +118,7 @@ class TransientFactor:
             Smallest pressure after the update (NaN when not updated).
         """
         if self._fac is None:
-            return newton_step_py(self, y, inputs, c0, hist, weights, g, dy)
+            return fallback.newton_step(self, y, inputs, c0, hist, weights, g, dy)
         s = self.sys
         buf = (s._H, s._res, g, s._slack, s._work, dy, _NO_STORAGE)  # a NewtonBuffers
         step = tuple(s.step_inputs(inputs, c0, hist))
@@ -132,7 +128,7 @@ class TransientFactor:
     def newton_solve(
         self,
         y: FloatArray,
-        inputs: Inputs,
+        inputs: InputsLike,
         c0: float,
         hist: FloatArray,
         weights: FloatArray,
@@ -145,8 +141,8 @@ class TransientFactor:
 
         Compiled (:func:`~foilbearing.reynolds._kernels.transient_newton_solve`, which
         documents the outcomes) on the block cyclic factors;
-        :func:`~foilbearing.reynolds.reference.newton_solve_py`
-        (its twin) with the SuperLU fallback.
+        :func:`~foilbearing.reynolds.fallback.newton_solve`
+        (its NumPy form) with the SuperLU fallback.
 
         Parameters
         ----------
@@ -169,7 +165,7 @@ class TransientFactor:
             ``(outcome, iterations, first_change, h_min)``.
         """
         if self._fac is None:
-            return newton_solve_py(
+            return fallback.newton_solve(
                 self, y, inputs, c0, hist, weights, work, controls, fresh, first_change
             )
         s = self.sys
@@ -188,16 +184,16 @@ class TransientFactor:
 
     def solve_block(self, g: FloatArray) -> FloatArray:
         """ΔY with J ΔY = G for a block of right-hand sides G, shape (size, m): one solve of
-        the pressure block for all columns (:func:`~foilbearing.reynolds.reference.solve_py`
+        the pressure block for all columns (:func:`~foilbearing.reynolds.fallback.solve`
         on blocks; equal to :meth:`solve` column by column)."""
-        return solve_py(self, np.asarray(g, float))
+        return fallback.solve(self, np.asarray(g, float))
 
     def solve(self, g: FloatArray, out: FloatArray | None = None) -> FloatArray:
         """Δy with J Δy = g (J the Newton matrix at factorisation).
 
         Compiled (:func:`~foilbearing.reynolds._kernels.transient_solve`) on the
-        block cyclic factors; :func:`~foilbearing.reynolds.reference.solve_py` (its
-        NumPy twin) with the SuperLU fallback.
+        block cyclic factors; :func:`~foilbearing.reynolds.fallback.solve` (its
+        NumPy form) with the SuperLU fallback.
 
         Parameters
         ----------
@@ -212,7 +208,7 @@ class TransientFactor:
             Δy.
         """
         if self._fac is None:
-            d = solve_py(self, g)
+            d = fallback.solve(self, g)
             if out is None:
                 return d
             out[:] = d

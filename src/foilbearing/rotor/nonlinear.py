@@ -12,36 +12,30 @@ modes):
 Each bearing's film sees its journal ``ε_X = −y_b/C, ε_Y = x_b/C`` (ROSS's x = Y,
 y = −X; :mod:`foilbearing.export.ross`) and gives the film force F_b = p_a R² Σ w (P − 1)
 back, turned into ROSS's frame. Gravity is ROSS's −y: each bearing's +X, its load. The
-films' rates are those of the single-bearing reference (:func:`foilbearing.orbit.reference.
-state_derivative`: the same semi-discrete film, foil, actuators and lift-off law). The
-rotor's angular acceleration enters only through the unbalance force (ROSS's Ksdt, the
-shaft's own, is left out).
+films' rates are those of the single bearing (the same semi-discrete film, foil, actuators
+and lift-off law). The rotor's angular acceleration enters only through the unbalance force
+(ROSS's Ksdt, the shaft's own, is left out).
 
-This first form integrates the whole system with ``scipy.integrate.solve_ivp`` (BDF, the
-films' Jacobian by grouped differences and the rotor's exact: :meth:`RotorOrbitSystem.
-jacobian`): slow, and the reference the compiled stepper is checked against. At small
-amplitude its free whirl is the linear analysis'
-mode (``tests/test_rotor_nonlinear.py``).
+The compiled stepper runs it (:func:`foilbearing.rotor.stepper.run_rotor`). The reference
+it is checked against, the whole system on ``scipy.integrate.solve_ivp`` (BDF, the films'
+Jacobian by grouped differences and the rotor's exact), is a test oracle:
+:class:`foilbearing.testing.ivp_rotor.RotorIVP`. At small amplitude its free whirl is the
+linear analysis' mode (``tests/test_rotor_nonlinear.py``).
 """
 
 from __future__ import annotations
 
-import functools
 import math
-import time
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.integrate import solve_ivp
 
 from foilbearing.control import SpeedProfile, VoltageProgram
-from foilbearing.errors import InputError, SolverError
+from foilbearing.errors import InputError
 from foilbearing.orbit import OrbitSimulation
-from foilbearing.orbit.reference import state_derivative, state_sparsity
 from foilbearing.orbit.settings import OrbitSettings
 from foilbearing.rotor.model import RotorCase
 from foilbearing.rotor.reduced import ReducedRotor, lateral_dofs, reduce_rotor
@@ -49,7 +43,9 @@ from foilbearing.rotor.reduced import ReducedRotor, lateral_dofs, reduce_rotor
 __all__ = ["RotorOrbit", "RotorOrbitSystem", "Unbalance", "load_rotor_orbit"]
 
 FloatArray = NDArray[np.float64]
-IndexArray = NDArray[np.intp]
+
+#: The solve_ivp reference's methods, now :class:`foilbearing.testing.ivp_rotor.RotorIVP`'s.
+_IVP_METHODS = frozenset({"derivative", "jacobian", "run", "sparsity"})
 
 #: The shortest run (s) whose sub-synchronous onset the signal analysis reads.
 READ_AFTER = 1.0
@@ -268,15 +264,6 @@ class RotorOrbitSystem:
         ]
 
     # ------------------------------------------------------------------ pieces
-    def _journal_state(self, b: int, y: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """Bearing b's ε (units of C) and dε/dt (1/s), in its frame, from q and q̇."""
-        c = self.sims[b].case.bearing.clearance
-        q = y[self.n_film : self.n_film + self.m]
-        qd = y[self.n_film + self.m :]
-        x, yy = q[2 * b], q[2 * b + 1]
-        vx, vy = qd[2 * b], qd[2 * b + 1]
-        return np.array([-yy, x]) / c, np.array([-vy, vx]) / c
-
     def unbalance_force(self, t: float) -> FloatArray:
         """The unbalances' force on the reduced coordinates at t, N."""
         if not self.unbalances:
@@ -289,121 +276,6 @@ class RotorOrbitSystem:
             f[4 * u.node] += u.magnitude * (w * w * c + wd * s)
             f[4 * u.node + 1] += u.magnitude * (w * w * s - wd * c)
         return np.asarray(self.reduced.basis.T @ f, float)
-
-    def derivative(self, t: float, y: FloatArray) -> FloatArray:
-        """dy/dt of the whole system (module docstring)."""
-        out = np.empty_like(y)
-        force = self.gravity + self.unbalance_force(t)
-        for b, sim in enumerate(self.sims):
-            lo, hi = self.offsets[b], self.offsets[b + 1]
-            eps, vel = self._journal_state(b, y)
-            y_b = np.concatenate([y[lo:hi], eps, vel])
-            out[lo:hi] = state_derivative(sim, t, y_b)[: hi - lo]
-            P = y[lo : lo + sim.system.n]
-            f_x, f_y = self.force_per_pressure[b] @ (P - 1.0)  # ours: X, Y
-            force[2 * b] += f_y  # ROSS x = Y
-            force[2 * b + 1] -= f_x  # ROSS y = −X
-        q = y[self.n_film : self.n_film + self.m]
-        qd = y[self.n_film + self.m :]
-        omega = self.speed.omega(t)
-        red = self.reduced
-        out[self.n_film : self.n_film + self.m] = qd
-        out[self.n_film + self.m :] = self.mass_inv @ (
-            force - red.stiffness @ q - omega * red.gyroscopic @ qd
-        )
-        return out
-
-    def sparsity(self) -> sp.csr_matrix:
-        """The Jacobian's sparsity: each film on its own journal's x, y and rates; the rotor
-        on every film's pressure and on itself."""
-        m, nf = self.m, self.n_film
-        rows: list[sp.spmatrix] = []
-        for b, sim in enumerate(self.sims):
-            single = state_sparsity(sim)
-            k = self.film_sizes[b]
-            film = single[:k, :k]
-            journal = single[:k, k : k + 4]  # ε_X, ε_Y, v_X, v_Y
-            cols = sp.lil_matrix((k, 2 * m))
-            for j, c in enumerate((2 * b + 1, 2 * b, m + 2 * b + 1, m + 2 * b)):
-                cols[:, c] = journal[:, j].toarray()
-            blocks = [
-                film if a == b else sp.csr_matrix((k, self.film_sizes[a]))
-                for a in range(len(self.sims))
-            ]
-            rows.append(sp.hstack([*blocks, cols.tocsr()]))
-        top = sp.hstack([sp.csr_matrix((m, nf)), sp.csr_matrix((m, m)), sp.eye(m)])
-        pressure = np.zeros(nf)
-        for b, sim in enumerate(self.sims):
-            pressure[self.offsets[b] : self.offsets[b] + sim.system.n] = 1.0
-        bottom = sp.hstack(
-            [sp.csr_matrix(np.outer(np.ones(m), pressure)), sp.csr_matrix(np.ones((m, 2 * m)))]
-        )
-        return sp.vstack([*rows, top, bottom]).tocsr()
-
-    def jacobian(self, t: float, y: FloatArray) -> sp.csr_matrix:
-        """The Jacobian of :meth:`derivative` for solve_ivp.
-
-        The films' rows are forward differences, their columns grouped so that no two
-        columns of a group share a film row: a cell's rate depends only on its neighbours'
-        rows, its foil and its journal. The rotor's rows are exact, for they are linear in
-        the pressures and in q, q̇. Left to solve_ivp, the differences would take one
-        derivative a column: the rotor's rows join every column, so no two columns share a
-        group. The Jacobian only steers solve_ivp's Newton iterations; the run solves
-        :meth:`derivative` to its tolerances whatever it is.
-        """
-        f0 = self.derivative(t, y)
-        nf, m = self.n_film, self.m
-        step = math.sqrt(np.finfo(float).eps) * np.maximum(np.abs(y), self.atol())
-        rows, cols, vals = [], [], []
-        for members, (r, c) in self._film_groups:
-            dy = np.zeros_like(y)
-            dy[members] = step[members]
-            df = self.derivative(t, y + dy)[:nf] - f0[:nf]
-            rows.append(r)
-            cols.append(c)
-            vals.append(df[r] / step[c])
-        films = sp.csr_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-            shape=(self.size, self.size),
-        )
-        rotor = np.zeros((2 * m, self.size))
-        rotor[:m, nf + m :] = np.eye(m)
-        for b, sim in enumerate(self.sims):
-            lo = self.offsets[b]
-            f_x, f_y = self.force_per_pressure[b]  # ours: X, Y; ROSS x = Y, y = −X
-            rotor[m:, lo : lo + sim.system.n] = np.outer(self.mass_inv[:, 2 * b], f_y)
-            rotor[m:, lo : lo + sim.system.n] -= np.outer(self.mass_inv[:, 2 * b + 1], f_x)
-        rotor[m:, nf : nf + m] = -self.mass_inv @ self.reduced.stiffness
-        rotor[m:, nf + m :] = -self.speed.omega(t) * self.mass_inv @ self.reduced.gyroscopic
-        return films + sp.vstack([sp.csr_matrix((nf, self.size)), sp.csr_matrix(rotor)]).tocsr()
-
-    @functools.cached_property
-    def _film_groups(self) -> list[tuple[IndexArray, tuple[IndexArray, IndexArray]]]:
-        """The columns of :meth:`jacobian`'s differences in groups (greedy colouring of the
-        films' rows of :meth:`sparsity`), each with the (row, column) pairs it fills."""
-        films = self.sparsity()[: self.n_film].tocsc()
-        taken: list[NDArray[np.bool_]] = []
-        members: list[list[int]] = []
-        for j in range(films.shape[1]):
-            r = films.indices[films.indptr[j] : films.indptr[j + 1]]
-            if r.size == 0:
-                continue
-            for mask, group in zip(taken, members, strict=True):
-                if not mask[r].any():
-                    mask[r] = True
-                    group.append(j)
-                    break
-            else:
-                mask = np.zeros(films.shape[0], bool)
-                mask[r] = True
-                taken.append(mask)
-                members.append([j])
-        groups: list[tuple[IndexArray, tuple[IndexArray, IndexArray]]] = []
-        for group in members:
-            cols = np.asarray(group, np.intp)
-            sub = films[:, cols].tocoo()
-            groups.append((cols, (sub.row.astype(np.intp), cols[sub.col])))
-        return groups
 
     def initial_state(self) -> FloatArray:
         """Each bearing's static equilibrium at the start, the shaft bent by its weight."""
@@ -433,50 +305,15 @@ class RotorOrbitSystem:
         top = max(float(self.speed.speeds.max()), 1.0)
         return np.concatenate([*parts, np.full(self.m, pos), np.full(self.m, pos * top)])
 
-    # -------------------------------------------------------------------- run
-    def run(
-        self,
-        t_end: float,
-        *,
-        y0: FloatArray | None = None,
-        sample_rate: float = 10_000.0,
-        rtol: float = 1e-6,
-        atol_factor: float = 1.0,
-    ) -> RotorOrbit:
-        """Integrate from t = 0 (the static state, or ``y0``) to ``t_end`` (s) with
-        solve_ivp's BDF; sampled at ``sample_rate`` (Hz). The absolute tolerances are the
-        bearings' orbit settings' (:meth:`atol`) times ``atol_factor``."""
-        if any(s.voltage is not None and s.voltage.observes for s in self.sims):
-            raise InputError(
-                "a closed-loop controller reads the run's samples, which solve_ivp does not "
-                "hand it: run the rotor on its stepper (foilbearing.rotor.stepper.run_rotor)"
-            )
-        start = self.initial_state() if y0 is None else np.asarray(y0, float)
-        times = np.arange(0.0, t_end + 1e-12, 1.0 / sample_rate)
-        times = np.minimum(times, t_end)
-        clock = time.perf_counter()
-        sol = solve_ivp(
-            self.derivative,
-            (0.0, t_end),
-            start,
-            method="BDF",
-            t_eval=times,
-            rtol=rtol,
-            atol=self.atol() * atol_factor,
-            jac=self.jacobian,
-        )
-        wall = time.perf_counter() - clock
-        if not sol.success:
-            raise SolverError(
-                f"the nonlinear rotor run stopped at t = {sol.t[-1]:.4g} s: {sol.message}; "
-                "try a shorter run or a coarser orbit grid"
-            )
-        q = sol.y[self.n_film : self.n_film + self.m]
-        nb = len(self.sims)
-        journals = np.stack([np.stack([-q[2 * b + 1], q[2 * b]]) for b in range(nb)])
-        lateral = self.reduced.basis @ q
-        nodes = np.stack([lateral[0::4], lateral[1::4]], axis=1)
-        return RotorOrbit(sol.t, journals, nodes, self.labels, wall, str(sol.message))
+    if not TYPE_CHECKING:  # the type checker still sees no such attributes
+
+        def __getattr__(self, name: str) -> Any:
+            if name in _IVP_METHODS:
+                raise AttributeError(
+                    f"RotorOrbitSystem.{name} moved to the test oracles: "
+                    f"foilbearing.testing.ivp_rotor.RotorIVP(system).{name}"
+                )
+            raise AttributeError(f"'RotorOrbitSystem' object has no attribute '{name}'")
 
 
 def load_rotor_orbit(path: Any) -> tuple[RotorOrbit, dict[str, Any]]:

@@ -28,6 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from foilbearing.case import Case
+from foilbearing.study.runs import run_one
 
 __all__ = ["OrbitQueue"]
 
@@ -37,7 +38,7 @@ Done = Callable[[dict[str, Any]], None]
 @dataclass
 class _Task:
     case: Case
-    run: Any  # foilbearing.study.orbits.OrbitRun
+    run: Any  # foilbearing.study.runs.OrbitRun
     out: Path
     stop_time: float | None
     priority: int
@@ -46,7 +47,7 @@ class _Task:
 
 
 class OrbitQueue:
-    """Speed-ups of :func:`foilbearing.study.orbits.run_one` on ``workers`` processes."""
+    """Speed-ups of :func:`foilbearing.study.runs.run_one` on ``workers`` processes."""
 
     def __init__(self, workers: int | None = None) -> None:
         self.workers = workers or (os.cpu_count() or 1)
@@ -69,7 +70,7 @@ class OrbitQueue:
     ) -> bool:
         """Ask for the speed-up ``run`` of ``case``; ``then(result)`` is called when it ends.
 
-        ``result`` is what :func:`~foilbearing.study.orbits.run_one` returns, its headline's
+        ``result`` is what :func:`~foilbearing.study.runs.run_one` returns, its headline's
         ``series`` and ``description`` those of this ``run``. Returns False when the run
         was already asked for (it is not run again).
         """
@@ -122,8 +123,6 @@ class OrbitQueue:
             self._pool = None
 
     def _dispatch(self) -> None:
-        from foilbearing.study.orbits import run_one
-
         while self._ready and len(self._running) < self.workers:
             if self._pool is None:
                 self._pool = ProcessPoolExecutor(max_workers=self.workers)

@@ -38,7 +38,8 @@ VERIFY_IMBALANCE = 1e-6  # kg·m, 1 g·mm
 
 
 def _runs(schedule: Any) -> list[Any]:
-    from foilbearing.study.orbits import RAMP, OrbitRun
+    from foilbearing.study.orbits import RAMP
+    from foilbearing.study.runs import OrbitRun
 
     series = "schedule verification"
     return [
