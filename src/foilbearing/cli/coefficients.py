@@ -18,6 +18,7 @@ from foilbearing.cli.common import (
     emit,
     positive_list,
     positive_quantity,
+    refuse_without_actuators,
     voltage_list,
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
@@ -67,6 +68,7 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
     if args.speed is not None:
         case = case.with_speed(positive_quantity(args.speed, "speed", "--speed", "a speed"))
     if args.voltage is not None:
+        refuse_without_actuators(case, "--voltage", args.voltage)
         (volt,) = voltage_list(args.voltage, case)
         case = case.with_voltages(volt)
     if args.shimmed:

@@ -128,14 +128,15 @@ class OrbitResult:
                 "speed": ("time", self.speed, {"units": "rad/s", "long_name": "rotor speed"}),
                 "phase": ("time", self.phase, {"units": "rad", "long_name": "rotation angle"}),
                 "min_film": ("time", self.min_film, {"units": "m", "long_name": "minimum film"}),
-                "voltage": (
-                    ("time", "actuator"),
-                    self.voltages.reshape(self.time.size, n_act),
-                    {"units": "V"},
-                ),
             },
             coords={"time": ("time", self.time, {"units": "s"})},
         )
+        if n_act:  # a bearing without actuators has no voltage (and NetCDF 3 no empty dimension)
+            ds["voltage"] = (
+                ("time", "actuator"),
+                self.voltages.reshape(self.time.size, n_act),
+                {"units": "V"},
+            )
         if self.power_loss is not None:
             ds["power_loss"] = (
                 "time",
