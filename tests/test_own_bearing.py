@@ -95,12 +95,23 @@ def test_static_over_speeds_balances_the_load_and_its_file_reads_back(
     assert single["eccentricity"] == pytest.approx(ecc[1], rel=1e-6)
 
 
+def test_coefficients_at_a_list_of_speeds_is_one_line_saying_where_to_go(
+    coarse: dict[str, Path], capsys
+) -> None:
+    """Read as one quantity, "10000,30000rpm" was 1.00003e9 rpm ("above max_speed")."""
+    argv = ["coefficients", str(coarse["bump_foil_bearing"]), "--speed", "10000,30000rpm"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "takes one speed" in err and "sweep file" in err
+
+
 @pytest.mark.parametrize(
     "argv",
     [
         ["static", "--voltage", "0V"],
         ["static", "--speed", "10000,20000rpm", "--voltage", "0V"],
         ["coefficients", "--voltage", "0V"],
+        ["coefficients", "--voltage", "0V", "--speed", "30000rpm"],
         ["stability", "--voltage", "0V"],
         ["stability", "--shimmed"],
         ["stability", "--design"],
