@@ -139,6 +139,8 @@ def _print_static(out: dict[str, Any]) -> None:
     )
     for key in keys:
         value = out[key]
+        if value == []:  # no actuators or shims: no voltages, preloads, arc pressures
+            continue
         if isinstance(value, float):
             value = f"{value:.5g}"
         elif isinstance(value, list):
