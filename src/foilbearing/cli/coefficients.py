@@ -18,10 +18,11 @@ from foilbearing.cli.common import (
     emit,
     positive_list,
     positive_quantity,
+    refuse_without_actuators,
     voltage_list,
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
-from foilbearing.errors import SolverError
+from foilbearing.errors import InputError, SolverError
 
 __all__ = ["cmd_coefficients", "register"]
 
@@ -65,8 +66,14 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
 
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
     if args.speed is not None:
+        if len(positive_list(args.speed, "speed", "--speed", "a speed")) > 1:
+            raise InputError(
+                f"--speed {args.speed!r}: coefficients takes one speed (against speed: a sweep "
+                "file with analysis = 'coefficients', or study)"
+            )
         case = case.with_speed(positive_quantity(args.speed, "speed", "--speed", "a speed"))
     if args.voltage is not None:
+        refuse_without_actuators(case, "--voltage", args.voltage)
         (volt,) = voltage_list(args.voltage, case)
         case = case.with_voltages(volt)
     if args.shimmed:

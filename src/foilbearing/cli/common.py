@@ -23,6 +23,7 @@ __all__ = [
     "parse_list",
     "positive_list",
     "positive_quantity",
+    "refuse_without_actuators",
     "voltage_list",
 ]
 
@@ -188,6 +189,33 @@ def voltage_list(text: str, case: Case, field: str = "--voltage") -> list[float]
         if not all(0.0 <= v <= top for v in values):
             raise InputError(f"{field} = {text!r}: allowed 0 to {top:g} V (max_voltage)")
     return values
+
+
+#: The kinds of bearing (``Case.kind``) in words, for the messages.
+_KIND_WORDS = {
+    "GFB": "passive gas foil bearing",
+    "shimmed GFB": "shimmed gas foil bearing",
+    "rigid": "rigid gas bearing",
+}
+
+
+def refuse_without_actuators(case: Case, option: str, text: Any = None) -> None:
+    """A one-line error when ``option`` (a voltage, a voltage program) is given for a case
+    without ``[actuators]``: such a bearing has no voltage, and 0 V would not make it one.
+
+    Nothing happens for a C-GFB.
+    """
+    from foilbearing.errors import InputError
+
+    if case.actuators is not None:
+        return
+    given = option if text is None else f"{option} {text!r}"
+    raise InputError(
+        f"{given}: this case is a {_KIND_WORDS.get(case.kind, case.kind)} with no [actuators], "
+        f"so it has no voltage to set (0 V is a C-GFB's stack at rest, another bearing); "
+        f"drop {option}",
+        source=case.source,
+    )
 
 
 def print_fields(obj: dict[str, Any]) -> None:

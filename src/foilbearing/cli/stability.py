@@ -16,12 +16,16 @@ from foilbearing.cli.common import (
     add_subambient_arg,
     apply_subambient,
     emit,
+    refuse_without_actuators,
     voltage_list,
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_stability", "register"]
+
+#: The onset scan of a C-GFB when ``--speed-range`` is not given.
+DEFAULT_SCAN = "5000rpm:150000rpm:5000rpm"
 
 
 def register(sub: Any) -> argparse.ArgumentParser:
@@ -42,8 +46,9 @@ def register(sub: Any) -> argparse.ArgumentParser:
     stab.add_argument("--shimmed", action="store_true", help="the shimmed GFB twins")
     stab.add_argument(
         "--speed-range",
-        default="5000rpm:150000rpm:5000rpm",
-        help="scan START:STOP:STEP (default 5000rpm:150000rpm:5000rpm)",
+        default=None,
+        help="scan START:STOP:STEP (default 5000rpm:150000rpm:5000rpm; for a bearing without "
+        "actuators the study's onset scan, so that the onset is the study's)",
     )
     add_subambient_arg(stab)
     add_reading_args(stab)
@@ -64,12 +69,12 @@ def cmd_stability(args: argparse.Namespace) -> int:
     from foilbearing.units import parse_speed_range
 
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
-    speeds = parse_speed_range(args.speed_range, field="--speed-range")
+    if case.actuators is None:
+        return _passive(case, args)
+    speeds = parse_speed_range(args.speed_range or DEFAULT_SCAN, field="--speed-range")
     if args.design:
         return _design(case, args, speeds)
     voltages = voltage_list(args.voltage or "0,50,100,150V", case)
-    if case.actuators is None:
-        raise InputError("the stability study over voltages needs a case with [actuators]")
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
     per_volt = onsets_per_voltage(case, voltages, speeds, shimmed=args.shimmed, progress=progress)
     bearing = "shimmed" if args.shimmed else "C-GFB"
@@ -96,6 +101,61 @@ def cmd_stability(args: argparse.Namespace) -> int:
                 )
             )
             print(f"  {e['bearing']} {e['voltage_V']:6.1f} V: {text}")
+    return 0
+
+
+def _passive(case: Any, args: argparse.Namespace) -> int:
+    """The onset of a bearing without actuators (passive, shimmed or rigid) as it is.
+
+    Without ``--speed-range`` the scan is the study's (:meth:`StudyPlan.onset_scan`), so
+    that ``stability`` and ``study`` report the same onset for the case.
+    """
+    from foilbearing.constants import RPM
+    from foilbearing.io import save_figure
+    from foilbearing.stability import onset_speed
+    from foilbearing.study.plan import study_plan
+    from foilbearing.units import parse_speed_range
+
+    if args.voltage is not None:
+        refuse_without_actuators(case, "--voltage", args.voltage)
+    for flag, given in (("--shimmed", args.shimmed), ("--design", args.design)):
+        if given:
+            refuse_without_actuators(case, flag)
+    if args.speed_range is None:
+        speeds = study_plan(case).onset_scan()
+    else:
+        speeds = list(parse_speed_range(args.speed_range, field="--speed-range"))
+    progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
+    result = onset_speed(case, speeds, progress=progress)
+    step = speeds[1] - speeds[0] if len(speeds) > 1 else 0.0
+    out: dict[str, Any] = {
+        "bearing": case.kind,
+        "rotor_mass_kg": case.rotor.mass,
+        "load_N": case.operation.load,
+        "scan_rpm": [speeds[0] / RPM, speeds[-1] / RPM, step / RPM],
+    } | result.headline()
+    if args.plot is not None:
+        from foilbearing.output.plots.bearing import plot_log_decrement
+
+        modes = [
+            {"speed_rpm": w / RPM, "log_decrement": d}
+            for w, d in zip(result.speeds, result.log_decrement, strict=True)
+        ]
+        fig = plot_log_decrement(modes, out["onset_speed_rpm"])
+        out["figures"] = [str(save_figure(fig, args.plot / "log_decrement.png"))]
+    if args.json:
+        emit(out)
+        return 0
+    onset = out["onset_speed_rpm"]
+    text = (
+        result.message
+        if onset is None
+        else (
+            f"onset {onset:8.0f} rpm, whirl {out['whirl_frequency_Hz']:.1f} Hz "
+            f"(ratio {out['whirl_ratio']:.3f}); {result.message}"
+        )
+    )
+    print(f"  {case.kind} at {case.operation.load:g} N, rotor {case.rotor.mass:g} kg: {text}")
     return 0
 
 

@@ -18,6 +18,7 @@ from foilbearing.cli.common import (
     apply_subambient,
     emit,
     positive_list,
+    refuse_without_actuators,
     voltage_list,
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
@@ -79,9 +80,10 @@ def cmd_static(args: argparse.Namespace) -> int:
     )
     volts: list[float | None] = [None]
     if args.voltage is not None:
-        if case.actuators is None:
-            raise InputError("--voltage given but the case has no [actuators]")
+        refuse_without_actuators(case, "--voltage", args.voltage)
         volts = list(voltage_list(args.voltage, case))
+    if case.actuators is None and len(speeds) > 1 and not (args.compare or args.shimmed):
+        return _speed_sweep_cli(case, speeds, args)
     if len(speeds) > 1 or len(volts) > 1 or args.compare:
         return _static_sweep_cli(case, speeds, volts, args)
     if volts[0] is not None:
@@ -137,6 +139,8 @@ def _print_static(out: dict[str, Any]) -> None:
     )
     for key in keys:
         value = out[key]
+        if value == []:  # no actuators or shims: no voltages, preloads, arc pressures
+            continue
         if isinstance(value, float):
             value = f"{value:.5g}"
         elif isinstance(value, list):
@@ -153,7 +157,11 @@ def _static_sweep_cli(
     from foilbearing.study.static import static_sweep
 
     if case.actuators is None:
-        raise InputError("a static sweep over voltages needs a case with [actuators]")
+        raise InputError(
+            "--compare and --shimmed set a C-GFB beside (or in place of) its shimmed twin: "
+            "this case has no [actuators]; drop the option",
+            source=case.source,
+        )
     voltages = [float(case.actuators.voltages[0]) if v is None else float(v) for v in volts]
     bearings = (
         ("C-GFB", "shimmed") if args.compare else (("shimmed",) if args.shimmed else ("C-GFB",))
@@ -175,5 +183,41 @@ def _static_sweep_cli(
                 f"  h_min={point['min_film_um']:6.2f} µm  preload="
                 + ", ".join(f"{x:.2f}" for x in point["preload_um"])
                 + " µm"
+            )
+    return 0 if all(p["converged"] for p in out["points"]) else 3
+
+
+def _speed_sweep_cli(case: Case, speeds: list[float], args: argparse.Namespace) -> int:
+    """The equilibria of a bearing without actuators over ``--speed`` (a list)."""
+    from foilbearing.io import write_with
+    from foilbearing.output.summary import speed_sweep_points
+    from foilbearing.study.static import speed_sweep
+
+    progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
+    ds = speed_sweep(case, speeds, progress=progress)
+    if args.out is not None:
+        write_with(args.out, lambda tmp: ds.to_netcdf(tmp))
+    out: dict[str, Any] = {
+        "bearing": case.kind,
+        "load_N": case.operation.load,
+        "points": speed_sweep_points(ds),
+    }
+    if args.plot is not None:
+        from foilbearing.io import save_figure
+        from foilbearing.output.plots.bearing import plot_against
+
+        fig = plot_against(out["points"], "speed_rpm")
+        out["figures"] = [str(save_figure(fig, args.plot / "static_vs_speed.png"))]
+    if args.json:
+        emit(out)
+    else:
+        for p in out["points"]:
+            if not p["converged"]:
+                print(f"  {case.kind:<8} {p['speed_rpm']:8.0f} rpm  no equilibrium")
+                continue
+            print(
+                f"  {case.kind:<8} {p['speed_rpm']:8.0f} rpm  ε={p['eccentricity']:.4f}"
+                f"  φ={p['attitude_deg']:6.2f}°  h_min={p['min_film_um']:6.2f} µm"
+                f"  power loss {p['power_loss_W']:.4g} W"
             )
     return 0 if all(p["converged"] for p in out["points"]) else 3

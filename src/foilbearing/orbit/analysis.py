@@ -26,7 +26,14 @@ from foilbearing.signals import (
     waterfall,
 )
 
-__all__ = ["OrbitAnalysis", "analyse_orbit", "mean_power_loss", "write_orbit_figures"]
+__all__ = [
+    "OrbitAnalysis",
+    "analyse_orbit",
+    "mean_power_loss",
+    "orbit_panel_speeds",
+    "synchronous_amplitude",
+    "write_orbit_figures",
+]
 
 #: Sub-synchronous amplitude that counts as onset: 1 µm, 1 % of the paper's clearance.
 ONSET_THRESHOLD = 1e-6
@@ -41,15 +48,27 @@ class OrbitAnalysis:
     onset: Onset | None
     divergence_speed_rpm: float | None
     max_subsync_amplitude: float | None
+    #: A constant-speed run: the 1X (synchronous) amplitudes in X and Y, 0-pk, m, and the
+    #: window (s) they are read over; None for a speed ramp or a run under two revolutions.
+    one_x: tuple[float, float] | None = None
+    one_x_window: tuple[float, float] | None = None
 
     def headline(self, result: OrbitResult) -> dict[str, Any]:
         """Unit-named keys: onset_speed_rpm, whip_frequency_Hz, divergence_speed_rpm, ...;
         ``grid``: [n_theta, n_z] of the grid the run was on (the case's orbit grid);
         ``actuator_reading``: the actuator in the film (``"lobe+compliant"``, docs/model.md
-        §3.8), None without actuators."""
+        §3.8), None without actuators. A constant-speed run adds its 1X amplitude in X and
+        Y, 0-pk and pk-pk (µm), and the window it is read over."""
         o = self.onset
         act = result.case.actuators
-        return {
+        one_x = {}
+        if self.one_x is not None and self.one_x_window is not None:
+            one_x = {
+                "one_x_amplitude_0pk_um": [a * 1e6 for a in self.one_x],
+                "one_x_amplitude_pkpk_um": [2e6 * a for a in self.one_x],
+                "one_x_window_s": list(self.one_x_window),
+            }
+        return one_x | {
             "onset_speed_rpm": None if o is None else o.onset_speed_rpm,
             "whip_frequency_Hz": None if o is None else o.whirl_frequency_hz,
             "subsync_intervals_rpm_Hz": [] if o is None else [list(iv) for iv in o.intervals],
@@ -88,8 +107,40 @@ def mean_power_loss(result: OrbitResult, until_rpm: float | None = None) -> floa
     return float(trapezoid(p[keep], result.time[keep]) / np.ptp(result.time[keep]))
 
 
+def synchronous_amplitude(
+    result: OrbitResult,
+) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The 1X amplitudes (0-pk, m) in X and Y of a constant-speed run, and their window (s).
+
+    Read over the whole revolutions of the run's second half (the first half lets the
+    start from the equilibrium without imbalance die out) by least squares on
+    1, cos φ, sin φ, φ the rotor's angle: a whirl at another frequency is rejected over
+    the window's revolutions. None for a run whose speed changes, or with fewer than two
+    revolutions in its second half.
+    """
+    t, w = result.time, result.speed
+    if t.size < 8 or np.ptp(w) > 1e-9 * float(np.max(w)):
+        return None
+    phase = result.phase
+    start = int(np.searchsorted(t, 0.5 * (t[0] + t[-1])))
+    turns = math.floor((phase[-1] - phase[start]) / (2 * math.pi))
+    if turns < 2:
+        return None
+    keep = np.zeros(t.size, dtype=bool)  # whole revolutions from the middle of the run
+    keep[start:] = phase[start:] - phase[start] < turns * 2 * math.pi
+    basis = np.column_stack([np.ones(keep.sum()), np.cos(phase[keep]), np.sin(phase[keep])])
+    amps = []
+    for x in (result.e_x, result.e_y):
+        coef = np.linalg.lstsq(basis, x[keep], rcond=None)[0]
+        amps.append(float(np.hypot(coef[1], coef[2])))
+    return (amps[0], amps[1]), (float(t[keep][0]), float(t[keep][-1]))
+
+
 def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) -> OrbitAnalysis:
-    """Waterfall, sub-synchronous amplitude (1X removed by order tracking), onset, divergence."""
+    """Waterfall, sub-synchronous amplitude (1X removed by order tracking), onset, divergence;
+    the 1X amplitude of a constant-speed run (:func:`synchronous_amplitude`)."""
+    sync = synchronous_amplitude(result)
+    one_x = {} if sync is None else {"one_x": sync[0], "one_x_window": sync[1]}
     t = result.time
     c = result.case.bearing.clearance
     if t.size < 8 or t[-1] - t[0] < 1.0:
@@ -107,7 +158,7 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
             if result.status == "contact"
             else None
         )
-        return OrbitAnalysis(None, None, None, div, None)
+        return OrbitAnalysis(None, None, None, div, None, **one_x)
     wf = waterfall(
         t, result.e_x, result.speed, fmax_hz=min(2000.0, 0.45 * result.settings.sample_rate)
     )
@@ -124,7 +175,19 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
         contact_time=contact.get("time_s"),
     )
     amp = float(np.nanmax(sub.amplitude)) if sub.amplitude.size else None
-    return OrbitAnalysis(wf, sub, ons, div, amp)
+    return OrbitAnalysis(wf, sub, ons, div, amp, **one_x)
+
+
+def orbit_panel_speeds(speed: np.ndarray) -> list[float]:
+    """The speeds (rpm) of the orbit plot's panels: up to four of 10, 20, 30, 50, 70 and
+    90 krpm that the run went through (``speed`` in rad/s), the highest ones; a run that
+    went through none of them (a constant-speed run) gets one panel at its top speed."""
+    rpm = np.asarray(speed, float) * 30 / math.pi
+    if rpm.size == 0:
+        return [0.0]
+    low, top = float(rpm.min()), float(rpm.max())
+    marks = [s for s in (10e3, 20e3, 30e3, 50e3, 70e3, 90e3) if low * (1 - 1e-9) <= s <= top]
+    return marks[-4:] or [top]
 
 
 def write_orbit_figures(
@@ -162,11 +225,10 @@ def write_orbit_figures(
                 po.plot_waterfall_3d(analysis.waterfall), folder / f"{label}_waterfall3d.png"
             )
         )
-    top = float(result.speed.max() * 30 / math.pi) if result.speed.size else 0.0
-    marks = [s for s in (10e3, 20e3, 30e3, 50e3, 70e3, 90e3) if s <= top] or [top]
+    marks = orbit_panel_speeds(result.speed)
     paths.append(
         save_figure(
-            po.plot_orbits(result.time, result.e_x, result.e_y, result.speed, marks[-4:], c),
+            po.plot_orbits(result.time, result.e_x, result.e_y, result.speed, marks, c),
             folder / f"{label}_orbits.png",
         )
     )

@@ -85,7 +85,7 @@ def load_orbit(path: Path) -> tuple[Any, RunSpec]:
         _si(ds, "speed"),
         ds.phase.values,
         _si(ds, "min_film"),
-        ds.voltage.values,
+        ds.voltage.values if "voltage" in ds else np.zeros((ds.time.size, 0)),
         RunStatus(str(a["status"])),
         str(a["message"]),
         float(a["wall_time_s"]),

@@ -76,7 +76,8 @@ class OrbitResult:
     time, e_x, e_y, speed, phase, min_film
         Uniform samples (s, m, m, rad/s, rad, m).
     voltages
-        Applied voltage per actuator, V, shape (n_samples, n_actuators).
+        Applied voltage per actuator, V, shape (n_samples, n_actuators); n_actuators is 0
+        for a bearing without actuators.
     power_loss
         Viscous power loss of the film, W: the drag law of the static analysis
         (:func:`foilbearing.static.drag_torque`) × speed, evaluated on the
@@ -116,7 +117,9 @@ class OrbitResult:
         """The run as an xarray Dataset in SI units (time series, settings, status, checkpoint).
 
         Every variable carries its ``units`` attribute; a reader converts with it
-        (:func:`foilbearing.orbit.netcdf.load_orbit` does).
+        (:func:`foilbearing.orbit.netcdf.load_orbit` does). A bearing without actuators
+        has no ``voltage`` variable: a NetCDF 3 file cannot hold the empty ``actuator``
+        dimension after ``time`` (``xarray.load_dataset`` would fail on it).
         """
         import xarray as xr
 
@@ -128,14 +131,15 @@ class OrbitResult:
                 "speed": ("time", self.speed, {"units": "rad/s", "long_name": "rotor speed"}),
                 "phase": ("time", self.phase, {"units": "rad", "long_name": "rotation angle"}),
                 "min_film": ("time", self.min_film, {"units": "m", "long_name": "minimum film"}),
-                "voltage": (
-                    ("time", "actuator"),
-                    self.voltages.reshape(self.time.size, n_act),
-                    {"units": "V"},
-                ),
             },
             coords={"time": ("time", self.time, {"units": "s"})},
         )
+        if n_act:  # a bearing without actuators has no voltage (and NetCDF 3 no empty dimension)
+            ds["voltage"] = (
+                ("time", "actuator"),
+                self.voltages.reshape(self.time.size, n_act),
+                {"units": "V"},
+            )
         if self.power_loss is not None:
             ds["power_loss"] = (
                 "time",

@@ -13,7 +13,14 @@ from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.structure import walowit_anno_bump_stiffness
 
-__all__ = ["BEARING_TYPES", "case_summary", "format_summary", "structure_summary", "sweep_points"]
+__all__ = [
+    "BEARING_TYPES",
+    "case_summary",
+    "format_summary",
+    "speed_sweep_points",
+    "structure_summary",
+    "sweep_points",
+]
 
 
 def case_summary(case: Case) -> dict[str, Any]:
@@ -174,4 +181,30 @@ def sweep_points(ds: Any) -> list[dict[str, Any]]:
                         "iterations": int(row.iterations) if ok else None,
                     }
                 )
+    return points
+
+
+def speed_sweep_points(ds: Any) -> list[dict[str, Any]]:
+    """One dict per speed of :func:`foilbearing.study.static.speed_sweep`, unit-named keys
+    (those of the study's static stage, and the arcs' preloads and pressures if any)."""
+    points = []
+    for s in ds.speed.values:
+        row = ds.sel(speed=s)
+        ok = bool(row.converged)
+        point: dict[str, Any] = {"speed_rpm": float(s) * 1e3, "converged": ok}
+        if ok:
+            point |= {
+                "load_N": float(ds.attrs["load_N"]),
+                "eccentricity": float(row.eccentricity),
+                "attitude_deg": float(row.attitude),
+                "min_film_um": float(row.min_film),
+                "force_N": [float(row.force_x), float(row.force_y)],
+                "drag_torque_Nm": float(row.drag_torque),
+                "power_loss_W": float(row.power_loss),
+                "iterations": int(row.iterations),
+            }
+            if "preload" in ds:
+                point["preload_um"] = [float(x) for x in row.preload.values]
+                point["actuator_pressure_kPa"] = [float(x) for x in row.actuator_pressure.values]
+        points.append(point)
     return points

@@ -17,10 +17,25 @@ from foilbearing.constants import RPM
 from foilbearing.film import film_model
 from foilbearing.static import StaticResult, solve_equilibrium
 
-__all__ = ["PAPER_SPEEDS_RPM", "PAPER_VOLTAGES", "static_sweep"]
+__all__ = ["PAPER_SPEEDS_RPM", "PAPER_VOLTAGES", "speed_sweep", "static_sweep"]
 
 PAPER_SPEEDS_RPM = tuple(float(s) for s in range(10_000, 90_001, 10_000))
 PAPER_VOLTAGES = (0.0, 50.0, 100.0, 150.0)
+
+#: The scalar readouts of a sweep: unit in the dataset and factor from SI.
+_UNITS = {
+    "eccentricity": ("", 1.0),
+    "attitude": ("deg", 180 / math.pi),
+    "eps_x": ("", 1.0),
+    "eps_y": ("", 1.0),
+    "min_film": ("um", 1e6),
+    "min_film_angle": ("deg", 180 / math.pi),
+    "force_x": ("N", 1.0),
+    "force_y": ("N", 1.0),
+    "drag_torque": ("N m", 1.0),
+    "power_loss": ("W", 1.0),
+    "iterations": ("", 1.0),
+}
 
 
 def static_sweep(
@@ -62,22 +77,7 @@ def static_sweep(
     n_act = len(case.actuators.angles)
     model_theta = film_model(case).grid.theta
     shape = (len(bearings), len(voltages), len(speeds))
-    scalars = {
-        k: np.full(shape, np.nan)
-        for k in (
-            "eccentricity",
-            "attitude",
-            "eps_x",
-            "eps_y",
-            "min_film",
-            "min_film_angle",
-            "force_x",
-            "force_y",
-            "drag_torque",
-            "power_loss",
-            "iterations",
-        )
-    }
+    scalars = {k: np.full(shape, np.nan) for k in _UNITS}
     converged = np.zeros(shape, dtype=bool)
     per_act = {k: np.full((*shape, n_act), np.nan) for k in ("actuator_pressure", "preload")}
     fields = {k: np.full((*shape, model_theta.size), np.nan) for k in ("pressure", "film")}
@@ -106,21 +106,8 @@ def static_sweep(
         "theta": ("theta", np.degrees(model_theta), {"units": "deg"}),
     }
     dims = ("bearing", "voltage", "speed")
-    units = {
-        "eccentricity": ("", 1.0),
-        "attitude": ("deg", 180 / math.pi),
-        "eps_x": ("", 1.0),
-        "eps_y": ("", 1.0),
-        "min_film": ("um", 1e6),
-        "min_film_angle": ("deg", 180 / math.pi),
-        "force_x": ("N", 1.0),
-        "force_y": ("N", 1.0),
-        "drag_torque": ("N m", 1.0),
-        "power_loss": ("W", 1.0),
-        "iterations": ("", 1.0),
-    }
     data: dict[str, Any] = {
-        k: (dims, scalars[k] * units[k][1], {"units": units[k][0]}) for k in scalars
+        k: (dims, scalars[k] * _UNITS[k][1], {"units": _UNITS[k][0]}) for k in scalars
     }
     data["converged"] = (dims, converged)
     data["actuator_pressure"] = (
@@ -152,7 +139,7 @@ def static_sweep(
 
 def _store(
     res: StaticResult,
-    idx: tuple[int, int, int],
+    idx: tuple[int, ...],
     scalars: dict[str, np.ndarray],
     per_act: dict[str, np.ndarray],
     fields: dict[str, np.ndarray],
@@ -177,3 +164,93 @@ def _store(
     per_act["preload"][idx] = res.preload
     fields["pressure"][idx] = res.P[:, 0] * pa
     fields["film"][idx] = res.H[:, 0] * c
+
+
+def speed_sweep(
+    case: Case, speeds: Sequence[float], *, progress: Callable[[str], None] | None = None
+) -> Any:
+    """Equilibria of the case as it is (any kind of bearing) over speeds, at its load.
+
+    The speeds are walked in increasing order, each equilibrium started from the one
+    before (continuation); a point that does not converge is flagged and the next one
+    starts afresh.
+
+    Parameters
+    ----------
+    case
+        Any case: a passive, shimmed or rigid bearing, or a C-GFB at its voltages.
+    speeds
+        Rotor speeds, rad/s.
+    progress
+        Called with one line when the sweep is done.
+
+    Returns
+    -------
+    xarray.Dataset with dimensions ``speed`` (krpm) and ``theta`` (deg), and ``arc``
+    (deg) for the shims' or actuators' angles where the bearing has any: the readouts
+    of :func:`static_sweep` (no ``voltage`` or ``bearing`` dimension), the bearing's
+    kind in the attribute ``bearing``; ``converged`` flags each point.
+    """
+    import xarray as xr
+
+    speeds = sorted(speeds)
+    model = film_model(case)
+    theta = model.grid.theta
+    arcs: tuple[float, ...] = ()
+    if case.actuators is not None:
+        arcs = case.actuators.angles
+    elif case.shims is not None:
+        arcs = case.shims.angles
+    n = len(speeds)
+    scalars = {k: np.full(n, np.nan) for k in _UNITS}
+    per_arc = {k: np.full((n, len(arcs)), np.nan) for k in ("actuator_pressure", "preload")}
+    fields = {k: np.full((n, theta.size), np.nan) for k in ("pressure", "film")}
+    converged = np.zeros(n, dtype=bool)
+    start = None
+    for s, omega in enumerate(speeds):
+        res = solve_equilibrium(case, speed=omega, model=model, start=start)
+        if not res.converged:
+            start = None
+            continue
+        start = (res.eps_x, res.eps_y, res.P)
+        _store(res, (s,), scalars, per_arc, fields)
+        converged[s] = True
+    if progress is not None:
+        progress(f"{case.kind}: {int(converged.sum())}/{n} speeds converged")
+    data: dict[str, Any] = {
+        k: ("speed", scalars[k] * _UNITS[k][1], {"units": _UNITS[k][0]}) for k in scalars
+    }
+    data["converged"] = ("speed", converged)
+    coords: dict[str, Any] = {
+        "speed": ("speed", np.asarray(speeds) / RPM / 1e3, {"units": "krpm"}),
+        "theta": ("theta", np.degrees(theta), {"units": "deg"}),
+    }
+    if arcs:  # NetCDF 3 has no empty dimension: a bearing without arcs has none
+        coords["arc"] = ("arc", np.round(np.degrees(arcs), 9), {"units": "deg"})
+        data["actuator_pressure"] = (
+            ("speed", "arc"),
+            per_arc["actuator_pressure"] / 1e3,
+            {"units": "kPa", "long_name": "axially averaged gauge pressure p_A at the arc"},
+        )
+        data["preload"] = (
+            ("speed", "arc"),
+            per_arc["preload"] * 1e6,
+            {"units": "um", "long_name": "piezoelectric preload (Eq. 3b); shim thickness"},
+        )
+    data["midplane_pressure"] = (
+        ("speed", "theta"),
+        fields["pressure"] / 1e3,
+        {"units": "kPa", "long_name": "absolute pressure in the cell row next to the mid-plane"},
+    )
+    data["midplane_film"] = (("speed", "theta"), fields["film"] * 1e6, {"units": "um"})
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(
+        bearing=case.kind,
+        viscosity_Pa_s=case.gas.viscosity,
+        clearance_um=case.bearing.clearance * 1e6,
+        load_N=case.operation.load,
+        rotor_mass_kg=case.rotor.mass,
+        n_theta=case.grid.n_theta,
+        n_z=case.grid.n_z,
+    )
+    return ds

@@ -437,7 +437,8 @@ def assemble(spec: SweepSpec, out: str | Path, *, write: bool = True) -> Any:
     Dimensions are the swept parameters (coordinates in the units written in
     the sweep file, attribute ``units``), plus any dimension of list-valued
     results (``actuator``, ``axis``, ``frequency``). Every headline value is a
-    variable, NaN / "" / False where a point is not ok; ``status`` is "ok",
+    variable, NaN / "" / False where a point is not ok (a list empty at every point, such
+    as the voltages of a bearing without actuators, is left out); ``status`` is "ok",
     "failed" or "missing" and ``error`` the failure message.
 
     Notes
@@ -470,6 +471,8 @@ def assemble(spec: SweepSpec, out: str | Path, *, write: bool = True) -> Any:
     keys = list(dict.fromkeys(k for r in ok.values() for k in r))
     for key in keys:
         vals = [ok[i].get(key) if i in ok else None for i in range(n)]
+        if any(v == [] for v in vals) and not any(v for v in vals if isinstance(v, list)):
+            continue  # an empty list at every point (no actuators): NetCDF 3 has no empty dim
         data_vars[key] = _variable(key, vals, dims, shape, list_dims)
     coords: dict[str, Any] = {
         p.dim: (p.dim, list(p.coords), {"units": p.unit, "parameter": p.name})

@@ -196,7 +196,8 @@ def plot_orbits(
     """Journal orbits over ``revolutions`` turns centred on each speed in ``at_rpm``.
 
     Small multiples, e_Y across and e_X (along the load) up, in µm, with the
-    clearance circle. A speed the run never reached is marked as such.
+    clearance circle. A speed the run never reached is marked as such; a speed held to
+    the end of the run (a constant-speed run) shows its last revolutions.
     """
     t, e_x, e_y, speed = (np.asarray(a, dtype=float) for a in (t, e_x, e_y, speed))
     n = max(len(at_rpm), 1)
@@ -219,9 +220,12 @@ def plot_orbits(
             continue
         tc = t[reached[0]]
         half = 0.5 * revolutions * 2 * np.pi / w
+        if np.ptp(speed[reached[0] :]) <= 1e-9 * w:  # held to the end: its last revolutions
+            tc = max(tc, t[-1] - half)
         sel = (t >= tc - half) & (t <= tc + half)
         ax.plot(e_y[sel] * UM, e_x[sel] * UM, lw=0.7)
     for ax in axes[len(at_rpm) :]:
         ax.set_visible(False)
-    fig.suptitle(f"Journal orbits, {revolutions:g} revolutions each; circle: clearance C")
+    sep = "; " if ncols > 1 else ";\n"  # one panel is too narrow for one line
+    fig.suptitle(f"Journal orbits, {revolutions:g} revolutions each{sep}circle: clearance C")
     return fig
