@@ -93,6 +93,11 @@ class ForceCoefficients:
             ),
             "i": ["X", "Y"],
             "j": ["X", "Y"],
+            "load": (
+                (),
+                st.case.operation.load,
+                {"units": "N", "long_name": "static load W along +X"},
+            ),
         }
         ds = xr.Dataset(
             {
@@ -119,6 +124,7 @@ class ForceCoefficients:
 #: The coefficients' headline, read off :meth:`ForceCoefficients.to_dataset`.
 COEFFICIENT_HEADLINE: tuple[Field, ...] = (
     ("speed_rpm", "speed", "rpm"),
+    ("load_N", "load", None),
     ("frequency_Hz", "frequency", None),
     ("frequency_ratio", "frequency_ratio", None),
     ("K_N_per_m", "stiffness", None),

@@ -156,6 +156,11 @@ class StaticResult:
             "theta": ("theta", g.theta, {"units": "rad", "long_name": "θ from −X"}),
             "z": ("z", g.z * r, {"units": "m", "long_name": "z from the mid-plane"}),
             "axis": ("axis", ["X", "Y"], {"long_name": "X along the load, Y 90° after it"}),
+            "load": (
+                (),
+                self.case.operation.load,
+                {"units": "N", "long_name": "static load W along +X"},
+            ),
         }
         scalars = {
             "speed": (self.speed, "rad/s", "rotor speed ω"),
@@ -222,6 +227,7 @@ class StaticResult:
 #: The static headline, read off :meth:`StaticResult.to_dataset`: key, source, unit.
 STATIC_HEADLINE: tuple[Field, ...] = (
     ("speed_rpm", "speed", "rpm"),
+    ("load_N", "load", None),
     ("voltages_V", "voltage", None),
     ("bearing", "@bearing", None),
     ("bearing_number", "bearing_number", None),

@@ -475,6 +475,20 @@ class Case:
         require(speed > 0.0, "operation.speed", speed, "> 0 rad/s", self.source)
         return replace(self, operation=replace(self.operation, speed=speed))
 
+    def with_load(self, load: float) -> Case:
+        """The same case under another static load along +X (N, >= 0, finite), validated.
+
+        The load is an input like the speed: the rotor mass (``[rotor] mass``) is not
+        changed with it. The mass is the rotor's inertia in the orbits and the rigid
+        rotor's stability; the load is the static force the film carries
+        (docs/case-format.md, "Load and rotor mass").
+        """
+        value = float(load)
+        require(
+            math.isfinite(value) and value >= 0.0, "operation.load", load, ">= 0 N", self.source
+        )
+        return replace(self, operation=replace(self.operation, load=value))
+
     def shimmed(self) -> Case:
         """The shimmed GFB equivalent to this C-GFB (paper Fig. 8).
 

@@ -134,7 +134,14 @@ class OrbitResult:
                     {"units": "V"},
                 ),
             },
-            coords={"time": ("time", self.time, {"units": "s"})},
+            coords={
+                "time": ("time", self.time, {"units": "s"}),
+                "load": (
+                    (),
+                    self.case.operation.load,
+                    {"units": "N", "long_name": "static load W along +X"},
+                ),
+            },
         )
         if self.power_loss is not None:
             ds["power_loss"] = (
