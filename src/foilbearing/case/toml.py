@@ -277,7 +277,7 @@ def _read_foil(t: TableReader) -> Foil:
 def _read_actuators(t: TableReader, bearing: Bearing) -> Actuators:
     angles = t.angles("angles")
     n = len(angles)
-    volts = t.raw("voltages", default=0.0)
+    volts = t.raw("voltages", default="0 V")
     voltages = per_item_quantities(volts, n, "voltage", t, "voltages")
     act = Actuators(
         angles=angles,
