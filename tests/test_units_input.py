@@ -163,3 +163,49 @@ def test_every_shipped_file_is_valid_under_the_strict_reading() -> None:
     for k, inp in enumerate(spec.inputs):
         if inp.name in by_name:
             assert by_name[inp.name] == spec.design[0, k]  # exact: written in SI with its unit
+
+
+def test_the_python_api_takes_quantities_and_floats_stay_si(write_case) -> None:
+    """``"30 krpm"``, a pint Quantity and the SI float give the same case and the same
+    solutions, within round-off (1e-14: pint's prefixes multiply the factors in another
+    order); a frequency in Hz is an excitation of 2π times as many rad/s."""
+    import numpy as np
+    import pint
+
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.constants import RPM
+    from foilbearing.control import constant_speed, linear_ramp
+    from foilbearing.static import solve_equilibrium
+
+    user = pint.UnitRegistry()  # the user's own registry, not ours
+    case = load_case(write_case("api_units", n_theta=32, n_z=4))
+    assert (
+        case.with_load("50 N") == case.with_load(50.0) == case.with_load(user.Quantity(0.05, "kN"))
+    )
+    assert case.with_speed("30 krpm").operation.speed == pytest.approx(30_000 * RPM, rel=1e-14)
+    by_text = solve_equilibrium(case, speed="30 krpm")
+    by_float = solve_equilibrium(case, speed=30_000 * RPM)
+    by_pint = solve_equilibrium(case, speed=user.Quantity(30_000, "rpm"))
+    for other in (by_text, by_pint):
+        assert other.eccentricity == pytest.approx(by_float.eccentricity, rel=1e-12)
+    in_hz = force_coefficients(by_float, ["100 Hz", user.Quantity(0.5, "kHz")])
+    in_rad_s = force_coefficients(by_float, 2 * np.pi * np.array([100.0, 500.0]))
+    np.testing.assert_allclose(in_hz.K, in_rad_s.K, rtol=1e-12)
+    np.testing.assert_allclose(in_hz.C, in_rad_s.C, rtol=1e-12)
+    ramp, ramp_si = (
+        linear_ramp("3 krpm", "9 krpm", "500 rad/s**2"),
+        linear_ramp(3000 * RPM, 9000 * RPM, 500.0),
+    )
+    np.testing.assert_allclose(ramp.times, ramp_si.times, rtol=1e-14)
+    np.testing.assert_allclose(ramp.speeds, ramp_si.speeds, rtol=1e-14)
+    steady = constant_speed("30 krpm", "0.5 s")
+    np.testing.assert_allclose(steady.speeds, [30_000 * RPM] * 2, rtol=1e-14)
+    assert steady.times[-1] == 0.5
+    for call, message in (
+        (lambda: case.with_load("5 kg"), r"operation\.load = '5 kg': wrong dimension"),
+        (lambda: case.with_speed("500 Hz"), r"not Hz"),
+        (lambda: solve_equilibrium(case, speed=user.Quantity(3, "m")), r"speed = .*wrong dim"),
+    ):
+        with pytest.raises(InputError, match=message) as info:
+            call()
+        assert "\n" not in str(info.value)

@@ -26,7 +26,17 @@ from typing import Any
 
 from foilbearing.errors import InputError
 
-__all__ = ["SI_UNITS", "from_si", "parse_quantity", "parse_speed_range", "si_text", "ureg"]
+__all__ = [
+    "SI_UNITS",
+    "QuantityLike",
+    "as_si",
+    "as_si_array",
+    "from_si",
+    "parse_quantity",
+    "parse_speed_range",
+    "si_text",
+    "ureg",
+]
 
 
 @cache
@@ -281,6 +291,73 @@ def _dimensionless(value: object, field: str, source: str | None) -> float:
     if not math.isfinite(result):
         raise InputError(f"{field} = {value!r}: must be finite", source=source)
     return result
+
+
+#: What the Python API takes where it takes a speed, a load, a length or a frequency: a
+#: float in SI, a quantity string ("30 krpm") or a pint ``Quantity`` (:func:`as_si`).
+QuantityLike = Any
+
+
+def as_si(value: QuantityLike, kind: str, *, field: str) -> float:
+    """An argument of the Python API in SI: a float as is, or a quantity converted.
+
+    Parameters
+    ----------
+    value
+        A number, already SI (rad/s, N, m, ...: floats stay SI); a quantity string
+        (``"30 krpm"``, ``"50 N"``); or a pint ``Quantity`` (of any registry).
+    kind
+        Key of :data:`SI_UNITS`, or ``"angular_frequency"``: rad/s, given as a
+        frequency in Hz (``"100 Hz"`` is 2π·100 rad/s) or as a speed (rad/s, rpm).
+    field
+        The argument's name, for the one-line error.
+
+    Raises
+    ------
+    InputError
+        A string or quantity of the wrong dimension (the checks of
+        :func:`parse_quantity`), or a value that is neither.
+    """
+    if isinstance(value, bool):
+        raise InputError(f"{field} = {value!r}: expected a number or a quantity")
+    if isinstance(value, int | float):
+        return float(value)
+    if hasattr(value, "magnitude") and hasattr(value, "units"):  # a pint Quantity
+        magnitude = value.magnitude
+        if not isinstance(magnitude, int | float) and getattr(magnitude, "ndim", 1) != 0:
+            raise InputError(f"{field} = {value!r}: expected one value (or use as_si_array)")
+        value = f"{float(magnitude)!r} {value.units}"
+    if not isinstance(value, str):
+        item = getattr(value, "item", None)  # a NumPy scalar
+        if callable(item) and getattr(value, "ndim", 1) == 0:
+            return as_si(item(), kind, field=field)
+        raise InputError(f"{field} = {value!r}: expected a number or a quantity")
+    if kind == "angular_frequency":
+        lowered = value.lower()
+        if "hz" in lowered or "hertz" in lowered:
+            return 2.0 * math.pi * parse_quantity(value, "frequency", field=field)
+        return parse_quantity(value, "speed", field=field)
+    return parse_quantity(value, kind, field=field)
+
+
+def as_si_array(values: Any, kind: str, *, field: str) -> Any:
+    """:func:`as_si` of a scalar or a sequence, as a float NumPy array (floats as is).
+
+    A pint ``Quantity`` holding an array is converted whole.
+    """
+    import numpy as np
+
+    if hasattr(values, "magnitude") and hasattr(values, "units"):
+        magnitudes = np.atleast_1d(np.asarray(values.magnitude, dtype=float))
+        factor = as_si(values.__class__(1.0, values.units), kind, field=field)
+        return magnitudes * factor
+    if isinstance(values, list | tuple):
+        return np.array(
+            [as_si(v, kind, field=f"{field}[{i}]") for i, v in enumerate(values)], dtype=float
+        )
+    if isinstance(values, str) or np.ndim(values) == 0:
+        return np.atleast_1d(as_si(values, kind, field=field))
+    return np.asarray(values, dtype=float)
 
 
 def si_text(value: float, kind: str) -> str | float:
