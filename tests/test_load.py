@@ -134,3 +134,33 @@ def test_a_case_with_only_the_load_or_only_the_mass_gets_the_other_by_its_weight
 
     with pytest.raises(InputError, match="both missing"):
         load_case(write_case("neither", edit=neither))
+
+
+def test_stability_over_loads_equals_single_runs(
+    coarse_case: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    argv = [
+        "stability",
+        str(coarse_case),
+        "--voltage",
+        "0V",
+        "--speed-range",
+        "20000rpm:80000rpm:20000rpm",
+        "--json",
+    ]
+    code, swept = _json(capsys, [*argv, "--load", "4,20N"])
+    assert code == 0 and [e["load_N"] for e in swept["loads"]] == [4.0, 20.0]
+    for entry in swept["loads"]:
+        code, single = _json(capsys, [*argv, "--load", f"{entry['load_N']}N"])
+        assert single["load_N"] == entry["load_N"] and single["rotor_mass_kg"] == 0.897
+        assert single["voltages"] == entry["voltages"]
+
+
+def test_an_orbit_keeps_its_load_in_the_run_spec() -> None:
+    """``orbit --load`` is stored with the run, so that ``--resume`` continues under it."""
+    from foilbearing.orbit.spec import RunSpec
+
+    spec = RunSpec.from_cli_strings({"speed": "30000rpm", "duration": "0.01s", "load": "20N"})
+    again = RunSpec.from_json(spec.to_json())
+    assert again.load == 20.0 and again.load_case().operation.load == 20.0
+    assert RunSpec.from_cli_strings({"speed": "30000rpm"}).load_case().operation.load == 8.8
