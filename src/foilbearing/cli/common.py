@@ -144,6 +144,8 @@ def over_loads(
     import io
     import tempfile
 
+    from foilbearing.errors import SolverError
+
     out, plot = getattr(args, "out", None), getattr(args, "plot", None)
     code = 0
     entries: list[dict[str, Any]] = []
@@ -154,14 +156,17 @@ def over_loads(
             one.load = f"{load!r} N"
             one.out = None if out is None else Path(tmp) / f"load_{k}.nc"
             one.plot = None if plot is None else plot / f"load_{load:g}N"
-            if args.json:
-                captured = io.StringIO()
-                with contextlib.redirect_stdout(captured):
+            try:
+                if args.json:
+                    captured = io.StringIO()
+                    with contextlib.redirect_stdout(captured):
+                        code = max(code, command(one))
+                    entries.append({"load_N": load} | json.loads(captured.getvalue()))
+                else:
+                    print(f"load {load:g} N:")
                     code = max(code, command(one))
-                entries.append({"load_N": load} | json.loads(captured.getvalue()))
-            else:
-                print(f"load {load:g} N:")
-                code = max(code, command(one))
+            except SolverError as exc:  # say which load of the list failed
+                raise SolverError(f"at --load {load:g} N: {exc}") from None
             if one.out is not None:
                 datasets.append(_with_load(one.out, load))
         if out is not None:
