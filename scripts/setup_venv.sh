@@ -11,6 +11,8 @@
 # The versions come from constraints.txt (the ones CI passed); `--lock` resolves them afresh
 # from pyproject's ranges in a new venv and rewrites that file (`make lock`).
 #
+# At the end of an install it compiles the film kernels once (python -m foilbearing.warmup).
+#
 # Usage: bash scripts/setup_venv.sh [--lock]   (from anywhere; works in the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -96,4 +98,9 @@ else
     "$VENV/bin/python" -m pip install --quiet -c "$LOCK" -e '.[dev,ross]'
 fi
 touch "$STAMP"
+# numba compiles the film kernels on first use and caches them beside the sources: compile them
+# now (a static solve, the coefficients, a whirl mode and a few orbit steps on a coarse grid),
+# so that the first run does not wait for it. Not fatal: a run compiles what is missing.
+say "compiling the film kernels once (about 1-2 minutes; foilbearing.warmup)"
+"$VENV/bin/python" -m foilbearing.warmup || say "warning: the kernels' warm-up failed; the first run compiles them" >&2
 say "done: $(ross_version) in $VENV"

@@ -51,9 +51,9 @@ def test_default_case_is_si_inside() -> None:
     assert case.bearing_number(90000 * math.pi / 30) == pytest.approx(0.41, abs=5e-3)
 
 
-def test_plain_si_numbers_equal_quantity_strings(tmp_path: Path) -> None:
-    data = _edited("bearing", "clearance", 100e-6)
-    data["actuators"]["angles"] = [math.pi / 3, math.pi, 5 * math.pi / 3]
+def test_si_quantity_strings_equal_the_usual_units(tmp_path: Path) -> None:
+    data = _edited("bearing", "clearance", "1e-4 m")
+    data["actuators"]["angles"] = [f"{a!r} rad" for a in (math.pi / 3, math.pi, 5 * math.pi / 3)]
     case = load_case(_write(tmp_path, data))
     ref = default_case()
     assert case.bearing.clearance == pytest.approx(ref.bearing.clearance)
@@ -77,7 +77,15 @@ BAD = [
     ),
     ("bearing", "clearance", None, r"bearing\.clearance is missing"),
     ("bearing", "radius", "-20 mm", r"bearing\.radius = '-20 mm': expected a value > 0"),
-    ("bearing", "length", 0, r"bearing\.length = 0: expected a value > 0"),
+    ("bearing", "length", "0 mm", r"bearing\.length = '0 mm': expected a value > 0"),
+    # a bare number where a dimension is expected, and a unit where there is none
+    ("operation", "speed", 10000, r"operation\.speed = 10000: add a unit, e\.g\. '10000 rpm'$"),
+    ("bearing", "clearance", "100", r"bearing\.clearance = '100': add a unit, e\.g\. '100 m'$"),
+    ("actuators", "angles", [1.0, 3.0, 5.0], r"actuators\.angles\[0\] = 1\.0: add a unit"),
+    ("operation", "load", 8.8, r"operation\.load = 8\.8: add a unit, e\.g\. '8\.8 N'$"),
+    ("foil", "loss_factor", "0.1 deg", r"foil\.loss_factor is dimensionless: write 0\.1,"),
+    ("foil", "loss_factor", "10 %", r"foil\.loss_factor is dimensionless: write 0\.1,"),
+    ("foil.bump", "poisson_ratio", "0.29 rad", r"foil\.bump\.poisson_ratio is dimensionless"),
     (
         "actuators",
         "angles",

@@ -48,6 +48,7 @@ from foilbearing.headline import Field, headline_view
 from foilbearing.reynolds import Workspace
 from foilbearing.reynolds.perturbed import pressure_response
 from foilbearing.static import StaticResult
+from foilbearing.units import as_si_array
 
 __all__ = ["ForceCoefficients", "dynamic_compliance", "force_coefficients"]
 
@@ -93,6 +94,11 @@ class ForceCoefficients:
             ),
             "i": ["X", "Y"],
             "j": ["X", "Y"],
+            "load": (
+                (),
+                st.case.operation.load,
+                {"units": "N", "long_name": "static load W along +X"},
+            ),
         }
         ds = xr.Dataset(
             {
@@ -119,6 +125,7 @@ class ForceCoefficients:
 #: The coefficients' headline, read off :meth:`ForceCoefficients.to_dataset`.
 COEFFICIENT_HEADLINE: tuple[Field, ...] = (
     ("speed_rpm", "speed", "rpm"),
+    ("load_N", "load", None),
     ("frequency_Hz", "frequency", None),
     ("frequency_ratio", "frequency_ratio", None),
     ("K_N_per_m", "stiffness", None),
@@ -173,7 +180,8 @@ def force_coefficients(
     static
         Static result to linearise about (equilibrium or prescribed position).
     frequencies
-        Excitation frequencies ω_e in rad/s (> 0), scalar or array.
+        Excitation frequencies ω_e in rad/s (> 0), scalar or array; or quantities:
+        ``"100 Hz"`` is ω_e = 2π·100 rad/s, ``["100 Hz", "500 Hz"]``, a pint ``Quantity``.
     loss_factor
         Override of the bump's loss factor γ (default: the case's); the bump's
         damper is γ k_b/ω at the static point's speed ω.
@@ -182,7 +190,7 @@ def force_coefficients(
     -------
     ForceCoefficients with K in N/m and C in N·s/m.
     """
-    omega_e = np.atleast_1d(np.asarray(frequencies, dtype=float))
+    omega_e = as_si_array(frequencies, "angular_frequency", field="frequencies")
     if omega_e.size == 0 or not np.all(np.isfinite(omega_e)) or np.any(omega_e <= 0):
         raise InputError(
             f"excitation frequency {omega_e.tolist()!r} rad/s: every frequency must be > 0"

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from foilbearing.errors import InputError
+from foilbearing.units import QuantityLike, as_si
 
 __all__ = [
     "SpeedProfile",
@@ -107,18 +108,27 @@ class SpeedProfile:
         return self.state(t)[2]
 
 
-def constant_speed(speed: float, duration: float) -> SpeedProfile:
-    """ω = ``speed`` (rad/s) for ``duration`` s."""
+def constant_speed(speed: QuantityLike, duration: QuantityLike) -> SpeedProfile:
+    """ω = ``speed`` (rad/s) for ``duration`` s; either may be a quantity (``"30 krpm"``,
+    ``"0.5 s"``)."""
+    speed = as_si(speed, "speed", field="speed")
+    duration = as_si(duration, "time", field="duration")
     if duration <= 0:
         raise InputError(f"duration = {duration!r} s: must be > 0")
     return SpeedProfile(np.array([0.0, duration]), np.array([speed, speed]))
 
 
-def linear_ramp(start: float, stop: float, acceleration: float) -> SpeedProfile:
-    """From ``start`` to ``stop`` (rad/s) at constant ``acceleration`` (rad/s², > 0).
+def linear_ramp(
+    start: QuantityLike, stop: QuantityLike, acceleration: QuantityLike
+) -> SpeedProfile:
+    """From ``start`` to ``stop`` (rad/s) at constant ``acceleration`` (rad/s², > 0); each
+    may be a quantity (``"3 krpm"``, ``"500 rad/s**2"``).
 
     The paper's speed-up: 3 to 90 krpm at 500 rad/s² (18.2 s).
     """
+    start = as_si(start, "speed", field="start")
+    stop = as_si(stop, "speed", field="stop")
+    acceleration = as_si(acceleration, "angular_acceleration", field="acceleration")
     if acceleration <= 0:
         raise InputError(f"speed ramp: acceleration {acceleration!r} rad/s² must be > 0")
     if stop <= start:

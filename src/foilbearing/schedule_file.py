@@ -14,8 +14,8 @@ by hand. The format (docs/schedule-format.md)::
     speed = "60000 rpm"
     voltages = ["120 V", "40 V", "120 V"]
 
-Quantities are strings with units, or plain numbers in SI (rad/s, V, V/s), as in
-case files. The command adds what it computed (margin, acceleration, limit speed
+Quantities are strings with units ("30000 rpm", "150 V"), as in case files (a
+bare number is refused). The command adds what it computed (margin, acceleration, limit speed
 in ``[schedule]``; log decrement, power loss and minimum film per point); the
 reader checks and keeps them but the orbit uses only the speeds, the voltages
 and the slew rate.

@@ -26,6 +26,7 @@ from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import Workspace
 from foilbearing.static import StaticResult, solve_equilibrium
+from foilbearing.units import as_si_array
 
 __all__ = [
     "OnsetResult",
@@ -208,7 +209,8 @@ def onset_speed(
     case
         Bearing case (rotor mass per bearing from ``[rotor]``).
     speeds
-        Increasing scan speeds, rad/s (default 5 to 150 krpm in 5 krpm steps).
+        Increasing scan speeds, rad/s, or quantities (``["20 krpm", "40 krpm"]``; default 5
+        to 150 krpm in 5 krpm steps).
     model
         Film model of the case (built if omitted).
     rel_tol
@@ -217,7 +219,7 @@ def onset_speed(
     if speeds is None:
         top = case.operation.max_speed * (1 + 1e-12)
         speeds = [rpm * RPM for rpm in range(5_000, 150_001, 5_000) if rpm * RPM <= top]
-    speeds_arr = np.asarray(sorted(speeds), dtype=float)
+    speeds_arr = np.sort(as_si_array(speeds, "speed", field="speeds"))
     if speeds_arr.size < 2 or speeds_arr[0] <= 0:
         raise InputError("the onset search needs at least two speeds > 0")
     case.check_speeds(speeds_arr, "onset scan")

@@ -24,6 +24,7 @@ from foilbearing.film import FilmModel, drag_torque, film_model
 from foilbearing.headline import Field, headline_view
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
 from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
+from foilbearing.units import QuantityLike, as_si
 
 __all__ = [
     "EquilibriumOptions",
@@ -156,6 +157,11 @@ class StaticResult:
             "theta": ("theta", g.theta, {"units": "rad", "long_name": "θ from −X"}),
             "z": ("z", g.z * r, {"units": "m", "long_name": "z from the mid-plane"}),
             "axis": ("axis", ["X", "Y"], {"long_name": "X along the load, Y 90° after it"}),
+            "load": (
+                (),
+                self.case.operation.load,
+                {"units": "N", "long_name": "static load W along +X"},
+            ),
         }
         scalars = {
             "speed": (self.speed, "rad/s", "rotor speed ω"),
@@ -222,6 +228,7 @@ class StaticResult:
 #: The static headline, read off :meth:`StaticResult.to_dataset`: key, source, unit.
 STATIC_HEADLINE: tuple[Field, ...] = (
     ("speed_rpm", "speed", "rpm"),
+    ("load_N", "load", None),
     ("voltages_V", "voltage", None),
     ("bearing", "@bearing", None),
     ("bearing_number", "bearing_number", None),
@@ -244,8 +251,8 @@ STATIC_HEADLINE: tuple[Field, ...] = (
 )
 
 
-def _check_speed(case: Case, speed: float | None) -> float:
-    omega = case.operation.speed if speed is None else speed
+def _check_speed(case: Case, speed: QuantityLike | None) -> float:
+    omega = case.operation.speed if speed is None else as_si(speed, "speed", field="speed")
     if not (math.isfinite(omega) and omega > 0.0):
         raise InputError(f"speed = {omega!r} rad/s: expected a speed > 0 (e.g. '50000 rpm')")
     case.check_speeds(omega)
@@ -257,7 +264,7 @@ def film_at_position(
     eps_x: float,
     eps_y: float,
     *,
-    speed: float | None = None,
+    speed: QuantityLike | None = None,
     model: FilmModel | None = None,
     options: EquilibriumOptions | None = None,
 ) -> StaticResult:
@@ -316,7 +323,7 @@ def film_at_position(
 def solve_equilibrium(
     case: Case,
     *,
-    speed: float | None = None,
+    speed: QuantityLike | None = None,
     model: FilmModel | None = None,
     start: tuple[float, float, FloatArray | None] | None = None,
     options: EquilibriumOptions | None = None,
@@ -331,7 +338,8 @@ def solve_equilibrium(
     case
         Bearing case (load along +X from ``case.operation.load``).
     speed
-        Rotor speed, rad/s (default: the case's operating speed).
+        Rotor speed, rad/s, or a quantity such as ``"30 krpm"`` (default: the case's
+        operating speed).
     model
         Film model of the case (built from the case if omitted).
     start

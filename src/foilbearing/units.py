@@ -1,9 +1,12 @@
 """Quantities at the edges: parse "100 um", "90000 rpm", "1.85e-5 Pa*s" once, to SI.
 
-Inside the package every number is SI. Input files may give a dimensional value
-either as a plain number (taken as SI) or as a quantity string, converted here
+Inside the package every number is SI. Where a person types a number (case,
+sweep, uncertainty, schedule and rotor files, the command line), a dimensional
+value is a quantity string with its unit ("100 um", "30 krpm"), converted here
 against the dimension the field requires; the dimension is tied to the field,
-never guessed from its name.
+never guessed from its name. A bare number there is refused ("add a unit"), and
+a dimensionless field refuses a unit ("0.1 deg" for a loss factor): both would
+otherwise be read silently as something else.
 
 pint does the conversions. Building its unit registry takes about 0.4 s and
 importing pint 0.3 s, more than the whole ``foilbearing case show``, so the
@@ -23,7 +26,17 @@ from typing import Any
 
 from foilbearing.errors import InputError
 
-__all__ = ["SI_UNITS", "from_si", "parse_quantity", "parse_speed_range", "ureg"]
+__all__ = [
+    "SI_UNITS",
+    "QuantityLike",
+    "as_si",
+    "as_si_array",
+    "from_si",
+    "parse_quantity",
+    "parse_speed_range",
+    "si_text",
+    "ureg",
+]
 
 
 @cache
@@ -151,13 +164,13 @@ def _unit(kind: str) -> Any:
 
 
 def parse_quantity(value: object, kind: str, *, field: str, source: str | None = None) -> float:
-    """Convert a plain number (SI) or a quantity string to a float in SI units.
+    """Convert a quantity string, or a dimensionless number, to a float in SI units.
 
     Parameters
     ----------
     value
-        A number (already SI; angles in radians) or a string such as ``"100 um"``,
-        ``"60 deg"``, ``"90000 rpm"``.
+        A string such as ``"100 um"``, ``"60 deg"``, ``"90000 rpm"``; for the kind
+        ``"dimensionless"`` a number (or its string) without a unit.
     kind
         Key of :data:`SI_UNITS` naming the dimension the field requires.
     field
@@ -169,14 +182,17 @@ def parse_quantity(value: object, kind: str, *, field: str, source: str | None =
     ------
     InputError
         If the value is not a number or a parsable quantity, has the wrong
-        dimension, or is not finite.
+        dimension, is a bare number where the kind has a dimension, has a unit
+        where it has none, or is not finite.
     """
     wanted = SI_UNITS[kind]  # a KeyError for an unknown kind, whatever the value
     if isinstance(value, bool):
         raise InputError(f"{field} = {value!r}: expected a number or a quantity", source=source)
-    if isinstance(value, int | float):
-        result = float(value)
-    elif isinstance(value, str) and (fast := _fast_quantity(value, kind)) is not None:
+    if isinstance(value, int | float) and wanted:
+        raise _bare_number(value, kind, field, source)
+    if kind == "dimensionless":
+        return _dimensionless(value, field, source)
+    if isinstance(value, str) and (fast := _fast_quantity(value, kind)) is not None:
         result = fast
     elif isinstance(value, str):
         import pint
@@ -190,9 +206,9 @@ def parse_quantity(value: object, kind: str, *, field: str, source: str | None =
                 f"{field} = {value!r}: not a quantity (write e.g. '{_example(kind)}')",
                 source=source,
             ) from None
+        if not _has_unit(quantity):
+            raise _bare_number(value, kind, field, source)
         try:
-            if not isinstance(quantity, ureg.Quantity):
-                quantity = ureg.Quantity(float(quantity), "")
             result = float(quantity.to(target).magnitude)
         except pint.DimensionalityError:
             raise InputError(
@@ -215,9 +231,142 @@ def parse_quantity(value: object, kind: str, *, field: str, source: str | None =
         raise InputError(
             f"{field} = {value!r}: give a rotor speed in rpm or rad/s, not Hz", source=source
         )
+    if kind == "frequency" and isinstance(value, str) and ("rpm" in value or "rad" in value):
+        # and "60 rpm" would become 2π Hz, not 1 Hz.
+        raise InputError(
+            f"{field} = {value!r}: give a frequency in Hz (cycles per second), not rpm or rad/s",
+            source=source,
+        )
     if not math.isfinite(result):
         raise InputError(f"{field} = {value!r}: must be finite", source=source)
     return result
+
+
+#: The unit a message suggests for a bare number, by kind (default: the kind's SI unit).
+_BARE_HINT = {"speed": "rpm", "angle": "deg", "viscosity": "Pa*s", "mass_length": "g*mm"}
+
+
+def _bare_number(value: object, kind: str, field: str, source: str | None) -> InputError:
+    """The one-line error for a number without a unit where ``kind`` has a dimension."""
+    number = f"{value:g}" if isinstance(value, int | float) else str(value).strip()
+    unit = _BARE_HINT.get(kind, SI_UNITS[kind])
+    return InputError(f"{field} = {value!r}: add a unit, e.g. '{number} {unit}'", source=source)
+
+
+def _has_unit(quantity: Any) -> bool:
+    """Whether pint's parse of a string wrote a unit (``"0.1"`` none; ``"10 percent"`` one)."""
+    return isinstance(quantity, _registry().Quantity) and str(quantity.units) != "dimensionless"
+
+
+def _dimensionless(value: object, field: str, source: str | None) -> float:
+    """A dimensionless field's value: a number, or a string of a number without a unit.
+
+    A unit is refused, an angle's too: pint's radian is dimensionless, so ``"0.1 deg"``
+    would pass as 0.00175. Percent (``"10 %"``) is refused as well, with the fraction to
+    write.
+    """
+    if isinstance(value, int | float):
+        result = float(value)
+    elif isinstance(value, str):
+        ureg = _registry()
+        try:  # "%" spelt out: pint reads "10 %" as the number 10
+            quantity: Any = ureg.Quantity(value.replace("%", " percent"))
+        except Exception:
+            raise InputError(
+                f"{field} = {value!r}: not a number (write e.g. '0.1')", source=source
+            ) from None
+        if _has_unit(quantity):
+            try:
+                fraction = float(quantity.to("dimensionless").magnitude)
+                angle = quantity.check("[]") and "rad" in str(quantity.to_base_units().units)
+                suggested = float(quantity.magnitude) if angle else fraction
+            except Exception:
+                suggested = float(quantity.magnitude)
+            raise InputError(
+                f"{field} is dimensionless: write {suggested:g}, not {value!r}", source=source
+            )
+        result = float(quantity.magnitude if isinstance(quantity, ureg.Quantity) else quantity)
+    else:
+        raise InputError(f"{field} = {value!r}: expected a number", source=source)
+    if not math.isfinite(result):
+        raise InputError(f"{field} = {value!r}: must be finite", source=source)
+    return result
+
+
+#: What the Python API takes where it takes a speed, a load, a length or a frequency: a
+#: float in SI, a quantity string ("30 krpm") or a pint ``Quantity`` (:func:`as_si`).
+QuantityLike = Any
+
+
+def as_si(value: QuantityLike, kind: str, *, field: str) -> float:
+    """An argument of the Python API in SI: a float as is, or a quantity converted.
+
+    Parameters
+    ----------
+    value
+        A number, already SI (rad/s, N, m, ...: floats stay SI); a quantity string
+        (``"30 krpm"``, ``"50 N"``); or a pint ``Quantity`` (of any registry).
+    kind
+        Key of :data:`SI_UNITS`, or ``"angular_frequency"``: rad/s, given as a
+        frequency in Hz (``"100 Hz"`` is 2π·100 rad/s) or as a speed (rad/s, rpm).
+    field
+        The argument's name, for the one-line error.
+
+    Raises
+    ------
+    InputError
+        A string or quantity of the wrong dimension (the checks of
+        :func:`parse_quantity`), or a value that is neither.
+    """
+    if isinstance(value, bool):
+        raise InputError(f"{field} = {value!r}: expected a number or a quantity")
+    if isinstance(value, int | float):
+        return float(value)
+    if hasattr(value, "magnitude") and hasattr(value, "units"):  # a pint Quantity
+        magnitude = value.magnitude
+        if not isinstance(magnitude, int | float) and getattr(magnitude, "ndim", 1) != 0:
+            raise InputError(f"{field} = {value!r}: expected one value (or use as_si_array)")
+        value = f"{float(magnitude)!r} {value.units}"
+    if not isinstance(value, str):
+        item = getattr(value, "item", None)  # a NumPy scalar
+        if callable(item) and getattr(value, "ndim", 1) == 0:
+            return as_si(item(), kind, field=field)
+        raise InputError(f"{field} = {value!r}: expected a number or a quantity")
+    if kind == "angular_frequency":
+        lowered = value.lower()
+        if "hz" in lowered or "hertz" in lowered:
+            return 2.0 * math.pi * parse_quantity(value, "frequency", field=field)
+        return parse_quantity(value, "speed", field=field)
+    return parse_quantity(value, kind, field=field)
+
+
+def as_si_array(values: Any, kind: str, *, field: str) -> Any:
+    """:func:`as_si` of a scalar or a sequence, as a float NumPy array (floats as is).
+
+    A pint ``Quantity`` holding an array is converted whole.
+    """
+    import numpy as np
+
+    if hasattr(values, "magnitude") and hasattr(values, "units"):
+        magnitudes = np.atleast_1d(np.asarray(values.magnitude, dtype=float))
+        factor = as_si(values.__class__(1.0, values.units), kind, field=field)
+        return magnitudes * factor
+    if isinstance(values, list | tuple):
+        return np.array(
+            [as_si(v, kind, field=f"{field}[{i}]") for i, v in enumerate(values)], dtype=float
+        )
+    if isinstance(values, str) or np.ndim(values) == 0:
+        return np.atleast_1d(as_si(values, kind, field=field))
+    return np.asarray(values, dtype=float)
+
+
+def si_text(value: float, kind: str) -> str | float:
+    """``value`` (SI) as the text a file holds, ``"0.0001 m"``; a dimensionless one as is.
+
+    :func:`parse_quantity` reads it back to the same float (the SI unit's factor is 1).
+    """
+    unit = SI_UNITS[kind]
+    return f"{float(value)!r} {unit}" if unit else float(value)
 
 
 def parse_speed_range(text: str, *, field: str, source: str | None = None) -> list[float]:

@@ -22,6 +22,7 @@ from foilbearing.structure import (
     stack_displacement,
     walowit_anno_bump_stiffness,
 )
+from foilbearing.units import QuantityLike, as_si
 
 __all__ = [
     "ACTUATOR_DYNAMICS",
@@ -470,10 +471,28 @@ class Case:
             ),
         )
 
-    def with_speed(self, speed: float) -> Case:
-        """The same case at another rotor speed (rad/s, > 0)."""
+    def with_speed(self, speed: QuantityLike) -> Case:
+        """The same case at another rotor speed (> 0): rad/s as a float, or a quantity
+        (``"30 krpm"``, a pint ``Quantity``)."""
+        speed = as_si(speed, "speed", field="operation.speed")
         require(speed > 0.0, "operation.speed", speed, "> 0 rad/s", self.source)
         return replace(self, operation=replace(self.operation, speed=speed))
+
+    def with_load(self, load: QuantityLike) -> Case:
+        """The same case under another static load along +X (>= 0, finite), validated.
+
+        ``load`` in N as a float, or a quantity: ``"50 N"``, a pint ``Quantity``.
+
+        The load is an input like the speed: the rotor mass (``[rotor] mass``) is not
+        changed with it. The mass is the rotor's inertia in the orbits and the rigid
+        rotor's stability; the load is the static force the film carries
+        (docs/case-format.md, "Load and rotor mass").
+        """
+        value = as_si(load, "force", field="operation.load")
+        require(
+            math.isfinite(value) and value >= 0.0, "operation.load", load, ">= 0 N", self.source
+        )
+        return replace(self, operation=replace(self.operation, load=value))
 
     def shimmed(self) -> Case:
         """The shimmed GFB equivalent to this C-GFB (paper Fig. 8).

@@ -2,8 +2,8 @@
 
 A case file has the tables ``[bearing]``, ``[gas]``, ``[foil]`` (optional:
 without it the bearing is a rigid-surface gas journal bearing),
-``[actuators]`` (optional), ``[shims]`` (optional), ``[rotor]``,
-``[operation]``, ``[grid]`` and ``[disturbance]`` (optional); ``docs/case-format.md`` documents every field.
+``[actuators]`` (optional), ``[shims]`` (optional), ``[rotor]`` (optional when
+``[operation]`` gives the load), ``[operation]``, ``[grid]`` and ``[disturbance]`` (optional); ``docs/case-format.md`` documents every field.
 Dimensional values are plain SI numbers or quantity strings ("100 um"),
 converted once, here. Loading validates everything and raises
 :class:`~foilbearing.errors.InputError` with the file, the field, the value and
@@ -40,7 +40,7 @@ from foilbearing.case.model import (
     Shims,
     check_actuators,
 )
-from foilbearing.constants import RPM
+from foilbearing.constants import RPM, STANDARD_GRAVITY
 from foilbearing.errors import InputError
 from foilbearing.units import parse_quantity
 
@@ -123,15 +123,27 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         )
     if actuators is not None and foil is None:
         raise InputError("[actuators] needs a [foil] for the stingers to push", source=source)
-    rotor_t = root.table("rotor")
+    rotor_t = root.table("rotor") if "rotor" in data else TableReader({}, "rotor", source)
+    op_t = root.table("operation")
+    mass = rotor_t.positive("mass", "mass", default=None)
+    load = op_t.nonnegative("load", "force", default=None)
+    if mass is None and load is None:
+        raise InputError(
+            "rotor.mass and operation.load are both missing: give the static load (e.g. "
+            "load = '8.8 N' in [operation]), the rotor mass, or both",
+            source=source,
+        )
+    if mass is None and load == 0.0:
+        raise op_t.error("load", op_t.data["load"], "a load > 0 or a [rotor] mass")
+    # One given: the other by W = m g (a horizontal rotor whose weight is the only static
+    # load on this bearing; docs/case-format.md, "Load and rotor mass").
     rotor = Rotor(
-        mass=rotor_t.positive("mass", "mass"),
+        mass=load / STANDARD_GRAVITY if mass is None else mass,
         imbalance=rotor_t.nonnegative("imbalance", "mass_length", default=0.0),
     )
     rotor_t.done()
-    op_t = root.table("operation")
     operation = Operation(
-        load=op_t.nonnegative("load", "force"),
+        load=mass * STANDARD_GRAVITY if load is None else load,
         speed=op_t.positive("speed", "speed"),
         max_speed=op_t.positive("max_speed", "speed", default=MAX_SPEED_DEFAULT),
     )
@@ -265,7 +277,7 @@ def _read_foil(t: TableReader) -> Foil:
 def _read_actuators(t: TableReader, bearing: Bearing) -> Actuators:
     angles = t.angles("angles")
     n = len(angles)
-    volts = t.raw("voltages", default=0.0)
+    volts = t.raw("voltages", default="0 V")
     voltages = per_item_quantities(volts, n, "voltage", t, "voltages")
     act = Actuators(
         angles=angles,

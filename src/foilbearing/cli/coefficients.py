@@ -13,9 +13,12 @@ from typing import Any
 
 from foilbearing.cli.common import (
     add_case_arg,
+    add_load_arg,
     add_subambient_arg,
     apply_subambient,
     emit,
+    load_list,
+    over_loads,
     positive_list,
     positive_quantity,
     refuse_without_actuators,
@@ -40,6 +43,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         help="excitation frequencies in Hz, e.g. 100,500,1000Hz "
         "(default: 20 ratios 0.1-2.0 of the rotor speed)",
     )
+    add_load_arg(coef)
     add_subambient_arg(coef)
     add_reading_args(coef)
     coef.add_argument("--out", type=Path, help="write the coefficients to FILE.nc")
@@ -64,7 +68,12 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
     from foilbearing.io import save_figure, write_with
     from foilbearing.static import solve_equilibrium
 
+    loads = load_list(args.load)
+    if loads is not None and len(loads) > 1:
+        return over_loads(cmd_coefficients, args, loads)
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
+    if loads is not None:
+        case = case.with_load(loads[0])
     if args.speed is not None:
         if len(positive_list(args.speed, "speed", "--speed", "a speed")) > 1:
             raise InputError(
@@ -97,7 +106,10 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
     if args.json:
         emit(out)
     else:
-        print(f"  speed {out['speed_rpm']:.0f} rpm, eccentricity {out['eccentricity']:.4f}")
+        print(
+            f"  speed {out['speed_rpm']:.0f} rpm, load {out['load_N']:g} N, "
+            f"eccentricity {out['eccentricity']:.4f}"
+        )
         print(
             "  f (Hz)      K_XX      K_XY      K_YX      K_YY (MN/m)"
             "     C_XX      C_XY      C_YX      C_YY (kN s/m)"

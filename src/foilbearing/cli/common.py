@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -15,11 +15,14 @@ if TYPE_CHECKING:
 __all__ = [
     "add_case_arg",
     "add_dask_args",
+    "add_load_arg",
     "add_subambient_arg",
     "apply_subambient",
     "attach_negative_values",
     "check_dask_args",
     "emit",
+    "load_list",
+    "over_loads",
     "parse_list",
     "positive_list",
     "positive_quantity",
@@ -88,6 +91,111 @@ def add_subambient_arg(p: argparse.ArgumentParser) -> None:
 def apply_subambient(case: Case, model: str | None) -> Case:
     """The case with ``--subambient`` applied (unchanged when the option is absent)."""
     return case if model is None else case.with_subambient(model)
+
+
+def add_load_arg(p: argparse.ArgumentParser, *, several: bool = True) -> None:
+    """``--load``: the static load along +X, N (one value, or with ``several`` a list).
+
+    A list runs the command once per load (:func:`over_loads`); the rotor mass
+    stays the case's (docs/case-format.md, "Load and rotor mass").
+    """
+    p.add_argument(
+        "--load",
+        default=None,
+        help=(
+            "static load along +X, e.g. 50N"
+            + (" or 50,100,150N (a list runs one analysis per load)" if several else "")
+            + "; default: the case's operation.load"
+        ),
+    )
+
+
+def load_list(text: str | None, *, several: bool = True) -> list[float] | None:
+    """``--load``'s loads, N, each finite and >= 0 (None: the option was not given).
+
+    Without ``several`` one value only, else a one-line error.
+    """
+    import math
+
+    from foilbearing.errors import InputError
+
+    if text is None:
+        return None
+    loads = parse_list(text, "force", "--load")
+    if not all(math.isfinite(w) and w >= 0.0 for w in loads):
+        raise InputError(f"--load = {text!r}: a load must be >= 0 N")
+    if not several and len(loads) > 1:
+        raise InputError(f"--load = {text!r}: this command takes one load, e.g. 50N")
+    return loads
+
+
+def over_loads(
+    command: Callable[[argparse.Namespace], int], args: argparse.Namespace, loads: list[float]
+) -> int:
+    """Run ``command`` once per load of ``loads`` (N) and combine the runs.
+
+    Each run is the command with ``--load`` set to one value. ``--json`` prints
+    ``{"loads": [...]}``, one object per load (the command's own, with ``load_N``);
+    ``--out`` writes one NetCDF file with the runs' datasets along a ``load``
+    dimension (N); ``--plot DIR`` puts each run's figures in ``DIR/load_<W>N``.
+    Returns the largest exit code of the runs.
+    """
+    import contextlib
+    import copy
+    import io
+    import tempfile
+
+    from foilbearing.errors import SolverError
+
+    out, plot = getattr(args, "out", None), getattr(args, "plot", None)
+    code = 0
+    entries: list[dict[str, Any]] = []
+    datasets = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for k, load in enumerate(loads):
+            one = copy.copy(args)
+            one.load = f"{load!r} N"
+            one.out = None if out is None else Path(tmp) / f"load_{k}.nc"
+            one.plot = None if plot is None else plot / f"load_{load:g}N"
+            try:
+                if args.json:
+                    captured = io.StringIO()
+                    with contextlib.redirect_stdout(captured):
+                        code = max(code, command(one))
+                    entries.append({"load_N": load} | json.loads(captured.getvalue()))
+                else:
+                    print(f"load {load:g} N:")
+                    code = max(code, command(one))
+            except SolverError as exc:  # say which load of the list failed
+                raise SolverError(f"at --load {load:g} N: {exc}") from None
+            if one.out is not None:
+                datasets.append(_with_load(one.out, load))
+        if out is not None:
+            _write_along_load(out, datasets)
+    if args.json:
+        emit({"loads": entries})
+    return code
+
+
+def _with_load(path: Path, load: float) -> Any:
+    """The dataset of ``path`` with ``load`` (N) as its scalar coordinate ``load``."""
+    import xarray as xr
+
+    ds = xr.load_dataset(path)
+    if "load" not in ds.coords:
+        ds = ds.assign_coords(load=load)
+    return ds
+
+
+def _write_along_load(target: Path, datasets: list[Any]) -> None:
+    """The per-load datasets along a new ``load`` dimension (N), written to ``target``."""
+    import xarray as xr
+
+    from foilbearing.io import write_with
+
+    combined = xr.concat(datasets, dim="load", combine_attrs="drop_conflicts")
+    combined["load"].attrs.update(units="N", long_name="static load W along +X")
+    write_with(target, lambda tmp: combined.to_netcdf(tmp))
 
 
 def add_dask_args(p: argparse.ArgumentParser, what: str) -> None:

@@ -16,7 +16,9 @@ from typing import TYPE_CHECKING, Any
 
 from foilbearing.cli.common import (
     add_case_arg,
+    add_load_arg,
     add_subambient_arg,
+    load_list,
     positive_quantity,
     print_fields,
 )
@@ -79,6 +81,7 @@ def register(sub: Any) -> None:
         help="order of the BDF stepper (default 3)",
     )
     p.add_argument("--sample-rate", default="10000Hz", help="output sampling rate (default 10 kHz)")
+    add_load_arg(p, several=False)
     add_subambient_arg(p)
     add_reading_args(p)
     p.add_argument("--out", type=Path, help="write the time series (NetCDF); checkpoints too")
@@ -123,6 +126,7 @@ def run_spec_from_args(args: argparse.Namespace) -> RunSpec:
             "subambient": args.subambient,
             "preload_response": args.preload_response,
             "actuator_dynamics": args.actuator_dynamics,
+            "load": args.load,
         }
     )
 
@@ -148,6 +152,7 @@ def _check_positive(args: argparse.Namespace) -> None:
     for text, kind, field, what in checks:
         if text is not None:
             positive_quantity(text, kind, field, what)
+    load_list(args.load, several=False)
 
 
 def _cmd_orbit(args: argparse.Namespace) -> int:

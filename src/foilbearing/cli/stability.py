@@ -13,9 +13,12 @@ from typing import Any
 
 from foilbearing.cli.common import (
     add_case_arg,
+    add_load_arg,
     add_subambient_arg,
     apply_subambient,
     emit,
+    load_list,
+    over_loads,
     refuse_without_actuators,
     voltage_list,
 )
@@ -50,6 +53,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         help="scan START:STOP:STEP (default 5000rpm:150000rpm:5000rpm; for a bearing without "
         "actuators the study's onset scan, so that the onset is the study's)",
     )
+    add_load_arg(stab)
     add_subambient_arg(stab)
     add_reading_args(stab)
     stab.add_argument(
@@ -68,7 +72,12 @@ def cmd_stability(args: argparse.Namespace) -> int:
     from foilbearing.stability import onsets_per_voltage, stability_map
     from foilbearing.units import parse_speed_range
 
+    loads = load_list(args.load)
+    if loads is not None and len(loads) > 1:
+        return over_loads(cmd_stability, args, loads)
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
+    if loads is not None:
+        case = case.with_load(loads[0])
     if case.actuators is None:
         return _passive(case, args)
     speeds = parse_speed_range(args.speed_range or DEFAULT_SCAN, field="--speed-range")
@@ -80,7 +89,11 @@ def cmd_stability(args: argparse.Namespace) -> int:
     bearing = "shimmed" if args.shimmed else "C-GFB"
     entries = [{"voltage_V": v, "bearing": bearing} | r.headline() for v, r in per_volt.items()]
     onsets = [None if r.onset_speed is None else r.onset_speed / RPM for r in per_volt.values()]
-    out: dict[str, Any] = {"rotor_mass_kg": case.rotor.mass, "voltages": entries}
+    out: dict[str, Any] = {
+        "load_N": case.operation.load,
+        "rotor_mass_kg": case.rotor.mass,
+        "voltages": entries,
+    }
     if args.plot is not None:
         from foilbearing.output.plots.dynamics import plot_stability_map
 

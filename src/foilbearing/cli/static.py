@@ -14,9 +14,12 @@ from typing import TYPE_CHECKING, Any
 
 from foilbearing.cli.common import (
     add_case_arg,
+    add_load_arg,
     add_subambient_arg,
     apply_subambient,
     emit,
+    load_list,
+    over_loads,
     positive_list,
     refuse_without_actuators,
     voltage_list,
@@ -58,6 +61,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         metavar="EX,EY",
         help="film at this journal position (units of C), no equilibrium search",
     )
+    add_load_arg(stat)
     add_subambient_arg(stat)
     add_reading_args(stat)
     stat.add_argument("--out", type=Path, help="write the results to FILE.nc (NetCDF)")
@@ -72,7 +76,12 @@ def cmd_static(args: argparse.Namespace) -> int:
     from foilbearing.case import load_case
     from foilbearing.io import write_with
 
+    loads = load_list(args.load)
+    if loads is not None and len(loads) > 1:
+        return over_loads(cmd_static, args, loads)
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
+    if loads is not None:
+        case = case.with_load(loads[0])
     speeds = (
         positive_list(args.speed, "speed", "--speed", "a speed")
         if args.speed
@@ -168,9 +177,10 @@ def _static_sweep_cli(
     )
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
     ds = static_sweep(case, speeds, voltages, bearings=bearings, progress=progress)
+    ds = ds.assign_coords(load=((), case.operation.load, {"units": "N"}))
     if args.out is not None:
         write_with(args.out, lambda tmp: ds.to_netcdf(tmp))
-    out: dict[str, Any] = {"points": sweep_points(ds)}
+    out: dict[str, Any] = {"load_N": case.operation.load, "points": sweep_points(ds)}
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_static_figures(ds, args.plot)]
     if args.json:

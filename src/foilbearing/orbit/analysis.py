@@ -79,6 +79,7 @@ class OrbitAnalysis:
             "wall_time_s": result.wall_time,
             "status": result.status,
             "message": result.message,
+            "load_N": result.case.operation.load,
             "end_speed_rpm": float(result.speed[-1] * 30 / math.pi) if result.speed.size else None,
             "mean_power_loss_W": mean_power_loss(result),
             "steps": result.steps,

@@ -132,7 +132,14 @@ class OrbitResult:
                 "phase": ("time", self.phase, {"units": "rad", "long_name": "rotation angle"}),
                 "min_film": ("time", self.min_film, {"units": "m", "long_name": "minimum film"}),
             },
-            coords={"time": ("time", self.time, {"units": "s"})},
+            coords={
+                "time": ("time", self.time, {"units": "s"}),
+                "load": (
+                    (),
+                    self.case.operation.load,
+                    {"units": "N", "long_name": "static load W along +X"},
+                ),
+            },
         )
         if n_act:  # a bearing without actuators has no voltage (and NetCDF 3 no empty dimension)
             ds["voltage"] = (

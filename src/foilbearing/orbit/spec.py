@@ -57,6 +57,7 @@ _CLI_DEFAULTS: dict[str, Any] = {
     "subambient": None,
     "preload_response": None,
     "actuator_dynamics": None,
+    "load": None,
 }
 
 
@@ -196,6 +197,8 @@ class RunSpec:
         (docs/model.md §3.8; None: the case's).
     imbalance
         Rotor imbalance applied to the case, kg·m (None: the case's).
+    load
+        Static load applied to the case, N (None: the case's ``operation.load``).
     settings
         Integrator and output settings.
     stop_time
@@ -212,6 +215,7 @@ class RunSpec:
     stop_time: float | None = None
     preload_response: str | None = None
     actuator_dynamics: str | None = None
+    load: float | None = None
 
     @classmethod
     def of(
@@ -226,6 +230,7 @@ class RunSpec:
         stop_time: float | None = None,
         preload_response: str | None = None,
         actuator_dynamics: str | None = None,
+        load: float | None = None,
     ) -> RunSpec:
         """The specification of a run from its objects.
 
@@ -255,17 +260,19 @@ class RunSpec:
             None if stop_time is None else float(stop_time),
             preload_response,
             actuator_dynamics,
+            None if load is None else float(load),
         )
 
     def load_case(self) -> Case:
-        """The case file with the overrides (sub-ambient model, actuator reading, imbalance)
-        applied."""
+        """The case file with the overrides (sub-ambient model, actuator reading, imbalance,
+        load) applied."""
         return _load_case(
             self.case,
             self.subambient,
             self.imbalance,
             self.preload_response,
             self.actuator_dynamics,
+            self.load,
         )
 
     def build(self, case: Case | None = None) -> BuiltRun:
@@ -293,6 +300,7 @@ class RunSpec:
             "preload_response": self.preload_response,
             "actuator_dynamics": self.actuator_dynamics,
             "imbalance": self.imbalance,
+            "load": self.load,
             "speed_times": list(self.speed_times),
             "speeds": list(self.speeds),
             "voltage": voltage,
@@ -333,6 +341,7 @@ class RunSpec:
             data.get("stop_time"),
             data.get("preload_response"),
             data.get("actuator_dynamics"),
+            data.get("load"),
         )
 
     def to_json(self) -> str:
@@ -349,8 +358,8 @@ class RunSpec:
         """Parse ``foilbearing orbit``'s option strings (the dictionary earlier versions
         stored): ``speed_ramp`` or ``speed`` and ``duration``, at most one of
         ``voltage_ramp``, ``controller`` and ``voltage_schedule`` ({"path", "text"}),
-        ``stop_time``, ``steps_per_rev``, ``order``, ``sample_rate``, ``case`` and
-        ``subambient``; missing keys take the command's defaults.
+        ``stop_time``, ``steps_per_rev``, ``order``, ``sample_rate``, ``case``,
+        ``subambient`` and ``load``; missing keys take the command's defaults.
 
         Raises
         ------
@@ -367,6 +376,7 @@ class RunSpec:
             None,
             spec["preload_response"],
             spec["actuator_dynamics"],
+            None if spec["load"] is None else cli_quantity(spec["load"], "force", "--load"),
         )
         if spec["speed"] is not None:
             profile = constant_speed(
@@ -427,6 +437,7 @@ class RunSpec:
             subambient=spec["subambient"],
             preload_response=spec["preload_response"],
             actuator_dynamics=spec["actuator_dynamics"],
+            load=case_obj.operation.load if spec["load"] is not None else None,
             settings=settings,
             stop_time=None if stop is None else cli_quantity(stop, "time", "--stop-time"),
         )
@@ -438,6 +449,7 @@ def _load_case(
     imbalance: float | None,
     preload_response: str | None = None,
     actuator_dynamics: str | None = None,
+    load: float | None = None,
 ) -> Case:
     """The case file (None: the default case) with the overrides applied."""
     from dataclasses import replace
@@ -451,6 +463,8 @@ def _load_case(
         case = case.with_actuator_reading(preload_response, actuator_dynamics)
     if imbalance is not None:
         case = replace(case, rotor=replace(case.rotor, imbalance=imbalance))
+    if load is not None:
+        case = case.with_load(load)
     return case
 
 

@@ -24,7 +24,7 @@ from foilbearing.io import read_toml
 from foilbearing.sweep.analyses import speed_scan, value_list
 from foilbearing.sweep.spec import FIELD_KINDS, base_tables, write_field
 from foilbearing.uncertainty.design import ESTIMATORS, SAMPLERS, minimum_samples, unit_sample
-from foilbearing.units import SI_UNITS, ureg
+from foilbearing.units import SI_UNITS, si_text, ureg
 
 __all__ = [
     "DISTRIBUTIONS",
@@ -127,10 +127,11 @@ class UncertaintySpec:
         return f"{self.source}, sample {index} ({vals})"
 
     def point_data(self, index: int) -> dict[str, Any]:
-        """The case tables of sample point ``index`` (a new dict, SI numbers written in)."""
+        """The case tables of sample point ``index`` (a new dict, SI values written in with
+        their unit)."""
         data = copy.deepcopy(self.base)
         for k, inp in enumerate(self.inputs):
-            write_field(data, inp.name, float(self.design[index, k]))
+            write_field(data, inp.name, si_text(self.design[index, k], inp.kind))
         return data
 
     def describe(self) -> dict[str, Any]:
@@ -378,7 +379,7 @@ def _check_reach(name: str, dist: Distribution, base: dict[str, Any], src: str) 
     """The case must be valid at both ends of the input's reach (others at the base case)."""
     for end, value in zip(("low", "high"), dist.reach, strict=True):
         data = copy.deepcopy(base)
-        write_field(data, name, value)
+        write_field(data, name, si_text(value, FIELD_KINDS[name]))
         try:
             case_from_dict(data, source=src)
         except InputError as exc:
@@ -407,7 +408,10 @@ def _outputs(table: Any, case: Any, src: str) -> dict[str, Any]:
     if "static" in table:
         st = _table(table["static"], "outputs.static", {"speeds", "voltages"}, src)
         speeds = value_list(
-            st.get("speeds", [case.operation.speed]), "speed", "outputs.static.speeds", src
+            st.get("speeds", [si_text(case.operation.speed, "speed")]),
+            "speed",
+            "outputs.static.speeds",
+            src,
         )
         if any(s <= 0.0 for s in speeds):
             raise InputError(f"outputs.static.speeds = {st['speeds']!r}: expected > 0", source=src)

@@ -118,6 +118,9 @@ from foilbearing.reynolds._kernels.newton import (
     transient_newton_solve,
     transient_newton_step,
 )
+from foilbearing.reynolds._kernels.notice import install as _install_compile_notice
+
+_install_compile_notice()  # a cold cache says so once on stderr (notice.py), before compiling
 
 __all__ = [
     "BC_NOT_FINITE",
