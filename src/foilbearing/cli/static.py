@@ -14,9 +14,12 @@ from typing import TYPE_CHECKING, Any
 
 from foilbearing.cli.common import (
     add_case_arg,
+    add_overwrite_arg,
     add_subambient_arg,
     apply_subambient,
+    claim_output,
     emit,
+    guard_outputs,
     positive_list,
     voltage_list,
 )
@@ -25,6 +28,7 @@ from foilbearing.errors import InputError
 
 if TYPE_CHECKING:
     from foilbearing.case import Case
+    from foilbearing.cli.common import Output
 
 __all__ = ["cmd_static", "register"]
 
@@ -60,16 +64,18 @@ def register(sub: Any) -> argparse.ArgumentParser:
     add_subambient_arg(stat)
     add_reading_args(stat)
     stat.add_argument("--out", type=Path, help="write the results to FILE.nc (NetCDF)")
+    add_overwrite_arg(stat)
     stat.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
     stat.add_argument("--json", action="store_true", help="print one JSON object")
     stat.set_defaults(func=cmd_static)
     return stat
 
 
+@guard_outputs
 def cmd_static(args: argparse.Namespace) -> int:
-    """Run ``static``; returns the exit code (0, or 3 when a solve did not converge)."""
+    """Run ``static``; returns the exit code (0, or 3 when a solve did not converge or
+    ``--out`` could not be written)."""
     from foilbearing.case import load_case
-    from foilbearing.io import write_with
 
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
     speeds = (
@@ -82,15 +88,16 @@ def cmd_static(args: argparse.Namespace) -> int:
         if case.actuators is None:
             raise InputError("--voltage given but the case has no [actuators]")
         volts = list(voltage_list(args.voltage, case))
+    target = claim_output(args, args.out)
     if len(speeds) > 1 or len(volts) > 1 or args.compare:
-        return _static_sweep_cli(case, speeds, volts, args)
+        return _static_sweep_cli(case, speeds, volts, args, target)
     if volts[0] is not None:
         case = case.with_voltages(float(volts[0]))
     if args.shimmed:
         case = case.shimmed()
     result = _static_point(case, speeds[0], args.eccentricity)
-    if args.out is not None:
-        write_with(args.out, lambda tmp: result.to_dataset().to_netcdf(tmp))
+    if target is not None:
+        target.write(lambda tmp: result.to_dataset().to_netcdf(tmp))
     out = result.headline()
     if args.plot is not None:
         from foilbearing.io import save_figure
@@ -145,9 +152,12 @@ def _print_static(out: dict[str, Any]) -> None:
 
 
 def _static_sweep_cli(
-    case: Case, speeds: list[float], volts: list[float | None], args: argparse.Namespace
+    case: Case,
+    speeds: list[float],
+    volts: list[float | None],
+    args: argparse.Namespace,
+    target: Output | None,
 ) -> int:
-    from foilbearing.io import write_with
     from foilbearing.output.figures import write_static_figures
     from foilbearing.output.summary import sweep_points
     from foilbearing.study.static import static_sweep
@@ -160,8 +170,8 @@ def _static_sweep_cli(
     )
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
     ds = static_sweep(case, speeds, voltages, bearings=bearings, progress=progress)
-    if args.out is not None:
-        write_with(args.out, lambda tmp: ds.to_netcdf(tmp))
+    if target is not None:
+        target.write(lambda tmp: ds.to_netcdf(tmp))
     out: dict[str, Any] = {"points": sweep_points(ds)}
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_static_figures(ds, args.plot)]
