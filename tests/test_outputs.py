@@ -211,3 +211,16 @@ def test_json_output_is_strict(coarse_case: Path, capsys) -> None:
     text = strict_json({"a": np.array([1.0, np.nan]), "b": float("inf"), "c": np.float32(2)})
     assert _strict(text) == {"a": [1.0, None], "b": None, "c": 2.0}
 
+
+def test_an_orbit_in_contact_at_its_first_sample_reports_contact(write_case, capsys) -> None:
+    """An imbalance of 20 kg·mm at 12000 rpm (an imbalance force of 32 kN against a 9 N load) closes the
+    film within the first steps, before a second sample: the run's status and advice, and
+    the divergence at the run's speed, not an internal error."""
+    case = write_case(
+        "shaken", n_theta=32, n_z=4, edit=lambda d: d["rotor"].update(imbalance="20000 g*mm")
+    )
+    argv = ["orbit", str(case), "--speed", "12000rpm", "--duration", "0.05s", "--json"]
+    assert main(argv) == 0
+    result = _strict(capsys.readouterr().out)
+    assert result["status"] == "contact" and "touched" in result["advice"]
+    assert result["divergence_speed_rpm"] == pytest.approx(12000.0)
