@@ -224,3 +224,31 @@ def test_an_orbit_in_contact_at_its_first_sample_reports_contact(write_case, cap
     result = _strict(capsys.readouterr().out)
     assert result["status"] == "contact" and "touched" in result["advice"]
     assert result["divergence_speed_rpm"] == pytest.approx(12000.0)
+
+
+def test_a_write_the_disk_refuses_inside_a_command_is_one_line(tmp_path: Path, capsys) -> None:
+    """A results folder's point or manifest that cannot be written (sweep, uncertainty,
+    study write them deep in their runners) ends the command with one line naming the
+    folder, exit 3, and the reservation released; other errors are not hidden."""
+    import argparse
+
+    from foilbearing.cli.common import claim_output, guard_outputs
+
+    folder = tmp_path / "res.d"
+
+    @guard_outputs
+    def command(args: argparse.Namespace) -> int:
+        claim_output(args, folder, may_exist=True)
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    assert command(argparse.Namespace()) == 3
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"in {folder}" in err[0] and "No space left" in err[0], err
+    assert not lock_path(folder).exists()
+
+    @guard_outputs
+    def broken(args: argparse.Namespace) -> int:
+        raise FileNotFoundError(errno.ENOENT, "No such file or directory", "missing.toml")
+
+    with pytest.raises(FileNotFoundError):
+        broken(argparse.Namespace())

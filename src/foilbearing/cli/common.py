@@ -354,7 +354,9 @@ def guard_outputs(cmd: Callable[[argparse.Namespace], int]) -> Callable[[argpars
         except OSError as exc:
             if exc.errno not in STORAGE_ERRNOS:
                 raise
-            where = f" {exc.filename}" if exc.filename else ""
+            claimed = [str(r.target) for r in _reservations(args)]
+            where = f" {exc.filename}" if exc.filename else f" in {', '.join(claimed)}"
+            where = "" if where == " in " else where
             print(
                 f"foilbearing: error: cannot write{where}: {_reason(exc)}; "
                 "what was finished before is kept",
