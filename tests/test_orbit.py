@@ -336,7 +336,7 @@ def test_a_resumed_run_reports_the_whole_run_s_figures() -> None:
     case = coarse(100.0, imbalance=3e-6)  # 3 g·mm at 12 krpm: the power loss swings
     prof = constant_speed(12e3 * RPM, 0.03)
     whole = simulate(case, prof)
-    kept = []
+    kept: list[OrbitResult] = []
 
     def keep_one(partial: OrbitResult) -> None:  # the first checkpoint past 15.5 ms
         if not kept and float(np.ravel(partial.checkpoint["t"])[0]) >= 0.0155:
