@@ -209,7 +209,10 @@ def test_the_stepper_problem_is_the_simulation_seen_through_callables() -> None:
     stats = RunStats(0.0, 3, 2, 9, None, {"t": 2e-4})
     res = pb.make_result(out, RunStatus.STOPPED, "stopped", stats)
     assert (res.steps, res.factorizations, res.newton_iterations) == (3, 2, 9)
-    assert res.status == "stopped" and res.message == "stopped" and res.checkpoint == {"t": 2e-4}
+    assert res.status == "stopped" and res.message == "stopped"
+    # The checkpoint: the stepper's, and where the power loss's 1 ms evaluations stand.
+    power = {"power_next": 1e-3, "power_last_t": 0.0, "power_last": out.power[0]}
+    assert res.checkpoint == {"t": 2e-4, **power}
     assert res.settings is settings and res.case is case and res.time.size == 3
 
     ctrl = SubsyncController(initial=12.0)

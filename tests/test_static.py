@@ -7,6 +7,7 @@ are checked with stated tolerances rather than digits.
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import replace
 
@@ -228,3 +229,36 @@ def test_bad_inputs() -> None:
     rigid = replace(case, foil=None, actuators=None)
     with pytest.raises(InputError, match="closes the film"):
         film_at_position(rigid, 1.2, 0.0)
+
+
+def test_a_zero_load_is_a_centred_journal(write_case, capsys) -> None:
+    """``operation.load = "0 N"`` (allowed): the force balance is tested absolutely where
+    the load is zero (static.FORCE_FLOOR), and the unloaded journal sits at the centre.
+
+    The three actuators 120° apart make the bearing three-fold symmetric, so the film force
+    at the centre is zero and the centred journal's stiffness is isotropic, K_XX = K_YY and
+    K_XY = -K_YX (the only 2 x 2 tensors unchanged by a 120° turn). On 48 x 4 the grid shares
+    the symmetry: both hold to round-off. On 32 x 4 it does not: ε = 4.6e-5, within 1e-3.
+    """
+    from foilbearing.cli.main import main
+    from foilbearing.coefficients import force_coefficients
+
+    base = default_case()
+    unloaded = replace(base.operation, load=0.0)
+    centred = {}
+    for n_theta, tol in ((48, 1e-9), (32, 1e-3)):
+        case = replace(base, grid=replace(base.grid, n_theta=n_theta, n_z=4), operation=unloaded)
+        res = centred[n_theta] = solve_equilibrium(case)
+        assert res.converged and "continuation" not in res.message, res.message
+        assert res.eccentricity < tol
+        assert np.all(np.abs(res.force) < 1e-9)  # N, against the 8.8 N of the case's load
+    (k,) = force_coefficients(centred[48], [2 * math.pi * 500.0]).K
+    scale = float(np.max(np.abs(k)))
+    assert abs(k[0, 0] - k[1, 1]) < 1e-9 * scale and abs(k[0, 1] + k[1, 0]) < 1e-9 * scale
+    path = write_case(
+        "unloaded", n_theta=48, n_z=4, edit=lambda d: d["operation"].update(load="0 N")
+    )
+    argv = ["stability", str(path), "--voltage", "0V", "--speed-range"]
+    assert main([*argv, "20000rpm:60000rpm:20000rpm", "--json"]) == 0
+    (entry,) = json.loads(capsys.readouterr().out)["voltages"]
+    assert entry["whirl_frequency_Hz"] > 0.0

@@ -1,11 +1,17 @@
 """Atomic writes: a result is either there whole or not at all.
 
 Everything the package writes goes to a temporary file in the target's
-directory first and is then moved over the target with ``os.replace``.
+directory first and is then moved over the target with ``os.replace``. An
+output a run will write can be reserved first (:func:`reserve`): a lock file
+beside it, created with ``O_EXCL`` and held with ``flock`` for the run, so that
+two runs cannot write one output and a folder that cannot be written is found
+before any work starts.
 """
 
 from __future__ import annotations
 
+import errno
+import fcntl
 import os
 import tempfile
 from collections.abc import Callable, Iterator
@@ -13,7 +19,17 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-__all__ = ["atomic_path", "read_toml", "save_figure", "write_text", "write_with"]
+__all__ = [
+    "OutputBusy",
+    "Reservation",
+    "atomic_path",
+    "lock_path",
+    "read_toml",
+    "reserve",
+    "save_figure",
+    "write_text",
+    "write_with",
+]
 
 
 @contextmanager
@@ -53,7 +69,7 @@ def save_figure(fig: Any, target: str | Path, dpi: int = 130) -> Path:
     return Path(target)
 
 
-def write_with(target: str | Path, writer: Callable[[Path], None]) -> Path:
+def write_with(target: str | Path, writer: Callable[[Path], object]) -> Path:
     """Call ``writer(tmp_path)`` and move the result over ``target`` atomically."""
     with atomic_path(target) as tmp:
         writer(tmp)
@@ -78,3 +94,89 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
         raise InputError(f"{what} not found", source=str(path)) from None
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
         raise InputError(f"cannot read the {what}: {exc}", source=str(path)) from None
+
+
+class OutputBusy(Exception):
+    """Another live process holds the reservation of an output (see :func:`reserve`)."""
+
+    def __init__(self, target: Path, lock: Path, holder: str) -> None:
+        super().__init__(f"{target} is being written by another run ({holder}; lock {lock})")
+        self.target, self.lock, self.holder = target, lock, holder
+
+
+def lock_path(target: str | Path) -> Path:
+    """The lock file that reserves ``target``: ``.NAME.lock`` beside it."""
+    target = Path(target)
+    return target.with_name(f".{target.name}.lock")
+
+
+class Reservation:
+    """An output reserved by this process until :meth:`release` (or the process ends).
+
+    Holds the lock file open under an exclusive ``flock``: the kernel drops it when
+    the process dies, so a lock left behind by a killed run is taken over by the next
+    one, while a live holder is refused.
+    """
+
+    def __init__(self, target: Path, lock: Path, fd: int) -> None:
+        self.target, self.lock, self._fd = target, lock, fd
+
+    def release(self) -> None:
+        """Remove the lock file and drop the lock (idempotent)."""
+        if self._fd < 0:
+            return
+        try:
+            if os.stat(self.lock).st_ino == os.fstat(self._fd).st_ino:
+                self.lock.unlink()
+        except OSError:
+            pass  # gone already, or a read-only folder now: the flock still ends below
+        os.close(self._fd)
+        self._fd = -1
+
+
+def reserve(target: str | Path) -> Reservation:
+    """Reserve ``target`` for this process: create its lock file, take an exclusive lock.
+
+    The parent folder is made if missing. A lock file left by a dead process is taken
+    over; one held by a live process raises :class:`OutputBusy`.
+
+    Raises
+    ------
+    OutputBusy
+        Another live process holds ``target``'s lock.
+    OSError
+        The folder cannot be made or written (read-only, no permission, not a folder).
+    """
+    target = Path(target)
+    lock = lock_path(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    for _ in range(5):  # a holder that releases between our open and our lock: try again
+        try:
+            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o644)
+        except FileExistsError:
+            try:
+                fd = os.open(lock, os.O_RDWR)
+            except FileNotFoundError:
+                continue
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as exc:
+            holder = os.pread(fd, 200, 0).decode("utf-8", "replace").strip() or "unknown"
+            os.close(fd)
+            if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
+                raise OutputBusy(target, lock, holder) from None
+            raise
+        try:
+            same = os.stat(lock).st_ino == os.fstat(fd).st_ino
+        except FileNotFoundError:
+            same = False
+        if not same:  # removed by its holder after we opened it: start again
+            os.close(fd)
+            continue
+        os.ftruncate(fd, 0)
+        try:
+            os.pwrite(fd, f"pid {os.getpid()} on {os.uname().nodename}\n".encode(), 0)
+        except OSError:
+            pass  # a full disk: the lock holds without its note
+        return Reservation(target, lock, fd)
+    raise OutputBusy(target, lock, "its lock file keeps changing")

@@ -37,6 +37,14 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 
 
+#: The smallest force, in units of p_a R², that the force balance is measured against: a
+#: lighter load (zero included, which the case allows) is tested to ``force_tol`` times this
+#: absolute force (3e-10 N for the paper's bearing) instead of relative to itself, which would
+#: divide by zero. 1e-3 p_a R² (0.03 N there) keeps the round-off of the film force's
+#: quadrature (about 1e-16 p_a R²) far below the test.
+FORCE_FLOOR = 1e-3
+
+
 @dataclass(frozen=True)
 class EquilibriumOptions:
     """Settings of the equilibrium Newton solver (safe defaults).
@@ -44,7 +52,9 @@ class EquilibriumOptions:
     Attributes
     ----------
     force_tol
-        Converged when |F + W|/|W| is below this (and the Reynolds residual below ``newton.tol``).
+        Converged when |F + W|/|W| is below this (and the Reynolds residual below ``newton.tol``);
+        below a load of :data:`FORCE_FLOOR` p_a R² (zero included: a centred journal) the
+        test is absolute, |F + W| against that floor.
     max_iter
         Newton iterations on (P, ε).
     max_step
@@ -544,7 +554,7 @@ class _Equilibrium:
             lift_off=m.lift_off,
         )
         P = first.P.ravel().copy()
-        load_ref = max(abs(load), 1e-12)
+        load_ref = max(abs(load), FORCE_FLOOR)
         if not first.converged:
             return _EquilibriumOutcome(
                 P,

@@ -14,9 +14,12 @@ from typing import Any
 from foilbearing.cli.common import (
     add_case_arg,
     add_load_arg,
+    add_overwrite_arg,
     add_subambient_arg,
     apply_subambient,
+    claim_output,
     emit,
+    guard_outputs,
     load_list,
     over_loads,
     positive_list,
@@ -47,12 +50,14 @@ def register(sub: Any) -> argparse.ArgumentParser:
     add_subambient_arg(coef)
     add_reading_args(coef)
     coef.add_argument("--out", type=Path, help="write the coefficients to FILE.nc")
+    add_overwrite_arg(coef)
     coef.add_argument("--plot", metavar="DIR", type=Path, help="write the figure (PNG) to DIR")
     coef.add_argument("--json", action="store_true", help="print one JSON object")
     coef.set_defaults(func=cmd_coefficients)
     return coef
 
 
+@guard_outputs
 def cmd_coefficients(args: argparse.Namespace) -> int:
     """Run ``coefficients``; returns the exit code (0).
 
@@ -65,7 +70,7 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
 
     from foilbearing.case import load_case
     from foilbearing.coefficients import force_coefficients
-    from foilbearing.io import save_figure, write_with
+    from foilbearing.io import save_figure
     from foilbearing.static import solve_equilibrium
 
     loads = load_list(args.load)
@@ -92,13 +97,14 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
     else:
         given = positive_list(args.frequency, "frequency", "--frequency", "a frequency")
         freqs = 2 * np.pi * np.array(given)
+    target = claim_output(args, args.out)
     static = solve_equilibrium(case)
     if not static.converged:
         raise SolverError(static.message)
     fc = force_coefficients(static, freqs)
     out = fc.headline()
-    if args.out is not None:
-        write_with(args.out, lambda tmp: fc.to_dataset().to_netcdf(tmp))
+    if target is not None:
+        target.write(lambda tmp: fc.to_dataset().to_netcdf(tmp))
     if args.plot is not None:
         from foilbearing.output.plots.dynamics import plot_coefficients
 

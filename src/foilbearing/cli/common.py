@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import errno
+import functools
 import json
+import math
 import re
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -13,20 +17,25 @@ if TYPE_CHECKING:
     from foilbearing.case import Case
 
 __all__ = [
+    "Output",
     "add_case_arg",
     "add_dask_args",
     "add_load_arg",
+    "add_overwrite_arg",
     "add_subambient_arg",
     "apply_subambient",
     "attach_negative_values",
     "check_dask_args",
+    "claim_output",
     "emit",
+    "guard_outputs",
     "load_list",
     "over_loads",
     "parse_list",
     "positive_list",
     "positive_quantity",
     "refuse_without_actuators",
+    "strict_json",
     "voltage_list",
 ]
 
@@ -148,12 +157,14 @@ def over_loads(
     from foilbearing.errors import SolverError
 
     out, plot = getattr(args, "out", None), getattr(args, "plot", None)
+    target = claim_output(args, out)  # before any work starts
     code = 0
     entries: list[dict[str, Any]] = []
     datasets = []
     with tempfile.TemporaryDirectory() as tmp:
         for k, load in enumerate(loads):
             one = copy.copy(args)
+            one._reservations, one._outputs = [], []  # the run's own, released when it ends
             one.load = f"{load!r} N"
             one.out = None if out is None else Path(tmp) / f"load_{k}.nc"
             one.plot = None if plot is None else plot / f"load_{load:g}N"
@@ -170,8 +181,8 @@ def over_loads(
                 raise SolverError(f"at --load {load:g} N: {exc}") from None
             if one.out is not None:
                 datasets.append(_with_load(one.out, load))
-        if out is not None:
-            _write_along_load(out, datasets)
+        if target is not None:
+            _write_along_load(target, datasets)
     if args.json:
         emit({"loads": entries})
     return code
@@ -187,15 +198,13 @@ def _with_load(path: Path, load: float) -> Any:
     return ds
 
 
-def _write_along_load(target: Path, datasets: list[Any]) -> None:
+def _write_along_load(target: Output, datasets: list[Any]) -> None:
     """The per-load datasets along a new ``load`` dimension (N), written to ``target``."""
     import xarray as xr
 
-    from foilbearing.io import write_with
-
     combined = xr.concat(datasets, dim="load", combine_attrs="drop_conflicts")
     combined["load"].attrs.update(units="N", long_name="static load W along +X")
-    write_with(target, lambda tmp: combined.to_netcdf(tmp))
+    target.write(lambda tmp: combined.to_netcdf(tmp))
 
 
 def add_dask_args(p: argparse.ArgumentParser, what: str) -> None:
@@ -333,13 +342,172 @@ def print_fields(obj: dict[str, Any]) -> None:
 
 
 def emit(obj: dict[str, Any]) -> None:
-    """Print ``obj`` as one indented JSON object on stdout (arrays as lists, paths as text)."""
-    print(json.dumps(obj, indent=2, default=_json_default))
+    """Print ``obj`` as one indented JSON object on stdout (see :func:`strict_json`)."""
+    print(strict_json(obj))
 
 
-def _json_default(x: Any) -> Any:
-    if hasattr(x, "tolist"):
-        return x.tolist()
+def strict_json(obj: Any) -> str:
+    """``obj`` as indented, strict JSON: arrays as lists, paths as text, and a value that
+    is not finite (NaN, ±inf: "not defined here") as ``null``, since ``NaN`` and
+    ``Infinity`` are not JSON and a strict reader refuses the whole document."""
+    return json.dumps(_finite(obj), indent=2, allow_nan=False)
+
+
+def _finite(x: Any) -> Any:
+    if isinstance(x, float):
+        return x if math.isfinite(x) else None
+    if isinstance(x, dict):
+        return {k: _finite(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_finite(v) for v in x]
     if isinstance(x, Path):
         return str(x)
+    if hasattr(x, "tolist"):  # NumPy arrays and scalars
+        return _finite(x.tolist())
+    if x is None or isinstance(x, (str, int)):
+        return x
     raise TypeError(f"not JSON serialisable: {type(x).__name__}")
+
+
+#: The errors of a write that the storage refused: full, read-only, no permission, quota.
+STORAGE_ERRNOS = frozenset(
+    {errno.ENOSPC, errno.EROFS, errno.EACCES, errno.EPERM, errno.EDQUOT, errno.EIO, errno.EFBIG}
+)
+
+
+def add_overwrite_arg(p: argparse.ArgumentParser) -> None:
+    """``--overwrite``: replace an existing ``--out`` file (refused without it)."""
+    p.add_argument(
+        "--overwrite", action="store_true", help="replace an existing --out file (default: refuse)"
+    )
+
+
+class Output:
+    """An output file reserved for this run (:func:`claim_output`), written atomically.
+
+    A write that the storage refuses (full, read-only) does not end the run: it is
+    recorded in :attr:`failure` (one line), the file there stays as it was, and the
+    command still reports its result; :func:`guard_outputs` then exits with 3.
+    """
+
+    def __init__(self, path: Path, option: str) -> None:
+        self.path, self.option = path, option
+        self.failure: str | None = None
+
+    def write(self, writer: Callable[[Path], object]) -> bool:
+        """``writer(tmp)`` moved over :attr:`path`; False (and :attr:`failure` set) on an
+        ``OSError``. A later write that succeeds clears an earlier failure (a checkpoint)."""
+        from foilbearing.io import write_with
+
+        try:
+            write_with(self.path, writer)
+        except OSError as exc:
+            kept = "; the file there is unchanged" if self.path.exists() else ""
+            self.failure = f"{self.option} {self.path} not written: {_reason(exc)}{kept}"
+            return False
+        self.failure = None
+        return True
+
+    def write_text(self, text: str) -> bool:
+        """:meth:`write` of UTF-8 ``text``."""
+        return self.write(lambda tmp: tmp.write_text(text, encoding="utf-8"))
+
+
+def _reason(exc: OSError) -> str:
+    return exc.strerror or str(exc) or type(exc).__name__
+
+
+def claim_output(
+    args: argparse.Namespace,
+    path: Path | str | None,
+    *,
+    option: str = "--out",
+    may_exist: bool = False,
+) -> Output | None:
+    """Reserve ``path`` for this run before any work starts (None: no output asked for).
+
+    The output is checked and reserved (:func:`foilbearing.io.reserve`): a folder that
+    cannot be written, an output another run is writing, or, unless ``may_exist`` (a
+    resumed run's own file, a results folder) or ``--overwrite``, an existing file are
+    refused in one line. The reservation ends when the command does
+    (:func:`guard_outputs`).
+
+    Raises
+    ------
+    InputError
+        One line naming the file and what to do.
+    """
+    from foilbearing.errors import InputError
+    from foilbearing.io import OutputBusy, reserve
+
+    if path is None:
+        return None
+    path = Path(path)
+    if path.is_dir() and not may_exist:
+        raise InputError(f"{option} {path} is a folder: give a file name")
+    try:
+        reservation = reserve(path)
+    except OutputBusy as exc:
+        raise InputError(
+            f"{option} {path} is being written by another run ({exc.holder}): wait for it, "
+            f"or give another {option}"
+        ) from None
+    except OSError as exc:
+        folder = path.parent if str(path.parent) else Path(".")
+        raise InputError(f"{option} {path}: cannot write in {folder}: {_reason(exc)}") from None
+    _reservations(args).append(reservation)
+    if path.exists() and not may_exist and not getattr(args, "overwrite", False):
+        raise InputError(f"{option} {path} exists: give --overwrite to replace it")
+    output = Output(path, option)
+    _outputs(args).append(output)
+    return output
+
+
+def _reservations(args: argparse.Namespace) -> list[Any]:
+    if not hasattr(args, "_reservations"):
+        args._reservations = []
+    return args._reservations
+
+
+def _outputs(args: argparse.Namespace) -> list[Output]:
+    if not hasattr(args, "_outputs"):
+        args._outputs = []
+    return args._outputs
+
+
+def guard_outputs(cmd: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
+    """Run the command ``cmd``, then release the outputs it reserved (:func:`claim_output`).
+
+    An output whose last write failed, or a write the storage refused anywhere in the
+    command (a results folder's point, a figure), ends it with one line on stderr and
+    exit code 3, after the command has printed its result; what was finished stays.
+    """
+
+    @functools.wraps(cmd)
+    def run(args: argparse.Namespace) -> int:
+        try:
+            code = cmd(args)
+        except OSError as exc:
+            if exc.errno not in STORAGE_ERRNOS:
+                raise
+            claimed = [str(r.target) for r in _reservations(args)]
+            where = f" {exc.filename}" if exc.filename else f" in {', '.join(claimed)}"
+            where = "" if where == " in " else where
+            print(
+                f"foilbearing: error: cannot write{where}: {_reason(exc)}; "
+                "what was finished before is kept",
+                file=sys.stderr,
+            )
+            return 3
+        finally:
+            for reservation in _reservations(args):
+                reservation.release()
+            args._reservations = []
+        failures = [o.failure for o in _outputs(args) if o.failure]
+        args._outputs = []
+        if failures:
+            print(f"foilbearing: error: {'; '.join(failures)}", file=sys.stderr)
+            return 3
+        return code
+
+    return run

@@ -10,11 +10,10 @@ optimum beside the best of the paper's equal-voltage choices (0/50/100/150 V).
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
-from foilbearing.cli.common import add_case_arg, positive_quantity
+from foilbearing.cli.common import add_case_arg, emit, positive_quantity
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_optimize", "register"]
@@ -114,7 +113,7 @@ def cmd_optimize(args: argparse.Namespace) -> int:
         )
     head = result.headline()
     if args.json:
-        print(json.dumps(head, indent=2))
+        emit(head)
         return 0
     if result.objective == "onset":
         show = f"onset {head['onset_speed_rpm']:.0f} rpm"

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -17,7 +16,11 @@ from typing import TYPE_CHECKING, Any
 from foilbearing.cli.common import (
     add_case_arg,
     add_load_arg,
+    add_overwrite_arg,
     add_subambient_arg,
+    claim_output,
+    emit,
+    guard_outputs,
     load_list,
     positive_quantity,
     print_fields,
@@ -85,6 +88,7 @@ def register(sub: Any) -> None:
     add_subambient_arg(p)
     add_reading_args(p)
     p.add_argument("--out", type=Path, help="write the time series (NetCDF); checkpoints too")
+    add_overwrite_arg(p)
     p.add_argument(
         "--checkpoint-every",
         default="30s",
@@ -141,6 +145,11 @@ def _schedule_spec(path: str | None) -> dict[str, str] | None:
     return {"path": str(path), "text": Path(path).read_text(encoding="utf-8")}
 
 
+def _same_file(a: Path, b: Path) -> bool:
+    """Whether paths ``a`` and ``b`` name one file (``--resume run.nc --out ./run.nc``)."""
+    return Path(a).resolve() == Path(b).resolve()
+
+
 def _check_positive(args: argparse.Namespace) -> None:
     """One-line errors for a speed, duration, stop time or sample rate that is not > 0."""
     checks = (
@@ -155,8 +164,8 @@ def _check_positive(args: argparse.Namespace) -> None:
     load_list(args.load, several=False)
 
 
+@guard_outputs
 def _cmd_orbit(args: argparse.Namespace) -> int:
-    from foilbearing.io import write_with
     from foilbearing.orbit import RunStatus, simulate
     from foilbearing.orbit.analysis import analyse_orbit, write_orbit_figures
     from foilbearing.orbit.netcdf import load_orbit, to_netcdf
@@ -175,14 +184,16 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         spec = run_spec_from_args(args)
         out_path = args.out
     case, profile, program, settings, stop = spec.build()
-
-    def save(result: Any) -> None:
-        if out_path is not None:
-            write_with(out_path, lambda tmp: to_netcdf(result, spec, tmp))
-
     every = cli_quantity(args.checkpoint_every, "time", "--checkpoint-every")
     if not every > 0.0:
         raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
+    own_file = args.resume is not None and _same_file(out_path, args.resume)
+    target = claim_output(args, out_path, may_exist=own_file)
+
+    def save(result: Any) -> None:
+        if target is not None:
+            target.write(lambda tmp: to_netcdf(result, spec, tmp))
+
     result = simulate(
         case,
         profile,
@@ -191,20 +202,20 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         progress=not args.json,
         stop_time=stop,
         resume=resume,
-        checkpoint=save if out_path is not None else None,
+        checkpoint=save if target is not None else None,
         checkpoint_every=every,
     )
     save(result)
     analysis = analyse_orbit(result)
     out = analysis.headline(result)
-    if out_path is not None:
+    if target is not None and target.failure is None:
         out["netcdf"] = str(out_path)
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_orbit_figures(result, analysis, args.plot)]
     if result.status.advice:  # what to try next, for a run that did not complete
         out["advice"] = result.status.advice
     if args.json:
-        print(json.dumps(out, indent=2))
+        emit(out)
     else:
         print(result.message, file=sys.stderr)
         print_fields(out)

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import emit
+from foilbearing.cli.common import add_overwrite_arg, claim_output, emit, guard_outputs
 
 __all__ = ["cmd_rotor", "register"]
 
@@ -75,6 +75,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
     rot.add_argument(
         "--out", type=Path, help="write the --orbit run (NetCDF), with checkpoints as it goes"
     )
+    add_overwrite_arg(rot)
     rot.add_argument(
         "--stop-time", default=None, help="end the --orbit run at this simulated time, e.g. 1s"
     )
@@ -93,6 +94,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
     return rot
 
 
+@guard_outputs
 def cmd_rotor(args: argparse.Namespace) -> int:
     """Run ``rotor``; returns the exit code (0)."""
     from foilbearing.constants import RPM
@@ -110,6 +112,8 @@ def cmd_rotor(args: argparse.Namespace) -> int:
         rotor = load_rotor(args.rotor)
     if args.out is not None and args.orbit is None:
         raise InputError("--out writes the --orbit run: give --orbit too")
+    own_file = args.resume is not None and Path(args.out).resolve() == args.resume.resolve()
+    target = claim_output(args, args.out, may_exist=own_file)
     if not 1 <= args.modes <= 20:
         raise InputError(f"--modes {args.modes}: allowed 1 to 20")
     text = args.speed_range or (None if args.orbit else "30000rpm:60000rpm:2500rpm")
@@ -170,7 +174,7 @@ def cmd_rotor(args: argparse.Namespace) -> int:
                 fig = plot_unbalance_response(response, rotor.title)
                 figures.append(str(save_figure(fig, args.plot / "unbalance_response.png")))
     if args.orbit is not None:
-        out["orbit"] = _orbit(args, rotor, figures, lines, resume)
+        out["orbit"] = _orbit(args, rotor, figures, lines, resume, target)
     if figures:
         out["figures"] = figures
     if args.json:
@@ -304,12 +308,13 @@ def _orbit(
     figures: list[str],
     lines: list[str],
     resume: Any = None,
+    target: Any = None,
 ) -> dict[str, Any]:
     """Run ``--orbit`` (or continue ``resume``); its JSON part (and figures, printed lines)."""
     import json
 
     from foilbearing.errors import InputError
-    from foilbearing.io import save_figure, write_with
+    from foilbearing.io import save_figure
     from foilbearing.rotor.nonlinear import RotorOrbitSystem
     from foilbearing.rotor.stepper import run_rotor
     from foilbearing.units import parse_quantity
@@ -331,10 +336,10 @@ def _orbit(
     spec["rotor_text"] = text
 
     def save(run: Any) -> None:
-        if args.out is not None:
+        if target is not None:
             data = run.to_dataset(rotor.title)
             data.attrs["rotor_run"] = json.dumps(spec)
-            write_with(args.out, data.to_netcdf)
+            target.write(data.to_netcdf)
 
     profile = _orbit_profile(args.orbit)
     system = RotorOrbitSystem(
@@ -351,7 +356,7 @@ def _orbit(
         progress=not args.json,
         stop_time=stop_time,
         resume=resume,
-        checkpoint=save if args.out is not None else None,
+        checkpoint=save if target is not None else None,
         checkpoint_every=every,
     )
     save(run)
@@ -376,7 +381,7 @@ def _orbit(
         lines.append(f"    {label}: largest excursion {a * 1e6:.2f} µm")
     if part.get("onset_speed_rpm") is not None:
         lines.append(f"    sub-synchronous onset at bearing A: {part['onset_speed_rpm']:.0f} rpm")
-    if args.out is not None:
+    if target is not None and target.failure is None:
         part["out"] = str(args.out)
     if run.resumable:
         part["advice"] = f"continue with: foilbearing rotor --resume {args.out or 'FILE.nc'}"

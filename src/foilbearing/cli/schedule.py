@@ -12,12 +12,17 @@ speed above which no voltage keeps the rotor stable. ``foilbearing orbit
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from typing import Any
 
-from foilbearing.cli.common import add_case_arg
+from foilbearing.cli.common import (
+    add_case_arg,
+    add_overwrite_arg,
+    claim_output,
+    emit,
+    guard_outputs,
+)
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_schedule", "register", "schedule_speeds"]
@@ -53,6 +58,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
         help="speed-up rate the smoothness is set for (default the paper's 500rad/s**2)",
     )
     p.add_argument("--out", default=None, help="write the schedule file (TOML) here")
+    add_overwrite_arg(p)
     p.add_argument("--plot", default=None, metavar="DIR", help="write the figure (PNG) to DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_schedule)
@@ -76,6 +82,7 @@ def schedule_speeds(text: str, field: str = "--speed-range") -> list[float]:
     return [float(w) for w in np.linspace(lo, hi, DEFAULT_POINTS)]
 
 
+@guard_outputs
 def cmd_schedule(args: argparse.Namespace) -> int:
     """Run the ``schedule`` subcommand; returns the exit code.
 
@@ -89,7 +96,7 @@ def cmd_schedule(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from foilbearing.case import load_case
-    from foilbearing.io import save_figure, write_text
+    from foilbearing.io import save_figure
     from foilbearing.output.plots.schedule import plot_schedule
     from foilbearing.schedule import DEFAULT_MARGIN, check_speed_range, voltage_schedule
     from foilbearing.schedule_file import schedule_toml
@@ -110,22 +117,20 @@ def cmd_schedule(args: argparse.Namespace) -> int:
         raise InputError("schedule needs a case with [actuators]: there are no voltages to choose")
     speeds = schedule_speeds(args.speed_range)
     check_speed_range(case, speeds)
+    target = claim_output(args, args.out)
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
     schedule = voltage_schedule(
         case, speeds, margin=margin, slew_rate=slew, acceleration=accel, progress=progress
     )
     head: dict[str, Any] = schedule.headline()
-    if args.out is not None:
-        out = Path(args.out)
-        text = schedule_toml(schedule, case.title)
-        write_text(out, text)
-        head["schedule_file"] = str(out)
+    if target is not None and target.write_text(schedule_toml(schedule, case.title)):
+        head["schedule_file"] = str(target.path)
     if args.plot is not None:
         angles = [math.degrees(a) for a in case.actuators.angles]
         path = save_figure(plot_schedule(schedule, angles), Path(args.plot) / "schedule.png")
         head["figures"] = [str(path)]
     if args.json:
-        print(json.dumps(head, indent=2))
+        emit(head)
         return 0
     print(" speed (rpm)  voltages (V)              log dec  power (W)  at 150 V (W)")
     for k, w in enumerate(head["speeds_rpm"]):

@@ -15,9 +15,12 @@ from typing import TYPE_CHECKING, Any
 from foilbearing.cli.common import (
     add_case_arg,
     add_load_arg,
+    add_overwrite_arg,
     add_subambient_arg,
     apply_subambient,
+    claim_output,
     emit,
+    guard_outputs,
     load_list,
     over_loads,
     positive_list,
@@ -29,6 +32,7 @@ from foilbearing.errors import InputError
 
 if TYPE_CHECKING:
     from foilbearing.case import Case
+    from foilbearing.cli.common import Output
 
 __all__ = ["cmd_static", "register"]
 
@@ -65,16 +69,18 @@ def register(sub: Any) -> argparse.ArgumentParser:
     add_subambient_arg(stat)
     add_reading_args(stat)
     stat.add_argument("--out", type=Path, help="write the results to FILE.nc (NetCDF)")
+    add_overwrite_arg(stat)
     stat.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
     stat.add_argument("--json", action="store_true", help="print one JSON object")
     stat.set_defaults(func=cmd_static)
     return stat
 
 
+@guard_outputs
 def cmd_static(args: argparse.Namespace) -> int:
-    """Run ``static``; returns the exit code (0, or 3 when a solve did not converge)."""
+    """Run ``static``; returns the exit code (0, or 3 when a solve did not converge or
+    ``--out`` could not be written)."""
     from foilbearing.case import load_case
-    from foilbearing.io import write_with
 
     loads = load_list(args.load)
     if loads is not None and len(loads) > 1:
@@ -91,17 +97,18 @@ def cmd_static(args: argparse.Namespace) -> int:
     if args.voltage is not None:
         refuse_without_actuators(case, "--voltage", args.voltage)
         volts = list(voltage_list(args.voltage, case))
+    target = claim_output(args, args.out)
     if case.actuators is None and len(speeds) > 1 and not (args.compare or args.shimmed):
-        return _speed_sweep_cli(case, speeds, args)
+        return _speed_sweep_cli(case, speeds, args, target)
     if len(speeds) > 1 or len(volts) > 1 or args.compare:
-        return _static_sweep_cli(case, speeds, volts, args)
+        return _static_sweep_cli(case, speeds, volts, args, target)
     if volts[0] is not None:
         case = case.with_voltages(float(volts[0]))
     if args.shimmed:
         case = case.shimmed()
     result = _static_point(case, speeds[0], args.eccentricity)
-    if args.out is not None:
-        write_with(args.out, lambda tmp: result.to_dataset().to_netcdf(tmp))
+    if target is not None:
+        target.write(lambda tmp: result.to_dataset().to_netcdf(tmp))
     out = result.headline()
     if args.plot is not None:
         from foilbearing.io import save_figure
@@ -158,9 +165,12 @@ def _print_static(out: dict[str, Any]) -> None:
 
 
 def _static_sweep_cli(
-    case: Case, speeds: list[float], volts: list[float | None], args: argparse.Namespace
+    case: Case,
+    speeds: list[float],
+    volts: list[float | None],
+    args: argparse.Namespace,
+    target: Output | None,
 ) -> int:
-    from foilbearing.io import write_with
     from foilbearing.output.figures import write_static_figures
     from foilbearing.output.summary import sweep_points
     from foilbearing.study.static import static_sweep
@@ -178,8 +188,8 @@ def _static_sweep_cli(
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
     ds = static_sweep(case, speeds, voltages, bearings=bearings, progress=progress)
     ds = ds.assign_coords(load=((), case.operation.load, {"units": "N"}))
-    if args.out is not None:
-        write_with(args.out, lambda tmp: ds.to_netcdf(tmp))
+    if target is not None:
+        target.write(lambda tmp: ds.to_netcdf(tmp))
     out: dict[str, Any] = {"load_N": case.operation.load, "points": sweep_points(ds)}
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_static_figures(ds, args.plot)]
@@ -197,16 +207,17 @@ def _static_sweep_cli(
     return 0 if all(p["converged"] for p in out["points"]) else 3
 
 
-def _speed_sweep_cli(case: Case, speeds: list[float], args: argparse.Namespace) -> int:
+def _speed_sweep_cli(
+    case: Case, speeds: list[float], args: argparse.Namespace, target: Output | None
+) -> int:
     """The equilibria of a bearing without actuators over ``--speed`` (a list)."""
-    from foilbearing.io import write_with
     from foilbearing.output.summary import speed_sweep_points
     from foilbearing.study.static import speed_sweep
 
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
     ds = speed_sweep(case, speeds, progress=progress)
-    if args.out is not None:
-        write_with(args.out, lambda tmp: ds.to_netcdf(tmp))
+    if target is not None:
+        target.write(lambda tmp: ds.to_netcdf(tmp))
     out: dict[str, Any] = {
         "bearing": case.kind,
         "load_N": case.operation.load,

@@ -10,7 +10,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import add_case_arg, emit
+from foilbearing.cli.common import add_case_arg, claim_output, emit, guard_outputs
 
 __all__ = ["cmd_study", "register"]
 
@@ -64,12 +64,14 @@ def register(sub: Any) -> argparse.ArgumentParser:
     return study
 
 
+@guard_outputs
 def cmd_study(args: argparse.Namespace) -> int:
     """Run ``study``; returns the exit code (0)."""
     from foilbearing.case import load_case
     from foilbearing.study.paper import run_study
     from foilbearing.study.rotor import is_rotor_file
 
+    claim_output(args, args.out, may_exist=True)  # a folder of results, rewritten by a new run
     if is_rotor_file(args.case):
         from foilbearing.rotor import load_rotor
         from foilbearing.study.rotor import run_rotor_study

@@ -13,12 +13,17 @@ some failed (they are recorded with their message), 2 for bad input.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import add_dask_args, check_dask_args
+from foilbearing.cli.common import (
+    add_dask_args,
+    check_dask_args,
+    claim_output,
+    emit,
+    guard_outputs,
+)
 from foilbearing.errors import InputError
 
 __all__ = ["cmd_sweep", "register"]
@@ -51,6 +56,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
     return p
 
 
+@guard_outputs
 def cmd_sweep(args: argparse.Namespace) -> int:
     """Run the ``sweep`` subcommand; returns the exit code (0 all ok, 3 some failed).
 
@@ -68,6 +74,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     folder, _ = output_paths(out)
     if args.assemble and not folder.is_dir():
         raise InputError(f"--assemble: no results folder {folder} (run the sweep first)")
+    claim_output(args, folder, may_exist=True)  # its points say what is done (--resume)
     summary: dict[str, Any] = run_sweep(
         spec,
         out,
@@ -79,7 +86,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         progress=not args.json,
     )
     if args.json:
-        print(json.dumps(summary, indent=2))
+        emit(summary)
     else:
         print(
             f"{summary['n_points']} points: {summary['n_ok']} ok, {summary['n_failed']} failed, "

@@ -14,13 +14,18 @@ failed (recorded with their message), 2 for bad input.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import add_dask_args, check_dask_args
+from foilbearing.cli.common import (
+    add_dask_args,
+    check_dask_args,
+    claim_output,
+    emit,
+    guard_outputs,
+)
 
 #: foilbearing.uncertainty.design's ESTIMATORS and SAMPLERS, spelt out: ``--help`` loads no SciPy.
 ESTIMATORS = ("sobol", "rbd_fast")
@@ -86,6 +91,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
     return p
 
 
+@guard_outputs
 def cmd_uncertainty(args: argparse.Namespace) -> int:
     """Run the ``uncertainty`` subcommand; returns the exit code (0 all ok, 3 some failed).
 
@@ -104,6 +110,7 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
     )
     stem = args.uq_file.stem if args.uq_file is not None else "uncertainty_paper"
     out = args.out if args.out is not None else Path(stem)
+    claim_output(args, out, may_exist=True)  # its points say what is done (--resume)
     if not args.json:
         print(
             f"{spec.n_points} points ({spec.estimator} estimator, {spec.sampler} sample, "
@@ -124,7 +131,7 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
         figures = [str(p) for p in write_uncertainty_figures(ds, args.plot)]
     summary["figures"] = figures
     if args.json:
-        print(json.dumps(summary, indent=2))
+        emit(summary)
         return 0 if summary["n_ok"] == summary["n_points"] else 3
     print(
         f"{summary['n_points']} points: {summary['n_ok']} ok, {summary['n_failed']} failed, "

@@ -88,9 +88,11 @@ def simulate(
         if voltage is not None:
             voltage.restore(resume.checkpoint)
         samples = Samples.from_result(resume)
+        counts = (resume.steps, resume.factorizations, resume.newton_iterations)
     else:
         state = State(0.0, sim.initial_state())
         samples = Samples(1.0 / sim.settings.sampling.sample_rate)
+        counts = (0, 0, 0)
     s = sim.settings
     with interrupt_at_step_boundary() as interrupted:
         return run(
@@ -104,4 +106,5 @@ def simulate(
             checkpoint,
             checkpoint_every,
             interrupted,
+            counts,
         )

@@ -140,25 +140,28 @@ def synchronous_amplitude(
 def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) -> OrbitAnalysis:
     """Waterfall, sub-synchronous amplitude (1X removed by order tracking), onset, divergence;
     the 1X amplitude of a constant-speed run (:func:`synchronous_amplitude`)."""
-    sync = synchronous_amplitude(result)
+    sync = synchronous_amplitude(result) if result.time.size >= 2 else None
     one_x = {} if sync is None else {"one_x": sync[0], "one_x_window": sync[1]}
     t = result.time
     c = result.case.bearing.clearance
     if t.size < 8 or t[-1] - t[0] < 1.0:
         # Too short for 0.25 s windows with the sustain rule: report what can be said.
-        div = (
-            divergence_speed(
+        div = None
+        if result.status == "contact" and t.size < 2:
+            # Contact before a second sample (the first steps closed the film): no time
+            # series to read, but the stepper noted the speed at contact.
+            speed = (result.contact or {}).get("speed_rpm")
+            div = None if speed is None else float(speed)
+        elif result.status == "contact":
+            div = divergence_speed(
                 t,
                 result.e_x,
                 result.e_y,
                 result.speed,
                 c,
-                stopped_by_contact=result.status == "contact",
+                stopped_by_contact=True,
                 contact_time=None,
             )
-            if result.status == "contact"
-            else None
-        )
         return OrbitAnalysis(None, None, None, div, None, **one_x)
     wf = waterfall(
         t, result.e_x, result.speed, fmax_hz=min(2000.0, 0.45 * result.settings.sample_rate)

@@ -47,6 +47,8 @@ class Samples:
         self.power_t: list[float] = []  # times of the power-loss evaluations, s
         self.power: list[float] = []  # W
         self.next_power = 0.0
+        #: Whether the power's evaluations go on from a stopped run's (:meth:`from_result`).
+        self.resumed_power = False
 
     def add(
         self,
@@ -81,9 +83,29 @@ class Samples:
             self.power.append(drag_torque(case, sys_.grid, P, H, w) * w)
             self.next_power = t + POWER_INTERVAL
 
+    def checkpoint(self) -> dict[str, float]:
+        """Where the power loss's evaluations stand: the last one (time, W) and when the
+        next is due, so that a resumed run evaluates and interpolates it as the run in
+        one go does (:meth:`from_result`)."""
+        m = min(len(self.power_t), len(self.power))
+        if not m:
+            return {}
+        return {
+            "power_next": self.next_power,
+            "power_last_t": self.power_t[m - 1],
+            "power_last": self.power[m - 1],
+        }
+
     @classmethod
     def from_result(cls, res: OrbitResult) -> Samples:
-        """Continue the samples of a stopped run."""
+        """Continue the samples of a stopped run.
+
+        With the power loss's state in the checkpoint (:meth:`checkpoint`), its next
+        evaluation is at the time the stopped run had set, and the samples between its
+        last evaluation and the stop (held at that value when it stopped) are
+        interpolated again towards the next one: the power loss is then the
+        uninterrupted run's. Files without that state start the evaluations afresh.
+        """
         out = cls(1.0 / res.settings.sample_rate)
         out.done = (
             res.time,
@@ -97,6 +119,12 @@ class Samples:
         )
         out.start = float(res.time[-1]) + out.dt if res.time.size else 0.0
         out.next = out.next_power = out.start
+        cp = res.checkpoint
+        if res.power_loss is not None and {"power_next", "power_last_t", "power_last"} <= set(cp):
+            out.next_power = float(np.ravel(cp["power_next"])[0])
+            out.power_t.append(float(np.ravel(cp["power_last_t"])[0]))
+            out.power.append(float(np.ravel(cp["power_last"])[0]))
+            out.resumed_power = True
         return out
 
     def new_samples(self) -> list[tuple[float, float]]:
@@ -141,9 +169,15 @@ class Samples:
         new = (ts, ex, ey, speed, phase, h_min, volts, power)
         if self.done is None:
             return new
-        return tuple(
-            np.concatenate([old, fresh]) for old, fresh in zip(self.done, new, strict=True)
-        )
+        done = self.done
+        if self.resumed_power and len(self.power_t) > 1:
+            # The stopped run's samples after its last evaluation held that value: they
+            # now lie between it and the next one.
+            old_t, old_power = done[0], done[7].copy()
+            after = old_t > self.power_t[0]
+            old_power[after] = np.interp(old_t[after], self.power_t, self.power)
+            done = (*done[:7], old_power)
+        return tuple(np.concatenate([old, fresh]) for old, fresh in zip(done, new, strict=True))
 
 
 def progress_bar(

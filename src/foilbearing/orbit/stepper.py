@@ -116,6 +116,7 @@ def run(
     checkpoint: Callable[[OrbitResult], None] | None = None,
     checkpoint_every: float = 30.0,
     interrupted: Callable[[], bool] = lambda: False,
+    counts: tuple[int, int, int] = (0, 0, 0),
 ) -> OrbitResult:
     """Integrate ``problem`` from the state ``st`` to its end, a contact, a stop or Ctrl-C.
 
@@ -137,6 +138,9 @@ def run(
     interrupted
         Read before each step: True ends the run as interrupted (Ctrl-C held by
         :func:`interrupt_at_step_boundary`).
+    counts
+        Steps, factorisations and Newton iterations before ``st`` (a resumed run's),
+        so that the result's counts are the whole run's.
     """
     t_end = problem.t_end if stop.stop_time is None else min(stop.stop_time, problem.t_end)
     clock = time.perf_counter()
@@ -158,7 +162,7 @@ def run(
     work = (np.empty(size), np.empty(size))  # Newton residual and update buffers
     guess, hist, weights = np.empty(size), np.empty(size), np.empty(size)
     atol = problem.atol
-    counters = [0, 0, 0]  # steps, factorizations, Newton iterations
+    counters = list(counts)  # steps, factorizations, Newton iterations, from the run's start
     # Lift-off boundary coordinate at the last three accepted steps, newest first, of
     # which the first `known` are known; the branches predicted from them for a step.
     cells = problem.lift_slack.shape[0]

@@ -248,7 +248,7 @@ class OrbitSimulation:
                 factorizations=stats.factorizations,
                 newton_iterations=stats.newton_iterations,
                 contact=stats.contact,
-                checkpoint=stats.checkpoint,
+                checkpoint={**stats.checkpoint, **out.checkpoint()},
             )
 
         return StepperProblem(
