@@ -8,7 +8,9 @@ alone. Every dimensional value is written as an exact SI quantity string, the
 shortest decimal that reads back to the same float and its SI unit
 (``"0.0001 m"``), which the reader converts by a factor of 1: the round trip is
 exact. :func:`case_digest` is the sha256 of the tables' canonical JSON, the
-record's fingerprint.
+record's fingerprint; :class:`CaseRecord` is what a run stores: the tables, their
+digest, and the digest of its case file's own case, by which a resumed run tells that
+the file has changed since (:meth:`CaseRecord.changes`).
 
 The fields are written from the dataclasses' own fields against the table
 :data:`FIELD_UNITS` of each one's SI unit: a field added to a class of
@@ -20,7 +22,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import fields
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 from foilbearing.case.model import (
@@ -37,7 +39,7 @@ from foilbearing.case.model import (
     Shims,
 )
 
-__all__ = ["FIELD_UNITS", "case_digest", "case_to_dict"]
+__all__ = ["FIELD_UNITS", "CaseRecord", "case_digest", "case_to_dict", "file_digest"]
 
 #: Per class of the case, each field's SI unit as the case files write it: a unit string,
 #: ``""`` for a plain number (dimensionless, an integer, a word), or ``"table"`` for a
@@ -165,3 +167,102 @@ def _quantity(value: Any, unit: str) -> Any:
     if not unit or isinstance(value, str | bool | int):
         return value
     return f"{float(value)!r} {unit}"
+
+
+def file_digest(path: str | None) -> str | None:
+    """:func:`case_digest` of the case file at ``path`` as it reads now (None: the built-in
+    case), or None when it does not read as a case (gone, broken)."""
+    from foilbearing.case.toml import load_case
+    from foilbearing.errors import InputError
+
+    try:
+        return case_digest(case_to_dict(load_case(path)))
+    except InputError:
+        return None
+
+
+@dataclass(frozen=True)
+class CaseRecord:
+    """A run's case as data: what a resumed run is rebuilt from, with no file needed.
+
+    Attributes
+    ----------
+    tables
+        The case's tables (:func:`case_to_dict`), the run's overrides applied.
+    file_sha256
+        :func:`case_digest` of the case file's own case (as read, before any override)
+        when the run started; None when there was no file to read.
+    """
+
+    tables: dict[str, Any] = field(hash=False)
+    file_sha256: str | None = None
+
+    @classmethod
+    def of(cls, case: Case, path: str | None) -> CaseRecord:
+        """The record of ``case``, which was made from the case file ``path`` (None: the
+        built-in case), read now for its digest."""
+        return cls(case_to_dict(case), file_digest(path))
+
+    @property
+    def sha256(self) -> str:
+        """:func:`case_digest` of the tables."""
+        return case_digest(self.tables)
+
+    def case(self, source: str | None) -> Case:
+        """The recorded case, its ``source`` set to ``source``."""
+        from foilbearing.case.toml import case_from_dict
+
+        return case_from_dict(self.tables, source=source)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data: the tables, their sha256 and the file's."""
+        return {"tables": self.tables, "sha256": self.sha256, "file_sha256": self.file_sha256}
+
+    @classmethod
+    def from_dict(cls, data: Any) -> CaseRecord:
+        """The record of :meth:`to_dict`'s data, its tables checked against their sha256.
+
+        Raises
+        ------
+        ValueError
+            Not such data, or tables that do not match their sha256 (altered or damaged).
+        """
+        if not isinstance(data, dict) or not isinstance(data.get("tables"), dict):
+            raise ValueError("the recorded case is not a table of tables")
+        record = cls(data["tables"], data.get("file_sha256"))
+        if record.sha256 != data.get("sha256"):
+            raise ValueError(
+                "the recorded case does not match its sha256 (the record was altered or damaged)"
+            )
+        return record
+
+    def changes(self, path: str | None) -> str | None:
+        """One line saying how the case file at ``path`` has changed since the run started,
+        or None: unchanged, gone, unreadable, or no digest recorded to compare with.
+
+        The fields named are those where the file's case now differs from the recorded
+        case (the run's overrides, such as an actuator reading, show there too).
+        """
+        now = file_digest(path)
+        if self.file_sha256 is None or now is None or now == self.file_sha256:
+            return None
+        from foilbearing.case.toml import load_case
+
+        diffs = _differences(self.tables, case_to_dict(load_case(path)))
+        shown = "; ".join(f"{k}: {a} recorded, {b} now" for k, a, b in diffs[:3])
+        more = f" and {len(diffs) - 3} more" if len(diffs) > 3 else ""
+        name = "the built-in case" if path is None else f"case file {path}"
+        return (
+            f"{name} has changed since the run started ({shown}{more}); the run goes on "
+            "with the case it recorded (start a new run to use the new case)"
+        )
+
+
+def _differences(a: Any, b: Any, prefix: str = "") -> list[tuple[str, Any, Any]]:
+    """(field, value in a, value in b) of every leaf where two tables differ."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        out: list[tuple[str, Any, Any]] = []
+        for key in sorted(set(a) | set(b)):
+            out += _differences(a.get(key), b.get(key), f"{prefix}{key}.")
+        return out
+    return [] if a == b else [(prefix.rstrip("."), a, b)]
