@@ -139,6 +139,8 @@ def _result(ds: Any, case: Any, spec: RunSpec) -> Any:
         if k.startswith("checkpoint_")
     }
     t0, t_end = spec.speed_times[0], spec.speed_times[-1]
+    if "t" not in checkpoint:
+        raise ValueError("checkpoint_t is missing")
     if checkpoint["t"].size != 1 or not t0 <= float(checkpoint["t"][0]) <= t_end:
         raise ValueError(
             f"checkpoint_t = {checkpoint['t'].tolist()}: expected one time within the run's "

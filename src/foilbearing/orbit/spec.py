@@ -336,11 +336,11 @@ class RunSpec:
         """
         if not isinstance(data, dict):
             raise InputError(f"run specification: expected a JSON object, got {data!r:.40}")
-        if data.get("format") not in _FORMATS:
-            if "format" in data:
-                raise InputError(f"run specification of an unknown format {data['format']!r}")
-            return cls.from_cli_strings(data)
+        if "format" in data and data["format"] not in _FORMATS:
+            raise InputError(f"run specification of an unknown format {data['format']!r:.60}")
         try:
+            if "format" not in data:  # an earlier version's command-line strings
+                return cls.from_cli_strings(data)
             return cls._from_dict(data)
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             what = f"key {exc} missing" if isinstance(exc, KeyError) else str(exc)
@@ -380,7 +380,7 @@ class RunSpec:
             stop,
             data.get("preload_response"),
             data.get("actuator_dynamics"),
-            recorded,
+            recorded_case=recorded,
         )
 
     def to_json(self) -> str:
