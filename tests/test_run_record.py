@@ -263,3 +263,23 @@ def test_a_file_of_an_earlier_version_without_its_case_file_says_why(
     back, spec = load_orbit(path)
     assert spec.recorded_case is None and back.case == load_case(tmp_path / "gone.toml")
     assert default_case().title == back.case.title
+
+
+def test_simulate_refuses_to_resume_a_run_on_another_case() -> None:
+    """Through the API, a run resumed with a case other than its own (another clearance,
+    another actuator reading) is refused in one line naming the fields; before, only a
+    grid of another size was caught, and the run went on with the new case."""
+    from dataclasses import replace
+
+    from foilbearing.case import Grid
+    from foilbearing.errors import InputError
+
+    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    profile = constant_speed(12000 * RPM, 0.004)
+    part = simulate(case, profile, stop_time=0.001)
+    wider = replace(case, bearing=replace(case.bearing, clearance=90e-6))
+    with pytest.raises(InputError, match=r"bearing\.clearance: 9\.99.*e-05 m then, 9e-05 m now"):
+        simulate(wider, profile, resume=part)
+    with pytest.raises(InputError, match=r"actuators\.dynamics: compliant then, held now"):
+        simulate(case.with_actuator_reading(dynamics="held"), profile, resume=part)
+    assert simulate(case, profile, resume=part).status == "completed"

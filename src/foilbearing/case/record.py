@@ -39,7 +39,14 @@ from foilbearing.case.model import (
     Shims,
 )
 
-__all__ = ["FIELD_UNITS", "CaseRecord", "case_digest", "case_to_dict", "file_digest"]
+__all__ = [
+    "FIELD_UNITS",
+    "CaseRecord",
+    "case_digest",
+    "case_to_dict",
+    "file_digest",
+    "table_differences",
+]
 
 #: Per class of the case, each field's SI unit as the case files write it: a unit string,
 #: ``""`` for a plain number (dimensionless, an integer, a word), or ``"table"`` for a
@@ -248,7 +255,7 @@ class CaseRecord:
             return None
         from foilbearing.case.toml import load_case
 
-        diffs = _differences(self.tables, case_to_dict(load_case(path)))
+        diffs = table_differences(self.tables, case_to_dict(load_case(path)))
         shown = "; ".join(f"{k}: {a} recorded, {b} now" for k, a, b in diffs[:3])
         more = f" and {len(diffs) - 3} more" if len(diffs) > 3 else ""
         name = "the built-in case" if path is None else f"case file {path}"
@@ -258,11 +265,12 @@ class CaseRecord:
         )
 
 
-def _differences(a: Any, b: Any, prefix: str = "") -> list[tuple[str, Any, Any]]:
-    """(field, value in a, value in b) of every leaf where two tables differ."""
+def table_differences(a: Any, b: Any, prefix: str = "") -> list[tuple[str, Any, Any]]:
+    """(field, value in a, value in b) of every leaf where two cases' tables differ, the
+    field dotted as in a case file (``"bearing.clearance"``)."""
     if isinstance(a, dict) and isinstance(b, dict):
         out: list[tuple[str, Any, Any]] = []
         for key in sorted(set(a) | set(b)):
-            out += _differences(a.get(key), b.get(key), f"{prefix}{key}.")
+            out += table_differences(a.get(key), b.get(key), f"{prefix}{key}.")
         return out
     return [] if a == b else [(prefix.rstrip("."), a, b)]
