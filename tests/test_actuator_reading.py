@@ -380,6 +380,8 @@ def test_the_study_runs_the_protocol_under_the_papers_reading(tmp_path) -> None:
     own = simulate(replace(case, rotor=held.rotor), profile, stop_time=0.03)
     zero, _spec = load_orbit(tmp_path / "orbit_lobe-held_0V_1gmm.nc")
     np.testing.assert_array_equal(zero.e_x, direct.e_x)
+    act = zero.case.actuators  # the file records the reading: resumed, it runs under it
+    assert act is not None and (act.preload_response, act.dynamics) == ("lobe", "held")
     assert np.max(np.abs(own.e_x - direct.e_x)) > 1e-3 * np.ptp(direct.e_x)
 
     html = _orbits(got, {"actuator_reading": "local + compliant"})

@@ -47,7 +47,8 @@ def test_orbit_file_is_si_and_loads_back_to_the_same_run(stopped_run, tmp_path) 
     assert ds.time.attrs["units"] == "s"
     assert ds.attrs["clearance_m"] == run.case.bearing.clearance
     back, spec_back = load_orbit(path)
-    assert spec_back == spec
+    assert spec_back == spec.with_case(run.case)  # the case the run ran on, recorded
+    assert back.case == run.case
     for name in ("time", "e_x", "e_y", "speed", "phase", "min_film", "voltages", "power_loss"):
         np.testing.assert_array_equal(getattr(back, name), getattr(run, name), err_msg=name)
     assert back.checkpoint.keys() == run.checkpoint.keys()

@@ -43,7 +43,7 @@ def _specs() -> list[RunSpec]:
 @pytest.mark.parametrize("spec", _specs(), ids=["none", "ramp", "controller", "schedule"])
 def test_a_run_spec_round_trips_through_json(spec: RunSpec) -> None:
     text = spec.to_json()
-    assert json.loads(text)["format"] == "foilbearing.orbit.RunSpec/1"
+    assert json.loads(text)["format"] == "foilbearing.orbit.RunSpec/2"
     assert RunSpec.from_json(text) == spec
     assert RunSpec.from_dict(json.loads(text)) == spec
 
@@ -57,7 +57,7 @@ def test_the_papers_protocol_from_cli_strings_equals_it_from_objects() -> None:
     case = default_case()
     profile = linear_ramp(3000 * RPM, 90000 * RPM, 500.0)
     program = voltage_ramp(6.0, 6.5, 150.0, initial=np.asarray(case.actuators.voltages))
-    from_objects = RunSpec.of(profile, program)
+    from_objects = RunSpec.of(profile, program).with_case(case)
     assert from_cli == from_objects
     assert from_cli.voltage == PiecewiseVoltages((6.0, 6.5), ((0.0,) * 3, (150.0,) * 3))
     built = from_cli.build()

@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from foilbearing.case import Case
+from foilbearing.case.record import case_to_dict, table_differences
 from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError
 from foilbearing.orbit.result import OrbitResult, RunStatus
@@ -61,7 +62,8 @@ def simulate(
     stop_time
         End the run at this simulated time (default: the end of the profile).
     resume
-        A stopped run to continue from its checkpoint (same case and programs).
+        A stopped run to continue from its checkpoint, on the case it ran on (any other
+        is refused, naming the fields that differ) and with the same programs.
     checkpoint
         Called with the partial result every ``checkpoint_every`` seconds of
         wall time (e.g. to save it), so a crash loses little.
@@ -83,6 +85,15 @@ def simulate(
                 f"{order}, lift-off smoothing {g.lift_off_smoothing:g}; this case's "
                 f"orbit runs on {here.n_theta} x {here.n_z} of order {here.axial_order}, "
                 f"smoothing {here.lift_off_smoothing:g}: resume it with the case it started with",
+                source=case.source,
+            )
+        diffs = table_differences(case_to_dict(resume.case.orbit_case()), case_to_dict(sim.case))
+        if diffs:
+            shown = "; ".join(f"{k}: {a} then, {b} now" for k, a, b in diffs[:3])
+            more = f" and {len(diffs) - 3} more" if len(diffs) > 3 else ""
+            raise InputError(
+                f"the run to resume ran on another case ({shown}{more}): resume it with the "
+                "case it started with",
                 source=case.source,
             )
         if voltage is not None:

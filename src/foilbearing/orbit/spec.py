@@ -1,9 +1,12 @@
 """The specification of an orbit run as plain data (SI): what a file stores to be resumed.
 
 A :class:`RunSpec` holds everything :func:`foilbearing.orbit.simulate` needs
-besides the checkpoint: the case file (and the overrides applied to it), the
-speed profile's breakpoints, the voltage program as data, the integrator
-settings and the stop time. It round-trips through JSON
+besides the checkpoint: the case itself as data (:class:`~foilbearing.case.record.CaseRecord`,
+every field with the overrides applied, and a sha256 of it), the case file it came from
+(and the overrides), the speed profile's breakpoints, the voltage program as data, the
+integrator settings and the stop time. A run is rebuilt from the recorded case alone;
+specifications of earlier versions, which held only the case file's path, rebuild the
+case from the file. It round-trips through JSON
 (:meth:`RunSpec.to_json`, :meth:`RunSpec.from_json`) and is stored in the
 orbit's NetCDF file (:mod:`foilbearing.orbit.netcdf`); :meth:`RunSpec.build`
 makes the objects again. The command line's strings are parsed into one by
@@ -19,6 +22,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
+from foilbearing.case.record import CaseRecord
 from foilbearing.control import SubsyncController
 from foilbearing.errors import InputError
 from foilbearing.orbit.settings import OrbitSettings
@@ -38,8 +42,9 @@ __all__ = [
 ]
 
 #: The ``format`` key of a stored specification (the dictionaries of earlier versions
-#: held the command line's strings and no such key).
-FORMAT = "foilbearing.orbit.RunSpec/1"
+#: held the command line's strings and no such key; /1 held the case file's path only).
+FORMAT = "foilbearing.orbit.RunSpec/2"
+_FORMATS = ("foilbearing.orbit.RunSpec/1", FORMAT)
 
 #: The command line's defaults, for the keys an earlier version's dictionary may lack.
 _CLI_DEFAULTS: dict[str, Any] = {
@@ -203,6 +208,9 @@ class RunSpec:
         Integrator and output settings.
     stop_time
         End the run at this simulated time, s (None: the end of the profile).
+    recorded_case
+        The case the run runs on, as data (:meth:`with_case`): the run is rebuilt from it,
+        not from the file. None in specifications of earlier versions: from the file.
     """
 
     speed_times: tuple[float, ...]
@@ -216,6 +224,7 @@ class RunSpec:
     preload_response: str | None = None
     actuator_dynamics: str | None = None
     load: float | None = None
+    recorded_case: CaseRecord | None = None
 
     @classmethod
     def of(
@@ -263,9 +272,21 @@ class RunSpec:
             None if load is None else float(load),
         )
 
+    def with_case(self, case: Case) -> RunSpec:
+        """This specification with ``case`` recorded as the run's (made from :attr:`case`,
+        the file, which is read now for its digest)."""
+        from dataclasses import replace
+
+        return replace(self, recorded_case=CaseRecord.of(case, self.case))
+
     def load_case(self) -> Case:
-        """The case file with the overrides (sub-ambient model, actuator reading, imbalance,
-        load) applied."""
+        """The recorded case; without one (earlier versions), the case file with the
+        overrides (sub-ambient model, actuator reading, imbalance, load) applied."""
+        if self.recorded_case is not None:
+            from foilbearing.case import default_case_path
+
+            source = str(default_case_path()) if self.case is None else self.case
+            return self.recorded_case.case(source)
         return _load_case(
             self.case,
             self.subambient,
@@ -306,16 +327,42 @@ class RunSpec:
             "voltage": voltage,
             "settings": asdict(self.settings),
             "stop_time": self.stop_time,
+            "recorded_case": None if self.recorded_case is None else self.recorded_case.to_dict(),
         }
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> RunSpec:
         """The specification of :meth:`to_dict`'s data, or of an earlier version's
-        dictionary of command-line strings (:meth:`from_cli_strings`)."""
-        if data.get("format") != FORMAT:
-            if "format" in data:
-                raise InputError(f"run specification of an unknown format {data['format']!r}")
-            return cls.from_cli_strings(data)
+        dictionary of command-line strings (:meth:`from_cli_strings`).
+
+        Raises
+        ------
+        InputError
+            One line for data that is not such a specification: a missing or mistyped
+            key, a value that is not a finite number, a recorded case that does not match
+            its sha256, an unknown format or voltage program.
+        """
+        if not isinstance(data, dict):
+            raise InputError(f"run specification: expected a JSON object, got {data!r:.40}")
+        if "format" in data and data["format"] not in _FORMATS:
+            raise InputError(f"run specification of an unknown format {data['format']!r:.60}")
+        try:
+            if "format" not in data:  # an earlier version's command-line strings
+                return cls.from_cli_strings(data)
+            return cls._from_dict(data)
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            what = f"key {exc} missing" if isinstance(exc, KeyError) else str(exc)
+            raise InputError(f"run specification damaged: {what}") from None
+
+    @classmethod
+    def _from_dict(cls, data: dict[str, Any]) -> RunSpec:
+        record = data.get("recorded_case")
+        recorded = None if record is None else CaseRecord.from_dict(record)
+        times = _finite(data["speed_times"], "speed_times")
+        speeds = _finite(data["speeds"], "speeds")
+        stop = data.get("stop_time")
+        if stop is not None:
+            stop = _finite([stop], "stop_time")[0]
         voltage = data.get("voltage")
         program: VoltageSpec | None = None
         if voltage is not None:
@@ -331,17 +378,18 @@ class RunSpec:
             else:
                 raise InputError(f"run specification: unknown voltage program {kind!r}")
         return cls(
-            tuple(float(t) for t in data["speed_times"]),
-            tuple(float(w) for w in data["speeds"]),
+            times,
+            speeds,
             program,
             data.get("case"),
             data.get("subambient"),
             data.get("imbalance"),
             OrbitSettings(**data.get("settings", {})),
-            data.get("stop_time"),
+            stop,
             data.get("preload_response"),
             data.get("actuator_dynamics"),
             data.get("load"),
+            recorded_case=recorded,
         )
 
     def to_json(self) -> str:
@@ -350,8 +398,20 @@ class RunSpec:
 
     @classmethod
     def from_json(cls, text: str) -> RunSpec:
-        """The specification of :meth:`to_json`'s text (or of an earlier version's)."""
-        return cls.from_dict(json.loads(text))
+        """The specification of :meth:`to_json`'s text (or of an earlier version's).
+
+        Raises
+        ------
+        InputError
+            Text that is not JSON (a cut record) or not a specification (:meth:`from_dict`).
+        """
+        try:
+            data = json.loads(text)
+        except (TypeError, ValueError) as exc:
+            raise InputError(
+                f"run specification is not valid JSON (cut or damaged?): {exc}"
+            ) from None
+        return cls.from_dict(data)
 
     @classmethod
     def from_cli_strings(cls, strings: dict[str, Any]) -> RunSpec:
@@ -430,7 +490,7 @@ class RunSpec:
             sample_rate=cli_quantity(spec["sample_rate"], "frequency", "--sample-rate"),
         )
         stop = spec["stop_time"]
-        return cls.of(
+        made = cls.of(
             profile,
             program,
             case=None if spec["case"] is None else str(spec["case"]),
@@ -441,6 +501,7 @@ class RunSpec:
             settings=settings,
             stop_time=None if stop is None else cli_quantity(stop, "time", "--stop-time"),
         )
+        return made.with_case(case_obj)
 
 
 def _load_case(
@@ -466,6 +527,14 @@ def _load_case(
     if load is not None:
         case = case.with_load(load)
     return case
+
+
+def _finite(values: Any, name: str) -> tuple[float, ...]:
+    """``values`` as floats, each finite (ValueError naming ``name`` otherwise)."""
+    out = tuple(float(v) for v in values)
+    if not all(np.isfinite(out)):
+        raise ValueError(f"{name} = {list(out)!r:.60}: expected finite numbers")
+    return out
 
 
 def cli_quantity(text: str, kind: str, option: str) -> float:
