@@ -358,7 +358,10 @@ def test_the_study_stage_runs_each_reading_as_a_dask_sweep(tmp_path) -> None:
     ).with_voltages(150.0)
     for row, reading in zip(out["rows"], READINGS, strict=True):
         direct, _ = whirl_branch_headline(coarse.with_actuator_reading(*reading), scan, 0)
-        assert row["hopf_speed_rpm"] == pytest.approx(direct["hopf_speed_rpm"], rel=1e-6)
+        # A worker rounds differently: each onset is within Brent's tolerance of the root,
+        # 1e-4 of its bracket's upper speed (at most 2500 rpm above it), two within twice it.
+        upper = direct["hopf_speed_rpm"] + 2500.0
+        assert row["hopf_speed_rpm"] == pytest.approx(direct["hopf_speed_rpm"], abs=2e-4 * upper)
         assert row["bifurcation_type"] == direct["bifurcation_type"]
     assert all(Path(f).exists() for f in out["sweep_files"] + out["figures"])
     html = _TABLES["bifurcation"](out, {})
