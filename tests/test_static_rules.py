@@ -529,6 +529,7 @@ def test_static_dataset_layout_and_labels(equilibrium) -> None:
         "z": (("z",), "m", "z from the mid-plane"),
         "axis": (("axis",), None, "X along the load, Y 90° after it"),
         "speed": ((), "rad/s", "rotor speed ω"),
+        "load": ((), "N", "static load W along +X"),
         "bearing_number": ((), "1", "bearing number Λ"),
         "eccentricity": ((), "1", "ε₀ = e/C"),
         "eps_X": ((), "1", "journal position ε_X (load direction)"),
@@ -563,6 +564,7 @@ def test_static_headline_keys_and_values(equilibrium) -> None:
     h = st.headline()
     assert list(h) == [
         "speed_rpm",
+        "load_N",
         "voltages_V",
         "bearing",
         "bearing_number",
@@ -586,6 +588,7 @@ def test_static_headline_keys_and_values(equilibrium) -> None:
     assert (h["bearing_number"], h["eccentricity"]) == (st.bearing_number, st.eccentricity)
     assert (h["eps_X"], h["eps_Y"]) == (st.eps_x, st.eps_y)
     assert (h["drag_torque_Nm"], h["power_loss_W"]) == (st.drag_torque, st.power_loss)
+    assert h["load_N"] == st.case.operation.load
     assert (h["iterations"], h["reynolds_residual"]) == (st.iterations, st.residual)
     assert (h["force_residual"], h["message"]) == (st.force_residual, st.message)
 
@@ -602,6 +605,7 @@ def test_coefficient_dataset_layout(equilibrium) -> None:
         "damping": (("frequency", "i", "j"), "N s/m"),
         "frequency_ratio": (("frequency",), "1"),
         "speed": ((), "rad/s"),
+        "load": ((), "N"),
         "eccentricity": ((), "1"),
         "attitude_angle": ((), "rad"),
     }
