@@ -52,7 +52,19 @@ def test_static_equilibrium_converges_at_the_axial_order() -> None:
     case = default_case().with_subambient("retained")
 
     def ecc(n_z: int, order: int) -> float:
-        st = solve_equilibrium(replace(case, grid=Grid(48, n_z, axial_order=order)))
+        st = solve_equilibrium(
+            replace(
+                case,
+                grid=Grid(
+                    48,
+                    n_z,
+                    axial_order=order,
+                    lift_off_smoothing=0.0,
+                    orbit_n_z=None,
+                    orbit_axial_order=None,
+                ),
+            )
+        )
         assert st.converged
         return float(np.hypot(st.eps_x, st.eps_y))
 
@@ -106,7 +118,17 @@ def test_every_reading_on_4_fourth_order_cells_agrees_with_24_second_order(
     base = default_case().with_voltages(150.0).with_actuator_reading(response, dynamics)
     out = []
     for n_z, order in ((4, 4), (24, 2)):
-        case = replace(base, grid=Grid(48, n_z, axial_order=order))
+        case = replace(
+            base,
+            grid=Grid(
+                48,
+                n_z,
+                axial_order=order,
+                lift_off_smoothing=0.0,
+                orbit_n_z=None,
+                orbit_axial_order=None,
+            ),
+        )
         st = solve_equilibrium(case)
         assert st.converged
         mode = whirl_mode(st, case.rotor.mass)
