@@ -23,6 +23,7 @@ from foilbearing.cli.common import (
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
+from foilbearing.output.summary import grid_line, grid_used
 
 if TYPE_CHECKING:
     from foilbearing.case import Case
@@ -93,7 +94,7 @@ def cmd_static(args: argparse.Namespace) -> int:
     result = _static_point(case, speeds[0], args.eccentricity)
     if args.out is not None:
         write_with(args.out, lambda tmp: result.to_dataset().to_netcdf(tmp))
-    out = result.headline()
+    out = result.headline() | grid_used(case)
     if args.plot is not None:
         from foilbearing.io import save_figure
         from foilbearing.output.plots.static import plot_point
@@ -103,6 +104,7 @@ def cmd_static(args: argparse.Namespace) -> int:
         emit(out)
     else:
         _print_static(out)
+        print(f"  {grid_line(case)}")
     return 0 if result.converged else 3
 
 
@@ -170,7 +172,7 @@ def _static_sweep_cli(
     ds = static_sweep(case, speeds, voltages, bearings=bearings, progress=progress)
     if args.out is not None:
         write_with(args.out, lambda tmp: ds.to_netcdf(tmp))
-    out: dict[str, Any] = {"points": sweep_points(ds)}
+    out: dict[str, Any] = {"points": sweep_points(ds)} | grid_used(case)
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_static_figures(ds, args.plot)]
     if args.json:
@@ -184,6 +186,7 @@ def _static_sweep_cli(
                 + ", ".join(f"{x:.2f}" for x in point["preload_um"])
                 + " µm"
             )
+        print(f"  {grid_line(case)}")
     return 0 if all(p["converged"] for p in out["points"]) else 3
 
 
@@ -201,7 +204,7 @@ def _speed_sweep_cli(case: Case, speeds: list[float], args: argparse.Namespace) 
         "bearing": case.kind,
         "load_N": case.operation.load,
         "points": speed_sweep_points(ds),
-    }
+    } | grid_used(case)
     if args.plot is not None:
         from foilbearing.io import save_figure
         from foilbearing.output.plots.bearing import plot_against
@@ -220,4 +223,5 @@ def _speed_sweep_cli(case: Case, speeds: list[float], args: argparse.Namespace) 
                 f"  φ={p['attitude_deg']:6.2f}°  h_min={p['min_film_um']:6.2f} µm"
                 f"  power loss {p['power_loss_W']:.4g} W"
             )
+        print(f"  {grid_line(case)}")
     return 0 if all(p["converged"] for p in out["points"]) else 3
