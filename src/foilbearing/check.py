@@ -147,7 +147,7 @@ def error_estimate(values: Sequence[float | None]) -> dict[str, Any]:
         )
         if reliable:
             assert order is not None
-            ref = f3 + d23 / (2.0**order - 1.0)
+            ref = f3 - d23 / (2.0**order - 1.0)  # f3 + (f3 - f2) / (2^p - 1)
             out = {"method": "Richardson", "reference": ref}
         else:  # the worst distance to a finer value, referred to the finest
             far = max(f2, f3, key=lambda x: abs(f1 - x))
@@ -175,6 +175,8 @@ class GridCheck:
         (n_theta, n_z) of each level, the case's first.
     axial_order, lift_off_smoothing
         Held on every level.
+    lift_off_law
+        "smoothed edge", "sharp edge" or "none" (:func:`foilbearing.output.summary.grid_used`).
     values
         ``{key: [value per level]}`` in the units the key names (:data:`READOUTS`).
     wall_times
@@ -185,6 +187,7 @@ class GridCheck:
     grids: tuple[tuple[int, int], ...]
     axial_order: int
     lift_off_smoothing: float
+    lift_off_law: str
     values: dict[str, list[float | None]]
     wall_times: tuple[float, ...]
 
@@ -200,6 +203,7 @@ class GridCheck:
             "grids": [list(g) for g in self.grids],
             "axial_order": self.axial_order,
             "lift_off_smoothing": self.lift_off_smoothing,
+            "lift_off_law": self.lift_off_law,
             "wall_time_s": list(self.wall_times),
             "readouts": {
                 key: {"values": self.values[key]} | est[key]
@@ -264,6 +268,8 @@ def grid_check(
     """
     import time
 
+    from foilbearing.output.summary import grid_used
+
     if levels not in (2, 3):
         raise InputError(f"--levels {levels}: allowed 2 or 3")
     g = case.grid
@@ -290,6 +296,7 @@ def grid_check(
         tuple(grids),
         g.axial_order,
         g.lift_off_smoothing,
+        grid_used(case)["lift_off_law"],
         values,
         tuple(times),
     )
