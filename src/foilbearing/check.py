@@ -78,8 +78,9 @@ def _readouts(
     if not st.converged:
         grid = f"{case.grid.n_theta} × {case.grid.n_z}"
         raise SolverError(
-            f"the equilibrium on {grid} did not converge ({st.message}); "
-            "try a coarser --levels or a lighter load"
+            f"check: the equilibrium on {grid} did not converge ({st.message}); "
+            "try `foilbearing static` on the case (a load beyond the film's capacity fails "
+            "there too), or fewer --levels"
         )
     fc = force_coefficients(st, [st.speed])
     k, c = fc.K[0], fc.C[0]
@@ -98,7 +99,8 @@ def _readouts(
     if onset_speeds is not None:
         on = None
         if near_onset is not None:
-            bracket = [near_onset * (1 - ONSET_BRACKET), near_onset * (1 + ONSET_BRACKET)]
+            top = min(near_onset * (1 + ONSET_BRACKET), case.operation.max_speed)
+            bracket = [near_onset * (1 - ONSET_BRACKET), top]
             on = onset_speed(case, bracket, rel_tol=1e-6)
             if on.onset_speed is None or on.speeds.size < 2:  # not inside: the full scan
                 on = None
@@ -106,10 +108,11 @@ def _readouts(
             on = onset_speed(case, onset_speeds, rel_tol=1e-6)
         si["onset_speed_rpm"] = on.onset_speed
         si["whirl_frequency_Hz"] = on.whirl_frequency
-    return {
-        key: None if si[key] is None else float(si[key]) * factor  # type: ignore[arg-type]
-        for key, _, factor in READOUTS
-    }
+    out: dict[str, float | None] = {}
+    for key, _, factor in READOUTS:
+        value = si[key]
+        out[key] = None if value is None else value * factor
+    return out
 
 
 def error_estimate(values: Sequence[float | None]) -> dict[str, Any]:
