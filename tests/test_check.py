@@ -14,7 +14,7 @@ import pytest
 import tomlkit
 
 from foilbearing.case import load_case
-from foilbearing.check import error_estimate, grid_check
+from foilbearing.check import READOUTS, GridCheck, error_estimate, grid_check
 from foilbearing.cli.main import main
 from foilbearing.constants import RPM
 from foilbearing.stability import onset_speed
@@ -86,6 +86,13 @@ def test_oscillating_differences_are_said_to_give_no_order() -> None:
     assert two["method"] == "difference to the x2 grid"
     assert two["relative_error"] == pytest.approx(-0.4 / 10.4)
     assert error_estimate([None, 10.0])["error"] is None  # no onset on one grid
+    values = {key: [None, None, None] for key, _, _ in READOUTS}
+    values["eccentricity"] = [0.5, 0.52, 0.51]
+    values["drag_torque_Nm"] = [1.0, 1.04, 1.05]
+    check = GridCheck("t", ((24, 4), (48, 8), (96, 16)), 2, 0.1, "smoothed edge", values, (0,) * 3)
+    rows = {line.split()[0]: line for line in check.table().splitlines()[1:]}
+    assert "order unreliable" in rows["eccentricity"] and "Richardson, p = 2.00" in rows["drag"]
+    assert "onset" not in check.table()  # a readout with no value has no row
 
 
 def test_check_cli_json_and_one_line_errors(tmp_path: Path, capsys) -> None:
