@@ -86,15 +86,21 @@ def test_order_2_grid_is_the_default_and_order_4_needs_3_cells() -> None:
 
 def test_axial_order_fields_in_the_case_file_with_one_line_errors() -> None:
     """``[grid] axial_order`` sets the static and linear analyses' order,
-    ``orbit_axial_order`` the orbit's (default: the same); the orbit's case carries it."""
+    ``orbit_axial_order`` the orbit's (default 4 on n_z = 4, the built-in case's); the
+    orbit's case carries it."""
     with default_case_path().open("rb") as fh:
         data = tomllib.load(fh)
     case = case_from_dict(data | {"grid": {"orbit_n_z": 4, "orbit_axial_order": 4}})
     assert case.grid.axial_order == 2 and case.grid.orbit_order == 4
-    assert case.grid.orbit_is_own and case.grid.orbit_label == "96 × 4 (axial order 4)"
+    assert (
+        case.grid.orbit_is_own
+        and case.grid.orbit_label == "96 × 4 (axial order 4, lift-off smoothing 0.1)"
+    )
     orbit = case.orbit_case().grid
     assert (orbit.n_theta, orbit.n_z, orbit.axial_order) == (96, 4, 4)
-    same = case_from_dict(data | {"grid": {"axial_order": 4}})
+    default = case_from_dict(data | {"grid": {}}).grid
+    assert (default.axial_order, default.orbit_order, default.orbit_shape) == (2, 4, (96, 4))
+    same = case_from_dict(data | {"grid": {"axial_order": 4, "orbit_n_z": 12}})
     assert same.grid.orbit_order == 4 and not same.grid.orbit_is_own
     with pytest.raises(InputError, match=r"grid\.axial_order = 3: expected 2 or 4") as err:
         case_from_dict(data | {"grid": {"axial_order": 3}})
