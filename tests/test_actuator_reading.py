@@ -31,7 +31,15 @@ def reading_case(response: str, dynamics: str, volts: float = 150.0, grid=(48, 6
     case = default_case().with_voltages(volts).with_actuator_reading(response, dynamics)
     assert case.foil is not None
     return replace(
-        case, foil=replace(case.foil, loss_factor=0.0), grid=Grid(n_theta=grid[0], n_z=grid[1])
+        case,
+        foil=replace(case.foil, loss_factor=0.0),
+        grid=Grid(
+            n_theta=grid[0],
+            n_z=grid[1],
+            lift_off_smoothing=0.0,
+            orbit_n_z=None,
+            orbit_axial_order=None,
+        ),
     )
 
 
@@ -182,7 +190,13 @@ def test_the_orbit_refuses_held_stingers_under_a_controller() -> None:
 def orbit_case(response: str, dynamics: str, volts: float = 150.0, imbalance: float = 0.0):
     """The default case under a reading on the 32 × 4 grid, deterministic (no disturbance)."""
     case = default_case().with_voltages(volts).with_actuator_reading(response, dynamics)
-    case = replace(case, grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    case = replace(
+        case,
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+        disturbance=None,
+    )
     return replace(case, rotor=replace(case.rotor, imbalance=imbalance))
 
 
@@ -365,7 +379,13 @@ def test_the_study_runs_the_protocol_under_the_papers_reading(tmp_path) -> None:
     from foilbearing.paper import orbit_comparison
     from foilbearing.study.paper import paper_reading_orbits
 
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+        disturbance=None,
+    )
     got = paper_reading_orbits(case, tmp_path, lambda line: None, stop_time=0.03)
     runs = got["runs"]
     assert [r["voltage_V"] for r in runs] == [0.0, 50.0, 100.0, 150.0]

@@ -50,7 +50,12 @@ def test_the_api_quick_start_carries_the_load() -> None:
 
     from foilbearing.case import Grid
 
-    case = replace(fb.default_case().with_voltages(150.0), grid=Grid(n_theta=32, n_z=4))
+    case = replace(
+        fb.default_case().with_voltages(150.0),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
     st = fb.solve_equilibrium(case, speed=50_000 * fb.RPM)
     assert st.converged
     fx, fy = st.force  # on the journal, N; the load W acts along +X: F + W = 0

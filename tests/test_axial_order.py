@@ -52,7 +52,19 @@ def test_static_equilibrium_converges_at_the_axial_order() -> None:
     case = default_case().with_subambient("retained")
 
     def ecc(n_z: int, order: int) -> float:
-        st = solve_equilibrium(replace(case, grid=Grid(48, n_z, axial_order=order)))
+        st = solve_equilibrium(
+            replace(
+                case,
+                grid=Grid(
+                    48,
+                    n_z,
+                    axial_order=order,
+                    lift_off_smoothing=0.0,
+                    orbit_n_z=None,
+                    orbit_axial_order=None,
+                ),
+            )
+        )
         assert st.converged
         return float(np.hypot(st.eps_x, st.eps_y))
 
@@ -74,15 +86,21 @@ def test_order_2_grid_is_the_default_and_order_4_needs_3_cells() -> None:
 
 def test_axial_order_fields_in_the_case_file_with_one_line_errors() -> None:
     """``[grid] axial_order`` sets the static and linear analyses' order,
-    ``orbit_axial_order`` the orbit's (default: the same); the orbit's case carries it."""
+    ``orbit_axial_order`` the orbit's (default 4 on n_z = 4, the built-in case's); the
+    orbit's case carries it."""
     with default_case_path().open("rb") as fh:
         data = tomllib.load(fh)
     case = case_from_dict(data | {"grid": {"orbit_n_z": 4, "orbit_axial_order": 4}})
     assert case.grid.axial_order == 2 and case.grid.orbit_order == 4
-    assert case.grid.orbit_is_own and case.grid.orbit_label == "96 × 4 (axial order 4)"
+    assert (
+        case.grid.orbit_is_own
+        and case.grid.orbit_label == "96 × 4 (axial order 4, lift-off smoothing 0.1)"
+    )
     orbit = case.orbit_case().grid
     assert (orbit.n_theta, orbit.n_z, orbit.axial_order) == (96, 4, 4)
-    same = case_from_dict(data | {"grid": {"axial_order": 4}})
+    default = case_from_dict(data | {"grid": {}}).grid
+    assert (default.axial_order, default.orbit_order, default.orbit_shape) == (2, 4, (96, 4))
+    same = case_from_dict(data | {"grid": {"axial_order": 4, "orbit_n_z": 12}})
     assert same.grid.orbit_order == 4 and not same.grid.orbit_is_own
     with pytest.raises(InputError, match=r"grid\.axial_order = 3: expected 2 or 4") as err:
         case_from_dict(data | {"grid": {"axial_order": 3}})
@@ -106,7 +124,17 @@ def test_every_reading_on_4_fourth_order_cells_agrees_with_24_second_order(
     base = default_case().with_voltages(150.0).with_actuator_reading(response, dynamics)
     out = []
     for n_z, order in ((4, 4), (24, 2)):
-        case = replace(base, grid=Grid(48, n_z, axial_order=order))
+        case = replace(
+            base,
+            grid=Grid(
+                48,
+                n_z,
+                axial_order=order,
+                lift_off_smoothing=0.0,
+                orbit_n_z=None,
+                orbit_axial_order=None,
+            ),
+        )
         st = solve_equilibrium(case)
         assert st.converged
         mode = whirl_mode(st, case.rotor.mass)

@@ -211,7 +211,12 @@ def test_the_bearing_whirl_branch_from_its_linear_onset() -> None:
     from foilbearing.case import Grid, default_case
 
     rpm = np.pi / 30.0
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4)).with_subambient("retained")
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    ).with_subambient("retained")
     scan = [r * rpm for r in range(5000, 30001, 2500)]
     wb = whirl_branch(case, scan=scan, steps=2, steps_per_rev=48)
     head = wb.headline()
@@ -250,7 +255,12 @@ def test_under_lift_off_the_0V_onset_is_subcritical_as_transients_confirm() -> N
     from foilbearing.case import Grid, default_case
 
     rpm = np.pi / 30.0
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4))
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
     wb = whirl_branch(case, scan=[r * rpm for r in range(40000, 50001, 2500)], steps=0)
     head = wb.headline()
     assert head["bifurcation_type"] == "subcritical"
@@ -282,7 +292,12 @@ def test_an_iterate_past_the_case_speeds_has_no_flow_and_ends_its_newton() -> No
     from foilbearing.bifurcation.bearing import bearing_flow
     from foilbearing.case import Grid, default_case
 
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4))
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
     flow, parts = bearing_flow(case, 2 * np.pi * 60.0, 1e-4)
     top = case.operation.max_speed
     y = np.array(parts.equilibrium(0.3 * top))
@@ -354,7 +369,15 @@ def test_the_study_stage_runs_each_reading_as_a_dask_sweep(tmp_path) -> None:
     scan = list(np.arange(start, stop + 0.5 * step, step))
     g = case.grid
     coarse = replace(
-        case, grid=Grid(32, 4, axial_order=g.orbit_order, lift_off_smoothing=g.lift_off_smoothing)
+        case,
+        grid=Grid(
+            32,
+            4,
+            axial_order=g.orbit_order,
+            lift_off_smoothing=g.lift_off_smoothing,
+            orbit_n_z=None,
+            orbit_axial_order=None,
+        ),
     ).with_voltages(150.0)
     for row, reading in zip(out["rows"], READINGS, strict=True):
         direct, _ = whirl_branch_headline(coarse.with_actuator_reading(*reading), scan, 0)

@@ -26,7 +26,12 @@ RPM = math.pi / 30.0
 def _case(volts: float, subambient: str = "lift-off", **grid: int):
     """The default case under the sharp lift-off law (κ = 0), on its grid or ``grid``."""
     case = default_case().with_voltages(volts).with_subambient(subambient)
-    return replace(case, grid=Grid(**grid) if grid else replace(case.grid, lift_off_smoothing=0.0))
+    return replace(
+        case,
+        grid=Grid(**grid, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None)
+        if grid
+        else replace(case.grid, lift_off_smoothing=0.0),
+    )
 
 
 def test_static_film_satisfies_the_complementarity_conditions() -> None:

@@ -31,7 +31,14 @@ RPM = math.pi / 30.0
 
 
 def _case(volts: float, kappa: float, n_theta: int = 96, n_z: int = 4, order: int = 4):
-    grid = Grid(n_theta, n_z, axial_order=order, lift_off_smoothing=kappa)
+    grid = Grid(
+        n_theta,
+        n_z,
+        axial_order=order,
+        lift_off_smoothing=kappa,
+        orbit_n_z=None,
+        orbit_axial_order=None,
+    )
     return replace(default_case().with_voltages(volts), grid=grid)
 
 

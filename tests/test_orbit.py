@@ -37,7 +37,13 @@ def coarse(volts: float = 100.0, **rotor):
     tests of the integrator's numerics (free whirls, references, resumes) run the
     deterministic system."""
     case = default_case().with_voltages(volts)
-    case = replace(case, grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    case = replace(
+        case,
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+        disturbance=None,
+    )
     if rotor:
         case = replace(case, rotor=replace(case.rotor, **rotor))
     return case
@@ -168,7 +174,14 @@ def test_free_whirl_matches_the_linear_eigenvalue(
     # decrement 0.50 against 0.48). One discretisation at axial order 4 too (32 × 4), and
     # with the smoothed lift-off edge (κ = 0.2).
     case = coarse(150.0, imbalance=0.0).with_subambient(subambient)
-    grid = Grid(n_theta=32, n_z=4, axial_order=order, lift_off_smoothing=smoothing)
+    grid = Grid(
+        n_theta=32,
+        n_z=4,
+        axial_order=order,
+        lift_off_smoothing=smoothing,
+        orbit_n_z=None,
+        orbit_axial_order=None,
+    )
     case = replace(case, grid=grid)
     assert case.foil is not None
     if loss_factor is None:
@@ -207,7 +220,17 @@ def test_forced_response_to_a_disturbance_tone_matches_the_force_coefficients(
 
     tone = Disturbance(0.3, 150.0, 150.001, seed=3, tones=1)
     case = replace(coarse(volts, imbalance=0.0), disturbance=tone)
-    case = replace(case, grid=Grid(32, 4, axial_order=order, lift_off_smoothing=smoothing))
+    case = replace(
+        case,
+        grid=Grid(
+            32,
+            4,
+            axial_order=order,
+            lift_off_smoothing=smoothing,
+            orbit_n_z=None,
+            orbit_axial_order=None,
+        ),
+    )
     speed, duration = 20e3 * RPM, 0.5
     res = simulate(case, constant_speed(speed, duration))
     force = DisturbanceForce(tone)
@@ -229,7 +252,12 @@ def test_a_disturbance_seeds_the_whirl_whose_growth_does_not_depend_on_newton() 
     # fixed point of the semi-discrete system (to round-off), so nothing seeds a whirl. With
     # the case's 0.01 N disturbance the whirl grows from it to contact at 0.368 s, and a
     # Newton iteration 30-100 times tighter moves that by 0.07 % (measured). Asserted 0.5 %.
-    case = replace(default_case().with_voltages(0.0), grid=Grid(n_theta=48, n_z=6))
+    case = replace(
+        default_case().with_voltages(0.0),
+        grid=Grid(
+            n_theta=48, n_z=6, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
     case = replace(case, rotor=replace(case.rotor, imbalance=0.0))
     quiet = simulate(replace(case, disturbance=None), constant_speed(60e3 * RPM, 0.2))
     c = case.bearing.clearance
@@ -357,7 +385,13 @@ def test_resume_near_contact_follows_the_run() -> None:
     # from its checkpoint once failed here ("time step collapsed") where the uninterrupted
     # run went on. Resumed at two times, it completes and follows the uninterrupted run
     # (measured 0.2-0.3 % of the extent: the last steps before the stop differ).
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)  # its voltages
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+        disturbance=None,
+    )  # its voltages
     prof = constant_speed(12e3 * RPM, 0.06)
     whole = simulate(case, prof)
     for stop in (0.02, 0.03):
@@ -390,7 +424,13 @@ def test_a_resumed_run_keeps_the_controllers_latch_and_voltage() -> None:
     voltages, e_X within 0.5 % of its peak-to-peak (measured 0.06 %). Without the latch the
     fresh controller would start again from 0 V. (Coarse 32 x 4 grid, 20 krpm, 8.5 g·mm;
     the transient of the imbalance trips the 0.05 µm threshold at 1.5 ms.)"""
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+        disturbance=None,
+    )
     prof = constant_speed(20e3 * RPM, 0.06)
 
     def controller() -> SubsyncController:
@@ -438,7 +478,10 @@ def protocol_onset(volts: float) -> float:
     return linear / RPM
 
 
-_case = replace(default_case(), grid=Grid(n_theta=64, n_z=8))
+_case = replace(
+    default_case(),
+    grid=Grid(n_theta=64, n_z=8, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None),
+)
 PROTOCOL_CASE = replace(_case, rotor=replace(_case.rotor, imbalance=1e-6))
 
 
@@ -523,7 +566,13 @@ def test_the_bump_damping_law_is_the_same_in_the_orbit_and_the_linear_analysis()
 
     from foilbearing.coefficients import dynamic_compliance
 
-    case = replace(default_case(), actuators=None, grid=Grid(n_theta=32, n_z=4))
+    case = replace(
+        default_case(),
+        actuators=None,
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
     assert case.foil is not None
     gamma, omega, nu = case.foil.loss_factor, 30e3 * RPM, 2 * math.pi * 120.0
     closed = 1.0 / (1.0 + 1j * gamma * nu / omega)

@@ -28,9 +28,19 @@ RPM = math.pi / 30.0
 SPEED = constant_speed(30e3 * RPM, 0.004)
 
 
+#: A 48 x 6 grid under the sharp law, the orbit on it unless a test gives its own.
+_SHARP_SINGLE = {
+    "n_theta": 48,
+    "n_z": 6,
+    "orbit_n_z": None,
+    "orbit_axial_order": None,
+    "lift_off_smoothing": 0.0,
+}
+
+
 def _case(**grid: int):
     base = replace(default_case().with_voltages(100.0), disturbance=None)
-    return replace(base, grid=Grid(**({"n_theta": 48, "n_z": 6} | grid)))
+    return replace(base, grid=Grid(**(_SHARP_SINGLE | grid)))
 
 
 def _case_data() -> dict:
@@ -73,13 +83,17 @@ def test_the_linear_partner_of_an_orbit_grid_is_the_analysis_on_that_grid() -> N
 
 
 def test_orbit_grid_fields_in_the_case_file_with_one_line_errors() -> None:
-    """The TOML fields set the orbit's grid (defaults: the case's); an out-of-range value
+    """The TOML fields set the orbit's grid (defaults: the built-in case's orbit grid,
+    n_z = 4 at axial order 4; one grid for all when stated); an out-of-range value
     names the field and the range; a grid with under 2 cells across the stinger arc is
     an error of the orbit before any work, naming the field and the smallest n_theta."""
     data = _case_data()
     case = case_from_dict(data | {"grid": {"n_theta": 96, "n_z": 12, "orbit_n_z": 6}})
     assert case.grid.orbit_shape == (96, 6) and case.grid.orbit_is_own
-    assert not case_from_dict(data | {"grid": {"n_theta": 96, "n_z": 12}}).grid.orbit_is_own
+    default = case_from_dict(data | {"grid": {"n_theta": 96, "n_z": 12}}).grid
+    assert default.orbit_shape == (96, 4) and default.orbit_order == 4
+    one = {"n_theta": 96, "n_z": 12, "orbit_n_z": 12, "orbit_axial_order": 2}
+    assert not case_from_dict(data | {"grid": one}).grid.orbit_is_own
     with pytest.raises(InputError, match=r"grid\.orbit_n_z = 1.*integer from 2 to 256"):
         case_from_dict(data | {"grid": {"orbit_n_z": 1}})
     coarse = case_from_dict(data | {"grid": {"orbit_n_theta": 24}})

@@ -27,7 +27,11 @@ RPM = math.pi / 30.0
 
 def _coarse(volts: float = 100.0):
     return replace(
-        default_case().with_voltages(volts), grid=Grid(n_theta=32, n_z=4), disturbance=None
+        default_case().with_voltages(volts),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+        disturbance=None,
     )
 
 

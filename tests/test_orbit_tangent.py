@@ -24,7 +24,9 @@ RPM = math.pi / 30.0
 
 
 def _case(subambient: str, smoothing: float = 0.0):
-    grid = Grid(n_theta=32, n_z=4, lift_off_smoothing=smoothing)
+    grid = Grid(
+        n_theta=32, n_z=4, lift_off_smoothing=smoothing, orbit_n_z=None, orbit_axial_order=None
+    )
     case = replace(default_case(), grid=grid, disturbance=None)
     case = case.with_subambient(subambient)
     return replace(case, rotor=replace(case.rotor, imbalance=0.0))

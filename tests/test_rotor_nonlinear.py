@@ -28,7 +28,9 @@ def _coarse(rotor: RotorCase, subambient: str | None = None) -> RotorCase:
     """The rotor with each bearing on the 32 × 4 grid (static, linear and orbit alike)."""
     bearings = []
     for b in rotor.bearings:
-        case = replace(b.case, grid=Grid(32, 4))
+        case = replace(
+            b.case, grid=Grid(32, 4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None)
+        )
         if subambient is not None:
             case = case.with_subambient(subambient)
         bearings.append(replace(b, case=case))

@@ -25,7 +25,12 @@ RPM = math.pi / 30.0
 def _coarse(volts: float = 100.0):
     from foilbearing.case import Grid
 
-    return replace(default_case().with_voltages(volts), grid=Grid(n_theta=32, n_z=4))
+    return replace(
+        default_case().with_voltages(volts),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
 
 
 def test_onset_scan_bracket_and_brent_on_a_coarse_grid() -> None:

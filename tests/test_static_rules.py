@@ -34,7 +34,12 @@ RPM = math.pi / 30.0
 
 
 def _coarse(volts: float = 100.0):
-    return replace(default_case().with_voltages(volts), grid=Grid(n_theta=32, n_z=4))
+    return replace(
+        default_case().with_voltages(volts),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
 
 
 def _sharp(volts: float = 100.0):
@@ -80,7 +85,12 @@ def test_film_compliance_is_two_springs_in_series() -> None:
     nothing of the actuators half-way between two stingers (the unsmoothed k(θ); the
     smoothed one, α = 50, reaches 95 % of the step at the centre). The shimmed GFB and the
     GFB have the bump alone, a rigid bearing nothing; lift-off follows the case."""
-    case = replace(_sharp(), grid=Grid(n_theta=360, n_z=4))
+    case = replace(
+        _sharp(),
+        grid=Grid(
+            n_theta=360, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    )
     model = film_model(case)
     act, foil = case.actuators, case.foil
     assert act is not None and foil is not None
@@ -90,7 +100,14 @@ def test_film_compliance_is_two_springs_in_series() -> None:
     np.testing.assert_allclose(centre, pa / (c * act.stiffness), rtol=1e-12)
     between = model.at_angles(model.actuator_compliance, tuple(a + math.pi / 3 for a in act.angles))
     np.testing.assert_array_equal(between, 0.0)
-    smooth = film_model(replace(_coarse(), grid=Grid(n_theta=360, n_z=4)))
+    smooth = film_model(
+        replace(
+            _coarse(),
+            grid=Grid(
+                n_theta=360, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+            ),
+        )
+    )
     k_assy = case.assembly_stiffness()
     assert k_assy is not None
     half = act.stinger_arc / 2

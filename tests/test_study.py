@@ -83,7 +83,13 @@ def test_the_study_queue_runs_a_run_two_stages_ask_for_once(tmp_path: Path) -> N
     from foilbearing.study.queue import OrbitQueue
 
     # lobe + held: under the case's own reading the 32 x 4 journal touches at 3000 rpm
-    case = replace(default_case(), grid=Grid(n_theta=32, n_z=4), disturbance=None)
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+        disturbance=None,
+    )
     case = case.with_actuator_reading("lobe", "held")
     protocol = OrbitRun(0.0, None, 1e-6, "1 g·mm")
     schedule = OrbitRun(0.0, None, 1e-6, "schedule verification")

@@ -36,7 +36,14 @@ def _setup(
     lobes follow their stacks (lobe + compliant), the film's rank-3 border. ``order``:
     the axial order of the grid; ``smoothing``: its lift-off smoothing κ."""
     case = default_case().with_voltages(100.0).with_actuator_reading(response, "compliant")
-    grid = Grid(n_theta=32, n_z=4, axial_order=order, lift_off_smoothing=smoothing)
+    grid = Grid(
+        n_theta=32,
+        n_z=4,
+        axial_order=order,
+        lift_off_smoothing=smoothing,
+        orbit_n_z=None,
+        orbit_axial_order=None,
+    )
     case = replace(case, grid=grid)
     assert case.foil is not None
     case = replace(case, foil=replace(case.foil, subambient=subambient))

@@ -258,15 +258,21 @@ class Grid:
     (None: the same). ``lift_off_smoothing`` (κ >= 0) smooths the lifted-off edge of the
     film on a length tied to the cell, the same law in every analysis (0: the sharp
     complementarity; :class:`foilbearing.reynolds.grid.FilmGrid`).
+
+    The defaults are the numerics the project has validated, those of the built-in case
+    (docs/case-format.md, ``[grid]``): 96 × 12 at second order, κ = 0.1, the orbit on
+    96 × 4 at fourth order. A case file's ``[grid]`` (or a field it leaves out) and
+    ``Grid()`` both get them; the sharp law is ``lift_off_smoothing=0.0`` and one grid for
+    every analysis ``orbit_n_z=None, orbit_axial_order=None``, stated where wanted.
     """
 
     n_theta: int = 96
     n_z: int = 12
     orbit_n_theta: int | None = None
-    orbit_n_z: int | None = None
+    orbit_n_z: int | None = 4
     axial_order: int = 2
-    orbit_axial_order: int | None = None
-    lift_off_smoothing: float = 0.0
+    orbit_axial_order: int | None = 4
+    lift_off_smoothing: float = 0.1
 
     @property
     def orbit_shape(self) -> tuple[int, int]:
@@ -282,6 +288,19 @@ class Grid:
     def orbit_is_own(self) -> bool:
         """The orbit runs on another grid than the static and linear analyses."""
         return (*self.orbit_shape, self.orbit_order) != (self.n_theta, self.n_z, self.axial_order)
+
+    @property
+    def orbit_grid(self) -> Grid:
+        """The orbit's grid as a grid of its own, the same for every analysis."""
+        n_theta, n_z = self.orbit_shape
+        return Grid(
+            n_theta,
+            n_z,
+            orbit_n_z=None,
+            axial_order=self.orbit_order,
+            orbit_axial_order=None,
+            lift_off_smoothing=self.lift_off_smoothing,
+        )
 
     @property
     def orbit_label(self) -> str:
@@ -447,7 +466,7 @@ class Case:
             :data:`MIN_CELLS_PER_STINGER` θ cells across a stinger arc or a shim.
         """
         g = self.grid
-        n_theta, n_z = g.orbit_shape
+        n_theta = g.orbit_shape[0]
         arc = None
         if self.actuators is not None:
             arc = self.actuators.stinger_arc
@@ -464,12 +483,7 @@ class Case:
             )
         if not g.orbit_is_own:
             return self
-        return replace(
-            self,
-            grid=Grid(
-                n_theta, n_z, axial_order=g.orbit_order, lift_off_smoothing=g.lift_off_smoothing
-            ),
-        )
+        return replace(self, grid=g.orbit_grid)
 
     def with_speed(self, speed: QuantityLike) -> Case:
         """The same case at another rotor speed (> 0): rad/s as a float, or a quantity

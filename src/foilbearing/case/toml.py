@@ -161,15 +161,15 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
             n_theta=grid_t.integer("n_theta", 24, 2048, default=Grid.n_theta),
             n_z=grid_t.integer("n_z", 2, 256, default=Grid.n_z),
             orbit_n_theta=_optional_integer(grid_t, "orbit_n_theta", 24, 2048),
-            orbit_n_z=_optional_integer(grid_t, "orbit_n_z", 2, 256),
+            orbit_n_z=_optional_integer(grid_t, "orbit_n_z", 2, 256, Grid.orbit_n_z),
             axial_order=_axial_order(grid_t, "axial_order", Grid.axial_order),
             orbit_axial_order=(
                 _axial_order(grid_t, "orbit_axial_order", 2)
                 if "orbit_axial_order" in grid_t.data
-                else None
+                else Grid.orbit_axial_order
             ),
             lift_off_smoothing=grid_t.number(
-                "lift_off_smoothing", 0.0, MAX_LIFT_OFF_SMOOTHING, default=0.0
+                "lift_off_smoothing", 0.0, MAX_LIFT_OFF_SMOOTHING, default=Grid.lift_off_smoothing
             ),
         )
         orbit_key = "orbit_n_z" if grid.orbit_n_z is not None else "n_z"
@@ -201,9 +201,11 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
     )
 
 
-def _optional_integer(t: TableReader, key: str, lo: int, hi: int) -> int | None:
-    """An integer field from ``lo`` to ``hi`` that may be left out (None)."""
-    return None if key not in t.data else t.integer(key, lo, hi, default=lo)
+def _optional_integer(
+    t: TableReader, key: str, lo: int, hi: int, default: int | None = None
+) -> int | None:
+    """An integer field from ``lo`` to ``hi`` that may be left out (``default``)."""
+    return default if key not in t.data else t.integer(key, lo, hi, default=lo)
 
 
 def _axial_order(t: TableReader, key: str, default: int) -> int:

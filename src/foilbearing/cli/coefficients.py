@@ -29,6 +29,7 @@ from foilbearing.cli.common import (
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError, SolverError
+from foilbearing.output.summary import grid_line, grid_used
 
 __all__ = ["cmd_coefficients", "register"]
 
@@ -102,7 +103,7 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
     if not static.converged:
         raise SolverError(static.message)
     fc = force_coefficients(static, freqs)
-    out = fc.headline()
+    out = fc.headline() | grid_used(case)
     if target is not None:
         target.write(lambda tmp: fc.to_dataset().to_netcdf(tmp))
     if args.plot is not None:
@@ -124,4 +125,5 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
             ks = " ".join(f"{x / 1e6:9.4f}" for x in k.ravel())
             cs = " ".join(f"{x / 1e3:9.4f}" for x in c.ravel())
             print(f"  {f:7.1f} {ks}   {cs}")
+        print(f"  {grid_line(case)}")
     return 0

@@ -22,6 +22,7 @@ from collections.abc import Sequence
 from foilbearing.cli import (
     bifurcation,
     case,
+    check,
     coefficients,
     identify,
     optimize,
@@ -110,6 +111,7 @@ def _parser() -> argparse.ArgumentParser:
         schedule,
         rotor,
         study,
+        check,
     ):
         module.register(sub)
     return p

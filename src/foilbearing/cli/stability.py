@@ -24,6 +24,7 @@ from foilbearing.cli.common import (
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
+from foilbearing.output.summary import grid_line, grid_used
 
 __all__ = ["cmd_stability", "register"]
 
@@ -94,6 +95,7 @@ def cmd_stability(args: argparse.Namespace) -> int:
         "rotor_mass_kg": case.rotor.mass,
         "voltages": entries,
     }
+    out |= grid_used(case)
     if args.plot is not None:
         from foilbearing.output.plots.dynamics import plot_stability_map
 
@@ -114,6 +116,7 @@ def cmd_stability(args: argparse.Namespace) -> int:
                 )
             )
             print(f"  {e['bearing']} {e['voltage_V']:6.1f} V: {text}")
+        print(f"  {grid_line(case)}")
     return 0
 
 
@@ -141,12 +144,16 @@ def _passive(case: Any, args: argparse.Namespace) -> int:
     progress = None if args.json else (lambda line: print(line, file=sys.stderr, flush=True))
     result = onset_speed(case, speeds, progress=progress)
     step = speeds[1] - speeds[0] if len(speeds) > 1 else 0.0
-    out: dict[str, Any] = {
-        "bearing": case.kind,
-        "rotor_mass_kg": case.rotor.mass,
-        "load_N": case.operation.load,
-        "scan_rpm": [speeds[0] / RPM, speeds[-1] / RPM, step / RPM],
-    } | result.headline()
+    out: dict[str, Any] = (
+        {
+            "bearing": case.kind,
+            "rotor_mass_kg": case.rotor.mass,
+            "load_N": case.operation.load,
+            "scan_rpm": [speeds[0] / RPM, speeds[-1] / RPM, step / RPM],
+        }
+        | result.headline()
+        | grid_used(case)
+    )
     if args.plot is not None:
         from foilbearing.output.plots.bearing import plot_log_decrement
 
@@ -169,6 +176,7 @@ def _passive(case: Any, args: argparse.Namespace) -> int:
         )
     )
     print(f"  {case.kind} at {case.operation.load:g} N, rotor {case.rotor.mass:g} kg: {text}")
+    print(f"  {grid_line(case)}")
     return 0
 
 

@@ -29,6 +29,7 @@ from foilbearing.cli.common import (
 )
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
+from foilbearing.output.summary import grid_line, grid_used
 
 if TYPE_CHECKING:
     from foilbearing.case import Case
@@ -109,7 +110,7 @@ def cmd_static(args: argparse.Namespace) -> int:
     result = _static_point(case, speeds[0], args.eccentricity)
     if target is not None:
         target.write(lambda tmp: result.to_dataset().to_netcdf(tmp))
-    out = result.headline()
+    out = result.headline() | grid_used(case)
     if args.plot is not None:
         from foilbearing.io import save_figure
         from foilbearing.output.plots.static import plot_point
@@ -119,6 +120,7 @@ def cmd_static(args: argparse.Namespace) -> int:
         emit(out)
     else:
         _print_static(out)
+        print(f"  {grid_line(case)}")
     return 0 if result.converged else 3
 
 
@@ -190,7 +192,9 @@ def _static_sweep_cli(
     ds = ds.assign_coords(load=((), case.operation.load, {"units": "N"}))
     if target is not None:
         target.write(lambda tmp: ds.to_netcdf(tmp))
-    out: dict[str, Any] = {"load_N": case.operation.load, "points": sweep_points(ds)}
+    out: dict[str, Any] = {"load_N": case.operation.load, "points": sweep_points(ds)} | grid_used(
+        case
+    )
     if args.plot is not None:
         out["figures"] = [str(p) for p in write_static_figures(ds, args.plot)]
     if args.json:
@@ -204,6 +208,7 @@ def _static_sweep_cli(
                 + ", ".join(f"{x:.2f}" for x in point["preload_um"])
                 + " µm"
             )
+        print(f"  {grid_line(case)}")
     return 0 if all(p["converged"] for p in out["points"]) else 3
 
 
@@ -222,7 +227,7 @@ def _speed_sweep_cli(
         "bearing": case.kind,
         "load_N": case.operation.load,
         "points": speed_sweep_points(ds),
-    }
+    } | grid_used(case)
     if args.plot is not None:
         from foilbearing.io import save_figure
         from foilbearing.output.plots.bearing import plot_against
@@ -241,4 +246,5 @@ def _speed_sweep_cli(
                 f"  φ={p['attitude_deg']:6.2f}°  h_min={p['min_film_um']:6.2f} µm"
                 f"  power loss {p['power_loss_W']:.4g} W"
             )
+        print(f"  {grid_line(case)}")
     return 0 if all(p["converged"] for p in out["points"]) else 3

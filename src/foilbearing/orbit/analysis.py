@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from foilbearing.orbit import OrbitResult
+from foilbearing.output.summary import grid_used
 from foilbearing.signals import (
     Onset,
     SubsyncResult,
@@ -83,9 +84,7 @@ class OrbitAnalysis:
             "end_speed_rpm": float(result.speed[-1] * 30 / math.pi) if result.speed.size else None,
             "mean_power_loss_W": mean_power_loss(result),
             "steps": result.steps,
-            "grid": [result.case.grid.n_theta, result.case.grid.n_z],
-            "grid_axial_order": result.case.grid.axial_order,
-            "grid_lift_off_smoothing": result.case.grid.lift_off_smoothing,
+            **grid_used(result.case),
             "actuator_reading": (None if act is None else f"{act.preload_response}+{act.dynamics}"),
         }
 

@@ -17,6 +17,8 @@ __all__ = [
     "BEARING_TYPES",
     "case_summary",
     "format_summary",
+    "grid_line",
+    "grid_used",
     "speed_sweep_points",
     "structure_summary",
     "sweep_points",
@@ -98,6 +100,39 @@ def case_summary(case: Case) -> dict[str, Any]:
         out["shim_arc_deg"] = math.degrees(case.shims.arc)
         out["shim_thickness_um"] = [x * 1e6 for x in case.shims.thicknesses]
     return out
+
+
+def grid_used(case: Case) -> dict[str, Any]:
+    """The grid and lift-off law an analysis of ``case`` ran on, unit-named keys.
+
+    ``grid`` is [n_theta, n_z] (the half length), ``grid_axial_order`` the axial order,
+    ``grid_lift_off_smoothing`` κ, and ``lift_off_law`` the law in words: "smoothed edge"
+    (κ > 0), "sharp edge" (κ = 0) or "none" where the film holds sub-ambient pressure
+    (a rigid bearing, or ``subambient = "retained"``) and κ plays no part. An orbit's
+    case is already on the orbit's grid (:meth:`Case.orbit_case`).
+    """
+    g = case.grid
+    lifts = case.foil is not None and case.foil.lift_off
+    law = "none" if not lifts else ("smoothed edge" if g.lift_off_smoothing else "sharp edge")
+    return {
+        "grid": [g.n_theta, g.n_z],
+        "grid_axial_order": g.axial_order,
+        "grid_lift_off_smoothing": g.lift_off_smoothing,
+        "lift_off_law": law,
+    }
+
+
+def grid_line(case: Case) -> str:
+    """:func:`grid_used` in words, e.g. "grid 96 × 12, axial order 2, lift-off edge
+    smoothed (κ = 0.1)", for the commands' text output."""
+    used = grid_used(case)
+    n_theta, n_z = used["grid"]
+    law = {
+        "none": "no lift-off (sub-ambient film held)",
+        "sharp edge": "sharp lift-off edge (κ = 0)",
+        "smoothed edge": f"lift-off edge smoothed (κ = {used['grid_lift_off_smoothing']:g})",
+    }[used["lift_off_law"]]
+    return f"grid {n_theta} × {n_z}, axial order {used['grid_axial_order']}, {law}"
 
 
 #: What each kind of bearing (``Case.kind``) is called in summaries and reports.

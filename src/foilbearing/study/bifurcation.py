@@ -14,6 +14,7 @@ docs/bifurcation.md), and short, for the stage's time.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -90,7 +91,7 @@ def bifurcation_stage(
 
     g = case.orbit_case().grid
     n_theta, n_z = grid or g.orbit_shape
-    on = Grid(n_theta, n_z, axial_order=g.orbit_order, lift_off_smoothing=g.lift_off_smoothing)
+    on = replace(g.orbit_grid, n_theta=n_theta, n_z=n_z)
     stage(
         f"whirl limit cycles: Hopf type and branch at {len(voltages)} voltages under "
         f"{len(READINGS)} readings ({on.orbit_label}, "
