@@ -45,6 +45,7 @@ from numpy.typing import NDArray
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel
 from foilbearing.headline import Field, headline_view
+from foilbearing.laws.foil_damping import ViscousBump
 from foilbearing.reynolds import Workspace
 from foilbearing.reynolds.perturbed import pressure_response
 from foilbearing.static import StaticResult
@@ -147,12 +148,14 @@ def dynamic_compliance(
         if loss_factor:
             raise InputError("foil damping (loss factor) asked for a case without [foil]")
         return np.zeros(model.grid.n_theta, dtype=complex)
-    gamma = case.foil.loss_factor if loss_factor is None else loss_factor
-    if gamma < 0:
-        raise InputError(f"loss factor = {gamma!r}: must be >= 0")
-    # The bump's spring with its damper γ k_b/ω, in series with the actuator's springs
-    # unless the stinger is held.
-    compliance = model.bump_compliance / (1.0 + 1j * gamma * frequency / static.speed)
+    law = model.foil_damping
+    if loss_factor is not None:
+        if loss_factor < 0:
+            raise InputError(f"loss factor = {loss_factor!r}: must be >= 0")
+        law = ViscousBump(loss_factor)
+    # The bump under the foil damping law, in series with the actuator's springs unless
+    # the stinger is held.
+    compliance = law.compliance(model.bump_compliance, frequency, static.speed)
     if model.actuator_dynamics == "compliant":
         compliance = compliance + model.actuator_compliance
     engaged = model.grid.gauge_mean(static.P) > 0.0

@@ -33,13 +33,14 @@ quasi-static position (``"held"``); it matters to the dynamic analyses only.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
+from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping
 from foilbearing.reynolds import FilmGrid
 from foilbearing.structure import preload_shape, stiffness_function
 
@@ -86,6 +87,9 @@ class FilmModel:
     stack_compliance
         p_a/(C (k_p + 4k_sp)) under ``"lobe"`` (the compression per unit gauge
         pressure, in C per p_a); 0 otherwise.
+    foil_damping
+        The foil damping law (:mod:`foilbearing.laws.foil_damping`): the case's
+        ``Foil.damping_law``; :class:`~foilbearing.laws.NoFoilDamping` without a foil.
     """
 
     grid: FilmGrid
@@ -102,6 +106,7 @@ class FilmModel:
     lobe_shapes: FloatArray | None = None
     actuator_rows: FloatArray | None = None
     stack_compliance: float = 0.0
+    foil_damping: FoilDamping = field(default_factory=NoFoilDamping)
 
     @cached_property
     def compliance(self) -> FloatArray:
@@ -244,6 +249,7 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         lobes,
         rows,
         c_stack,
+        NoFoilDamping() if case.foil is None else case.foil.damping_law,
     )
 
 

@@ -14,6 +14,7 @@ import numpy as np
 
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
+from foilbearing.laws.foil_damping import FoilDamping, ViscousBump
 from foilbearing.structure import (
     actuator_stiffness,
     assembly_stiffness,
@@ -130,12 +131,24 @@ class Foil:
     (``P ≥ 1`` as a complementarity condition); ``"retained"`` — the foil
     stays on the bumps and the film keeps its sub-ambient pressure, as a rigid
     surface would (the model before lift-off, kept for comparison).
+
+    The foil damping law is :attr:`damping_law`: the viscous bump of ``loss_factor``
+    unless another law is given as ``damping`` (:mod:`foilbearing.laws.foil_damping`).
     """
 
     bump_stiffness: float  # k_b, N/m³
     loss_factor: float  # γ
     bump: BumpGeometry | None = None
     subambient: str = "lift-off"
+    #: The foil damping law in place of the viscous bump of ``loss_factor`` (None: that
+    #: law); e.g. :class:`foilbearing.laws.NoFoilDamping` to try the spring alone.
+    damping: FoilDamping | None = None
+
+    @property
+    def damping_law(self) -> FoilDamping:
+        """The foil damping law every analysis uses: ``damping``, or
+        :class:`~foilbearing.laws.ViscousBump` of ``loss_factor``."""
+        return self.damping if self.damping is not None else ViscousBump(self.loss_factor)
 
     @property
     def lift_off(self) -> bool:

@@ -75,14 +75,13 @@ class OrbitSimulation:
         self.model = film_model(case)
         g = self.model.grid
         b, gas = case.bearing, case.gas
-        gamma = 0.0 if case.foil is None else case.foil.loss_factor
         self.system = TransientSystem(
             g,
             sigma=12.0 * gas.viscosity * b.radius**2 / (gas.ambient_pressure * b.clearance**2),
             # Held stingers do not yield to the film's motion: their compression is an input.
             c_act=np.zeros(g.n_theta) if held else self.model.actuator_compliance,
             c_bump=self.model.bump_compliance,
-            loss_factor=gamma,
+            loss_factor=self.model.foil_damping,
             film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
             lift_off=self.model.lift_off,
             # Lobes that follow their stacks (lobe + compliant): D_n(P) inside the film.
