@@ -156,8 +156,7 @@ def dynamic_compliance(
     # The bump under the foil damping law, in series with the actuator's springs unless
     # the stinger is held.
     compliance = law.compliance(model.bump_compliance, frequency, static.speed)
-    if model.actuator_dynamics == "compliant":
-        compliance = compliance + model.actuator_compliance
+    compliance = compliance + model.actuator.motion_compliance(model.actuator_compliance)
     engaged = model.grid.gauge_mean(static.P) > 0.0
     return np.where(engaged, compliance, 0.0).astype(complex)
 
@@ -200,7 +199,7 @@ def force_coefficients(
     w_x, w_y = (w.ravel() for w in model.grid.force_weights())
     scale = -case.gas.ambient_pressure * case.bearing.radius**2 / case.bearing.clearance
     ws = workspace if workspace is not None else Workspace(model.grid)
-    lobes = model.lobe and model.actuator_dynamics == "compliant"
+    lobes = model.lobe and model.actuator.lobes_move
     if lobes:
         dh = np.column_stack([dh, _lobe_columns(model)])
     K = np.empty((omega_e.size, 2, 2))

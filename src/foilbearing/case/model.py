@@ -14,6 +14,7 @@ import numpy as np
 
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
+from foilbearing.laws.actuator import ACTUATOR_DYNAMICS, PRELOAD_RESPONSES, ActuatorReading
 from foilbearing.laws.foil_damping import FoilDamping, ViscousBump
 from foilbearing.structure import (
     actuator_stiffness,
@@ -111,13 +112,7 @@ class BumpGeometry:
 #: How a foil bearing treats sub-ambient film pressure (docs/model.md §3).
 SUBAMBIENT_MODELS = ("lift-off", "retained")
 
-#: How the stack's compression under the film pressure shapes the film (docs/model.md §3.8):
-#: a pocket under the stinger, or the whole preload lobe lowered.
-PRELOAD_RESPONSES = ("local", "lobe")
-
-#: How the stack's compliance acts during the journal's motion (docs/model.md §3.8): at the
-#: motion's frequency (an elastic stack under open-loop voltage), or not at all (a positioner).
-ACTUATOR_DYNAMICS = ("compliant", "held")
+# The actuator readings' words (docs/model.md §3.8) are the law's: foilbearing.laws.actuator.
 
 
 @dataclass(frozen=True)
@@ -175,6 +170,11 @@ class Actuators:
     preload_response: str = "local"
     #: How the stack's compliance acts during the motion, one of ACTUATOR_DYNAMICS.
     dynamics: str = "compliant"
+
+    @property
+    def reading(self) -> ActuatorReading:
+        """The actuator reading in the film (:class:`foilbearing.laws.ActuatorReading`)."""
+        return ActuatorReading(self.preload_response, self.dynamics)
 
     @property
     def k_p(self) -> float:

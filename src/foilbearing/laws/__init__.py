@@ -1,7 +1,7 @@
 """The modelling laws of the bearing: one law per module, each in every form the analyses use.
 
 A law is an object. The case states it (``Case.grid.lift_off_smoothing``,
-``Case.foil.damping_law``), the film model carries it (:class:`foilbearing.film.FilmModel`,
+``Case.foil.damping_law``, ``Case.actuators.reading``), the film model carries it (:class:`foilbearing.film.FilmModel`,
 :class:`foilbearing.reynolds.grid.FilmGrid`), and every analysis — the equilibrium,
 the force coefficients, the orbit — takes it from there; a compiled kernel inlines the
 law's kernel form. So changing a law is one module and its tests, and trying another
@@ -17,6 +17,10 @@ module              responsibility
 ``foil_damping``    the bump's damping: :class:`ViscousBump` (γ, damper γ k_b/ω) and
                     its peer :class:`NoFoilDamping`; the frequency-domain compliance
                     of the bump (coefficients) and the rate of its state U (orbit)
+``actuator``        the actuator reading (:class:`ActuatorReading`, local or lobe ×
+                    compliant or held): the stack's share of the static compliance,
+                    its lobe compliance c_s, and the share that acts during the
+                    motion (coefficients and orbit alike); the four :data:`READINGS`
 ==================  ===================================================================
 
 This package is the bottom layer: it imports numpy and numba only. A new law is a new
@@ -25,10 +29,13 @@ law with a compiled form is listed in ``reynolds/_kernels/__init__.py`` so that 
 of it drops the kernels' on-disk caches (docs/architecture.md, "Laws").
 """
 
+from foilbearing.laws.actuator import READINGS, ActuatorReading
 from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping, ViscousBump, foil_damping_law
 from foilbearing.laws.lift_off import LiftOff, smoothed_edge
 
 __all__ = [
+    "READINGS",
+    "ActuatorReading",
     "FoilDamping",
     "LiftOff",
     "NoFoilDamping",

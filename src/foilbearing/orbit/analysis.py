@@ -66,7 +66,7 @@ class OrbitAnalysis:
             "grid": [result.case.grid.n_theta, result.case.grid.n_z],
             "grid_axial_order": result.case.grid.axial_order,
             "grid_lift_off_smoothing": result.case.grid.lift_off_smoothing,
-            "actuator_reading": (None if act is None else f"{act.preload_response}+{act.dynamics}"),
+            "actuator_reading": (None if act is None else act.reading.label),
         }
 
 
