@@ -207,7 +207,7 @@ class FilmGrid:
         """Axial cell width ``ΔZ = Z_end/n_z`` (dimensionless, units of R)."""
         return self.half_length / self.n_z
 
-    @property
+    @cached_property
     def lift_off(self) -> LiftOff:
         """The top-foil lift-off law of this grid (:class:`foilbearing.laws.LiftOff`, κ)."""
         return LiftOff(self.lift_off_smoothing)
