@@ -12,8 +12,8 @@ module              responsibility
 ==================  ===================================================================
 ``lift_off``        top-foil lift-off: the sharp or smoothed edge (κ) as
                     :class:`LiftOff` (its width δ√Λ on a grid), and the smoothed row
-                    :func:`smoothed_edge` (``φ/2`` and its weight α) that the steady
-                    and BDF kernels inline
+                    :func:`smoothed_edge` (``φ/2`` and its weight α), compiled as
+                    :data:`smoothed_edge_kernel` for the steady and BDF kernels
 ``foil_damping``    the bump's damping: :class:`ViscousBump` (γ, damper γ k_b/ω) and
                     its peer :class:`NoFoilDamping`; the frequency-domain compliance
                     of the bump (coefficients) and the rate of its state U (orbit)
@@ -31,7 +31,7 @@ of it drops the kernels' on-disk caches (docs/architecture.md, "Laws").
 
 from foilbearing.laws.actuator import READINGS, ActuatorReading
 from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping, ViscousBump, foil_damping_law
-from foilbearing.laws.lift_off import LiftOff, smoothed_edge
+from foilbearing.laws.lift_off import LiftOff, smoothed_edge, smoothed_edge_kernel
 
 __all__ = [
     "READINGS",
@@ -42,4 +42,5 @@ __all__ = [
     "ViscousBump",
     "foil_damping_law",
     "smoothed_edge",
+    "smoothed_edge_kernel",
 ]

@@ -17,10 +17,11 @@ Two forms, one law:
 
 - :class:`LiftOff`, the law as the case states it (κ), with its width on a grid at a
   bearing number; the film grid carries it (``FilmGrid.lift_off``).
-- :func:`smoothed_edge`, the compiled row ``φ/2`` and its weight ``α = ∂(φ/2)/∂y``,
-  inlined into every kernel that writes a smoothed row (the steady rows of
-  ``reynolds/_kernels/flux.py``, the BDF rows of ``reynolds/_kernels/bdf.py``) and
-  called, on arrays, by ``reynolds/assembly.py``. ``∂(φ/2)/∂x = 1 − α``.
+- :func:`smoothed_edge`, the row ``φ/2`` and its weight ``α = ∂(φ/2)/∂y``
+  (``∂(φ/2)/∂x = 1 − α``), written once: called on arrays by ``reynolds/assembly.py``,
+  and compiled as :data:`smoothed_edge_kernel`, which every kernel that writes a
+  smoothed row inlines (the steady rows of ``reynolds/_kernels/flux.py``, the BDF
+  rows of ``reynolds/_kernels/bdf.py``).
 
 The NumPy twin of the row (``reynolds/reference.py``, ``smoothed_lift_off_py``) is an
 independent test oracle and does not import this module.
@@ -35,12 +36,15 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-__all__ = ["LiftOff", "smoothed_edge"]
+__all__ = ["LiftOff", "smoothed_edge", "smoothed_edge_kernel"]
 
 
-@njit(cache=True, inline="always")
 def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:
-    """The smoothed lift-off row ``φ/2`` and its weight α, for scalars or arrays.
+    """The smoothed lift-off row ``φ/2`` and its weight α, for floats or NumPy arrays.
+
+    The formula is written once, here; :func:`smoothed_edge_kernel` is this function
+    compiled for the kernels to inline (called from Python on arrays, this plain form
+    avoids a compilation in every process).
 
     ``φ(x, y) = x + y − √((x − y)² + 4 width2)``: zero on the branch ``x·y = width2``
     (x, y > 0), ``2 min(x, y)`` when width2 = 0.
@@ -66,6 +70,10 @@ def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:
     """
     root = np.sqrt((x - y) * (x - y) + 4.0 * width2)
     return 0.5 * (x + y - root), 0.5 * (1.0 + (x - y) / root)
+
+
+#: :func:`smoothed_edge` compiled, inlined into every kernel that writes a smoothed row.
+smoothed_edge_kernel = njit(cache=True, inline="always")(smoothed_edge)
 
 
 @dataclass(frozen=True)

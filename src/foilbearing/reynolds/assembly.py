@@ -144,8 +144,8 @@ def lift_off_weights(grid: FilmGrid, P: FloatArray, res: FloatArray, lam: float)
     lam : float
         Bearing number Λ.
     """
-    x = np.ascontiguousarray(np.ravel(P) - 1.0, dtype=np.float64)
-    y = np.ascontiguousarray(-np.ravel(res) / grid.lift_off_scale, dtype=np.float64)
+    x = np.ravel(P) - 1.0
+    y = -np.ravel(res) / grid.lift_off_scale
     return np.asarray(smoothed_edge(x, y, grid.lift_off_width(lam) ** 2)[1])
 
 

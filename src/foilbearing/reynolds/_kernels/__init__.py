@@ -59,7 +59,7 @@ equations of the transient system: residual, Jacobian blocks, solve, step
 set-up) and :mod:`.newton` (the Newton iteration on them, with the lift-off
 branch switching), whose arguments come in the named groups of :mod:`.groups`;
 their names are all here. The laws they inline live in :mod:`foilbearing.laws`
-(:func:`foilbearing.laws.lift_off.smoothed_edge`); :mod:`._cache` drops the on-disk
+(:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`); :mod:`._cache` drops the on-disk
 caches when any of these sources changes.
 """
 

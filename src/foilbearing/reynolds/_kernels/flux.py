@@ -9,7 +9,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from foilbearing.laws.lift_off import smoothed_edge
+from foilbearing.laws.lift_off import smoothed_edge_kernel
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -689,7 +689,7 @@ def lift_off_rows(
         for k in range(n):
             i = k // n_z
             j = k - i * n_z
-            half_phi, alpha = smoothed_edge(P[i, j] - 1.0, -res[i, j] / d_ref, delta * delta)
+            half_phi, alpha = smoothed_edge_kernel(P[i, j] - 1.0, -res[i, j] / d_ref, delta * delta)
             res[i, j] = -d_ref * half_phi
             held[k] = alpha < 0.5
             if held[k]:
