@@ -47,7 +47,9 @@ def with_law(case: Case, law: Any) -> Case:
 
 
 def main() -> None:
-    gamma = default_case().foil.loss_factor
+    foil = default_case().foil
+    assert foil is not None
+    gamma = foil.loss_factor
     for name, law in (
         ("viscous γ k_b/ω (the code's)", ViscousBump(gamma)),
         ("hysteretic k_b(1+jγ)", HystereticBump(gamma)),

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 import pytest
@@ -31,7 +32,7 @@ def coarse(volts: float = 150.0) -> Case:
     return replace(case, grid=Grid(32, 4, lift_off_smoothing=0.1), disturbance=None)
 
 
-def with_foil(case: Case, **changes: object) -> Case:
+def with_foil(case: Case, **changes: Any) -> Case:
     assert case.foil is not None
     return replace(case, foil=replace(case.foil, **changes))
 
@@ -40,7 +41,8 @@ def test_the_case_carries_its_foil_damping_law() -> None:
     case = coarse()
     assert case.foil is not None and case.foil.loss_factor > 0.0
     assert case.foil.damping_law == ViscousBump(case.foil.loss_factor)
-    assert with_foil(case, damping=NoFoilDamping()).foil.damping_law == NoFoilDamping()
+    swapped = with_foil(case, damping=NoFoilDamping()).foil
+    assert swapped is not None and swapped.damping_law == NoFoilDamping()
     with pytest.raises(ValueError, match="loss_factor must be >= 0"):
         ViscousBump(-0.1)
 
