@@ -45,6 +45,7 @@ from numpy.typing import NDArray
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel
 from foilbearing.headline import Field, headline_view
+from foilbearing.laws.foil_damping import ViscousBump
 from foilbearing.reynolds import Workspace
 from foilbearing.reynolds.perturbed import pressure_response
 from foilbearing.static import StaticResult
@@ -154,14 +155,15 @@ def dynamic_compliance(
         if loss_factor:
             raise InputError("foil damping (loss factor) asked for a case without [foil]")
         return np.zeros(model.grid.n_theta, dtype=complex)
-    gamma = case.foil.loss_factor if loss_factor is None else loss_factor
-    if gamma < 0:
-        raise InputError(f"loss factor = {gamma!r}: must be >= 0")
-    # The bump's spring with its damper γ k_b/ω, in series with the actuator's springs
-    # unless the stinger is held.
-    compliance = model.bump_compliance / (1.0 + 1j * gamma * frequency / static.speed)
-    if model.actuator_dynamics == "compliant":
-        compliance = compliance + model.actuator_compliance
+    law = model.foil_damping
+    if loss_factor is not None:
+        if loss_factor < 0:
+            raise InputError(f"loss factor = {loss_factor!r}: must be >= 0")
+        law = ViscousBump(loss_factor)
+    # The bump under the foil damping law, in series with the actuator's springs unless
+    # the stinger is held.
+    compliance = law.compliance(model.bump_compliance, frequency, static.speed)
+    compliance = compliance + model.actuator.motion_compliance(model.actuator_compliance)
     engaged = model.grid.gauge_mean(static.P) > 0.0
     return np.where(engaged, compliance, 0.0).astype(complex)
 
@@ -205,7 +207,7 @@ def force_coefficients(
     w_x, w_y = (w.ravel() for w in model.grid.force_weights())
     scale = -case.gas.ambient_pressure * case.bearing.radius**2 / case.bearing.clearance
     ws = workspace if workspace is not None else Workspace(model.grid)
-    lobes = model.lobe and model.actuator_dynamics == "compliant"
+    lobes = model.lobe and model.actuator.lobes_move
     if lobes:
         dh = np.column_stack([dh, _lobe_columns(model)])
     K = np.empty((omega_e.size, 2, 2))

@@ -29,16 +29,15 @@ from scipy.optimize import brentq
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
+from foilbearing.laws.actuator import READINGS as ACTUATOR_READINGS
 from foilbearing.stability import onset_speed
 
 __all__ = ["READINGS", "StackDesign", "stack_design"]
 
-#: The four readings (preload_response, dynamics), the case's default first.
-READINGS: tuple[tuple[str, str], ...] = (
-    ("local", "compliant"),
-    ("local", "held"),
-    ("lobe", "compliant"),
-    ("lobe", "held"),
+#: The four readings (preload_response, dynamics), the case's default first
+#: (:data:`foilbearing.laws.actuator.READINGS` as words).
+READINGS: tuple[tuple[str, str], ...] = tuple(
+    (r.preload_response, r.dynamics) for r in ACTUATOR_READINGS
 )
 
 

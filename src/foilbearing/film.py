@@ -33,13 +33,15 @@ quasi-static position (``"held"``); it matters to the dynamic analyses only.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.case import Case
+from foilbearing.laws.actuator import ActuatorReading
+from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping
 from foilbearing.reynolds import FilmGrid
 from foilbearing.structure import preload_shape, stiffness_function
 
@@ -74,9 +76,10 @@ class FilmModel:
     lift_off
         Whether sub-ambient film pressure lifts the top foil off the bumps, so
         that the film holds none (P ≥ 1, a complementarity condition).
-    preload_response, actuator_dynamics
-        The case's reading of the actuator in the film (docs/model.md §3.8):
-        ``"local"`` or ``"lobe"``, ``"compliant"`` or ``"held"``.
+    actuator
+        The case's reading of the actuator in the film (docs/model.md §3.8), a
+        :class:`foilbearing.laws.ActuatorReading` (``preload_response`` ``"local"`` or
+        ``"lobe"``, ``dynamics`` ``"compliant"`` or ``"held"``).
     lobe_shapes
         The unit preload lobe of each actuator, (cos 3(θ_i − θ_n) + 1)/2 on its
         sector, shape (n_act, n_theta); empty without actuators.
@@ -86,6 +89,9 @@ class FilmModel:
     stack_compliance
         p_a/(C (k_p + 4k_sp)) under ``"lobe"`` (the compression per unit gauge
         pressure, in C per p_a); 0 otherwise.
+    foil_damping
+        The foil damping law (:mod:`foilbearing.laws.foil_damping`): the case's
+        ``Foil.damping_law``; :class:`~foilbearing.laws.NoFoilDamping` without a foil.
     """
 
     grid: FilmGrid
@@ -97,16 +103,26 @@ class FilmModel:
     base_preloads: tuple[float, ...]
     actuator_stiffness: float | None
     lift_off: bool = False
-    preload_response: str = "local"
-    actuator_dynamics: str = "compliant"
+    actuator: ActuatorReading = field(default_factory=ActuatorReading)
     lobe_shapes: FloatArray | None = None
     actuator_rows: FloatArray | None = None
     stack_compliance: float = 0.0
+    foil_damping: FoilDamping = field(default_factory=NoFoilDamping)
 
     @cached_property
     def compliance(self) -> FloatArray:
         """c(θ_i) = p_a/(C k(θ_i)) = bump + actuator compliance, shape (n_theta,)."""
         return self.bump_compliance + self.actuator_compliance
+
+    @property
+    def preload_response(self) -> str:
+        """``"local"`` or ``"lobe"``: :attr:`actuator`'s preload response."""
+        return self.actuator.preload_response
+
+    @property
+    def actuator_dynamics(self) -> str:
+        """``"compliant"`` or ``"held"``: :attr:`actuator`'s dynamics."""
+        return self.actuator.dynamics
 
     @property
     def lobe(self) -> bool:
@@ -201,12 +217,12 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
     c_bump = np.zeros(grid.n_theta)
     c_act = np.zeros(grid.n_theta)
     pa = case.gas.ambient_pressure
-    reading = ("local", "compliant")
+    reading = ActuatorReading()
     lobes = rows = None
     c_stack = 0.0
     if case.actuators is not None:
         act = case.actuators
-        reading = (act.preload_response, act.dynamics)
+        reading = act.reading
         n_act = len(act.angles)
         lobes = np.array([preload_shape(theta, act.angles, np.eye(n_act)[n]) for n in range(n_act)])
         rows = interpolation_rows(theta, act.angles)
@@ -222,10 +238,11 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
             # k ≤ k_b (springs in series); the clip only absorbs round-off. Written as the
             # total less the bump's: the lift-off reference orbit's cost (solve_ivp) is
             # sensitive to round-off in these (measured 12 s against 231 s on one test).
-            c_act = np.maximum(pa / (c * stiffness) - pa / (c * k_b), 0.0)
-            if act.preload_response == "lobe":  # the compliance lowers the lobe instead
-                c_act = np.zeros(grid.n_theta)
-                c_stack = pa / (c * act.stiffness)
+            # Under "lobe" the compliance lowers the lobe instead (the stack's c_s).
+            c_act = reading.static_compliance(
+                np.maximum(pa / (c * stiffness) - pa / (c * k_b), 0.0)
+            )
+            c_stack = reading.stack_compliance(pa, c, act.stiffness)
         else:
             stiffness = np.full(grid.n_theta, k_b)
         c_bump = np.full(grid.n_theta, pa / (c * k_b))
@@ -240,10 +257,11 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         deltas,
         k_act,
         lift_off,
-        *reading,
-        lobes,
-        rows,
-        c_stack,
+        actuator=reading,
+        lobe_shapes=lobes,
+        actuator_rows=rows,
+        stack_compliance=c_stack,
+        foil_damping=NoFoilDamping() if case.foil is None else case.foil.damping_law,
     )
 
 

@@ -14,6 +14,8 @@ import numpy as np
 
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
+from foilbearing.laws.actuator import ACTUATOR_DYNAMICS, PRELOAD_RESPONSES, ActuatorReading
+from foilbearing.laws.foil_damping import FoilDamping, ViscousBump
 from foilbearing.structure import (
     actuator_stiffness,
     assembly_stiffness,
@@ -111,13 +113,7 @@ class BumpGeometry:
 #: How a foil bearing treats sub-ambient film pressure (docs/model.md §3).
 SUBAMBIENT_MODELS = ("lift-off", "retained")
 
-#: How the stack's compression under the film pressure shapes the film (docs/model.md §3.8):
-#: a pocket under the stinger, or the whole preload lobe lowered.
-PRELOAD_RESPONSES = ("local", "lobe")
-
-#: How the stack's compliance acts during the journal's motion (docs/model.md §3.8): at the
-#: motion's frequency (an elastic stack under open-loop voltage), or not at all (a positioner).
-ACTUATOR_DYNAMICS = ("compliant", "held")
+# The actuator readings' words (docs/model.md §3.8) are the law's: foilbearing.laws.actuator.
 
 
 @dataclass(frozen=True)
@@ -131,12 +127,24 @@ class Foil:
     (``P ≥ 1`` as a complementarity condition); ``"retained"`` — the foil
     stays on the bumps and the film keeps its sub-ambient pressure, as a rigid
     surface would (the model before lift-off, kept for comparison).
+
+    The foil damping law is :attr:`damping_law`: the viscous bump of ``loss_factor``
+    unless another law is given as ``damping`` (:mod:`foilbearing.laws.foil_damping`).
     """
 
     bump_stiffness: float  # k_b, N/m³
     loss_factor: float  # γ
     bump: BumpGeometry | None = None
     subambient: str = "lift-off"
+    #: The foil damping law in place of the viscous bump of ``loss_factor`` (None: that
+    #: law); e.g. :class:`foilbearing.laws.NoFoilDamping` to try the spring alone.
+    damping: FoilDamping | None = None
+
+    @property
+    def damping_law(self) -> FoilDamping:
+        """The foil damping law every analysis uses: ``damping``, or
+        :class:`~foilbearing.laws.ViscousBump` of ``loss_factor``."""
+        return self.damping if self.damping is not None else ViscousBump(self.loss_factor)
 
     @property
     def lift_off(self) -> bool:
@@ -163,6 +171,11 @@ class Actuators:
     preload_response: str = "local"
     #: How the stack's compliance acts during the motion, one of ACTUATOR_DYNAMICS.
     dynamics: str = "compliant"
+
+    @property
+    def reading(self) -> ActuatorReading:
+        """The actuator reading in the film (:class:`foilbearing.laws.ActuatorReading`)."""
+        return ActuatorReading(self.preload_response, self.dynamics)
 
     @property
     def k_p(self) -> float:

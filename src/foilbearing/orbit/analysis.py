@@ -85,7 +85,7 @@ class OrbitAnalysis:
             "mean_power_loss_W": mean_power_loss(result),
             "steps": result.steps,
             **grid_used(result.case),
-            "actuator_reading": (None if act is None else f"{act.preload_response}+{act.dynamics}"),
+            "actuator_reading": (None if act is None else act.reading.label),
         }
 
 

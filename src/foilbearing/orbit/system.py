@@ -63,7 +63,7 @@ class OrbitSimulation:
             if act is None:
                 raise InputError("a voltage program needs a case with [actuators]")
             voltage.check(act.max_voltage, self.n_act)
-        held = act is not None and act.dynamics == "held"
+        held = act is not None and act.reading.held
         if held and voltage is not None and voltage.observes:
             raise InputError(
                 "actuators.dynamics = 'held' with a closed-loop controller: the held stingers "
@@ -75,18 +75,19 @@ class OrbitSimulation:
         self.model = film_model(case)
         g = self.model.grid
         b, gas = case.bearing, case.gas
-        gamma = 0.0 if case.foil is None else case.foil.loss_factor
         self.system = TransientSystem(
             g,
             sigma=12.0 * gas.viscosity * b.radius**2 / (gas.ambient_pressure * b.clearance**2),
             # Held stingers do not yield to the film's motion: their compression is an input.
-            c_act=np.zeros(g.n_theta) if held else self.model.actuator_compliance,
+            c_act=self.model.actuator.motion_compliance(self.model.actuator_compliance),
             c_bump=self.model.bump_compliance,
-            loss_factor=gamma,
+            loss_factor=self.model.foil_damping,
             film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
             lift_off=self.model.lift_off,
             # Lobes that follow their stacks (lobe + compliant): D_n(P) inside the film.
-            lobes=self.model.lobe_shapes if self.model.lobe and not held else None,
+            lobes=self.model.lobe_shapes
+            if self.model.lobe and self.model.actuator.lobes_move
+            else None,
             lobe_rows=self.model.actuator_rows,
             stack_compliance=self.model.stack_compliance,
         )

@@ -18,6 +18,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from foilbearing.laws.lift_off import smoothed_edge
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.grid import FilmGrid
 
@@ -145,8 +146,7 @@ def lift_off_weights(grid: FilmGrid, P: FloatArray, res: FloatArray, lam: float)
     """
     x = np.ravel(P) - 1.0
     y = -np.ravel(res) / grid.lift_off_scale
-    root = np.sqrt((x - y) ** 2 + 4.0 * grid.lift_off_width(lam) ** 2)
-    return np.asarray(0.5 * (1.0 + (x - y) / root))
+    return np.asarray(smoothed_edge(x, y, grid.lift_off_width(lam) ** 2)[1])
 
 
 def set_unit_rows(

@@ -33,6 +33,8 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.laws.lift_off import LiftOff
+
 __all__ = ["AXIAL_ORDERS", "AxialStencil", "FilmGrid"]
 
 FloatArray = NDArray[np.float64]
@@ -205,22 +207,22 @@ class FilmGrid:
         """Axial cell width ``ΔZ = Z_end/n_z`` (dimensionless, units of R)."""
         return self.half_length / self.n_z
 
+    @cached_property
+    def lift_off(self) -> LiftOff:
+        """The top-foil lift-off law of this grid (:class:`foilbearing.laws.LiftOff`, κ)."""
+        return LiftOff(self.lift_off_smoothing)
+
     @property
     def lift_off_delta(self) -> float:
         """δ = κ Δθ² of the smoothed lift-off law (0: sharp); the law at bearing number Λ
-        has the width :meth:`lift_off_width`."""
-        return float(self.lift_off_smoothing * self.d_theta**2)
+        has the width :meth:`lift_off_width` (:meth:`foilbearing.laws.LiftOff.delta`)."""
+        return self.lift_off.delta(self.d_theta)
 
     def lift_off_width(self, lam: float) -> float:
         """``δ √Λ``: the smoothed law ``(P − 1)·y = δ² Λ`` at bearing number Λ, in the
-        form ``(P − 1)·y = width²`` (y the outflow in pressure units, ``−R/d_ref``).
-
-        The outflow of the lifted-off film is the Couette flow, proportional to Λ, and
-        the gauge pressure is set by the load: so the law measures the outflow in units
-        of Λ, ``(P − 1)·y/Λ = δ²``, and its blend spans the same share of a cell at
-        every speed (docs/lift-off.md, "The smoothed edge").
-        """
-        return float(self.lift_off_delta * np.sqrt(abs(lam)))
+        form ``(P − 1)·y = width²`` (y the outflow in pressure units, ``−R/d_ref``;
+        :meth:`foilbearing.laws.LiftOff.width`)."""
+        return self.lift_off.width(self.d_theta, lam)
 
     @property
     def lift_off_scale(self) -> float:

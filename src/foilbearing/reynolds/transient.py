@@ -57,6 +57,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from foilbearing.laws.foil_damping import FoilDamping, foil_damping_law
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds import fallback
 from foilbearing.reynolds.assembly import Workspace
@@ -121,7 +122,9 @@ class TransientSystem:
     c_bump
         Bump compliance p_a/(C k_b) per θ-row (zeros: rigid surface).
     loss_factor
-        γ of the bump; 0 makes the bump purely elastic (no U dynamics).
+        The foil damping law (:mod:`foilbearing.laws.foil_damping`), or the loss factor
+        γ of a :class:`~foilbearing.laws.ViscousBump`; a law without a rate (γ = 0,
+        :class:`~foilbearing.laws.NoFoilDamping`) makes the bump purely elastic (no U dynamics).
     film_force_scale
         p_a R²/(m C): film force per unit Σ w(P − 1) as an acceleration of ε, 1/s².
     lift_off
@@ -141,7 +144,7 @@ class TransientSystem:
         sigma: float,
         c_act: FloatArray,
         c_bump: FloatArray,
-        loss_factor: float,
+        loss_factor: FoilDamping | float,
         film_force_scale: float,
         lift_off: bool = False,
         lobes: FloatArray | None = None,
@@ -153,14 +156,16 @@ class TransientSystem:
         self.nt = grid.n_theta
         self.sigma = sigma
         self.area = grid.d_theta * grid.d_z
-        self.gamma = loss_factor
+        #: The foil damping law: its rate drives the bump state U.
+        self.foil_damping = foil_damping_law(loss_factor)
+        self.gamma = self.foil_damping.loss_factor
         #: δ of the smoothed lift-off law (0: none); with it no cell has a branch.
         self.lift_delta = grid.lift_off_delta if lift_off else 0.0
         #: s = d_ref/(Aσ): G (1/s) per unit of the pressure it stands for.
         self.smooth_scale = grid.lift_off_scale / (self.area * sigma)
         #: The sharp law's branches (lift-off without a smoothed edge).
         self.lift_off = bool(lift_off) and self.lift_delta == 0.0
-        self.dynamic_bump = bool(loss_factor > 0.0 and np.any(c_bump > 0.0))
+        self.dynamic_bump = bool(self.foil_damping.dynamic and np.any(c_bump > 0.0))
         self.c_act = np.asarray(c_act, float) + (0.0 if self.dynamic_bump else np.asarray(c_bump))
         self.c_bump = np.asarray(c_bump, float) if self.dynamic_bump else np.zeros(self.nt)
         self.cos_t = np.cos(grid.theta)
@@ -281,7 +286,7 @@ class TransientSystem:
             # The smoothed law as a source: the lifting foil supplies s δ²Λ/(P − 1), 1/s.
             f_p = f_p + self.lift_source(P.ravel(), inputs.lam)
         if self.dynamic_bump:
-            f_u = inputs.omega / self.gamma * (self.c_bump * q - U)
+            f_u = self.rate(inputs) * (self.c_bump * q - U)
         else:
             f_u = np.zeros(self.nt)
         accel = self.force_scale * (self.w @ (P.ravel() - 1.0)) + inputs.force
@@ -379,8 +384,9 @@ class TransientSystem:
         return out, float(h_min)
 
     def rate(self, inputs: Inputs) -> float:
-        """ω/γ of the viscoelastic bump, 1/s (0 for a purely elastic bump)."""
-        return inputs.omega / self.gamma if self.dynamic_bump else 0.0
+        """The foil damping law's rate at the running speed (ω/γ of the viscoelastic bump),
+        1/s (0 for a purely elastic bump)."""
+        return self.foil_damping.rate(inputs.omega) if self.dynamic_bump else 0.0
 
     def factorize(
         self,
@@ -610,7 +616,7 @@ class TransientSystem:
         zeros_2 = sp.csr_matrix((n, 2))
         # Foil rows
         if self.dynamic_bump:
-            rate = inputs.omega / self.gamma
+            rate = self.rate(inputs)
             fu_p = -rate * sp.diags(self.c_bump) @ dq_dp
             fu_u = sp.diags(np.full(self.nt, c0 + rate))
         else:

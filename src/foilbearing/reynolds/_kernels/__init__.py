@@ -58,9 +58,18 @@ Jacobians), :mod:`.blockcyclic` (the block cyclic LU), :mod:`.bdf` (the BDF
 equations of the transient system: residual, Jacobian blocks, solve, step
 set-up) and :mod:`.newton` (the Newton iteration on them, with the lift-off
 branch switching), whose arguments come in the named groups of :mod:`.groups`;
-their names are all here.
+their names are all here. The laws they inline live in :mod:`foilbearing.laws`
+(:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`); :mod:`._cache` drops the on-disk
+caches when any of these sources changes.
 """
 
+from foilbearing.laws import lift_off as _lift_off_law
+from foilbearing.reynolds._kernels import _cache
+from foilbearing.reynolds._kernels import bdf as _bdf
+from foilbearing.reynolds._kernels import blockcyclic as _blockcyclic
+from foilbearing.reynolds._kernels import flux as _flux
+from foilbearing.reynolds._kernels import groups as _groups
+from foilbearing.reynolds._kernels import newton as _newton
 from foilbearing.reynolds._kernels.bdf import (
     bdf_setup,
     lobe_correct,
@@ -121,6 +130,14 @@ from foilbearing.reynolds._kernels.newton import (
 from foilbearing.reynolds._kernels.notice import install as _install_compile_notice
 
 _install_compile_notice()  # a cold cache says so once on stderr (notice.py), before compiling
+
+# numba reuses a kernel's cache if its own file is unchanged, even when a function it
+# inlines from another file (a law of ``foilbearing.laws``, a BDF row) changed: drop the
+# caches whenever any of these sources changed (docs/numerics.md §3).
+_cache.drop_stale_caches(
+    (_bdf, _blockcyclic, _flux, _groups, _newton),
+    (_lift_off_law,),
+)
 
 __all__ = [
     "BC_NOT_FINITE",

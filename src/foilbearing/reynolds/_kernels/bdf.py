@@ -9,6 +9,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from foilbearing.laws.lift_off import smoothed_edge_kernel
 from foilbearing.reynolds._kernels.blockcyclic import block_cyclic_solve
 from foilbearing.reynolds._kernels.flux import (
     _jacobian_both,
@@ -176,10 +177,8 @@ def transient_residual(
                 # measured on its own scale s_k = −d (its Reynolds diagonal at the
                 # factorisation): the same root, with rows of the size its factor has.
                 s_k = -d if d < 0.0 else lift_scale
-                x = p - 1.0
-                yk = gk / s_k
-                root = np.sqrt((x - yk) ** 2 + 4.0 * width2 * lift_scale / s_k)
-                out[k] = 0.5 * s_k * (x + yk - root)
+                half_phi = smoothed_edge_kernel(p - 1.0, gk / s_k, width2 * lift_scale / s_k)[0]
+                out[k] = s_k * half_phi
                 slack[k] = 0.0
                 fx += w[0, k] * (p - 1.0)
                 fy += w[1, k] * (p - 1.0)
@@ -484,10 +483,8 @@ def transient_jacobian(
             if s_k == 0.0:
                 s_k = lift_scale
             lift_state[k] = -s_k
-            x = y[k] - 1.0
-            yk = (c0 * (y[k] * h_row[i]) - res_s[i, k - i * n_z] / denom + hist[k]) / s_k
-            root = np.sqrt((x - yk) ** 2 + 4.0 * width2 * lift_scale / s_k)
-            alpha = 0.5 * (1.0 + (x - yk) / root)
+            gk = c0 * (y[k] * h_row[i]) - res_s[i, k - i * n_z] / denom + hist[k]
+            alpha = smoothed_edge_kernel(y[k] - 1.0, gk / s_k, width2 * lift_scale / s_k)[1]
             for e in range(jh_indptr[k], jh_indptr[k + 1]):
                 jp[e] *= alpha
                 jh[e] *= alpha

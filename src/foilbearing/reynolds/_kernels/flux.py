@@ -9,6 +9,8 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from foilbearing.laws.lift_off import smoothed_edge_kernel
+
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 #: Real or complex data (the complex one for the perturbation at a frequency).
@@ -687,11 +689,8 @@ def lift_off_rows(
         for k in range(n):
             i = k // n_z
             j = k - i * n_z
-            x = P[i, j] - 1.0
-            y = -res[i, j] / d_ref
-            root = np.sqrt((x - y) * (x - y) + 4.0 * delta * delta)
-            alpha = 0.5 * (1.0 + (x - y) / root)
-            res[i, j] = -0.5 * d_ref * (x + y - root)
+            half_phi, alpha = smoothed_edge_kernel(P[i, j] - 1.0, -res[i, j] / d_ref, delta * delta)
+            res[i, j] = -d_ref * half_phi
             held[k] = alpha < 0.5
             if held[k]:
                 count += 1

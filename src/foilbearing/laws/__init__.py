@@ -1,0 +1,46 @@
+"""The modelling laws of the bearing: one law per module, each in every form the analyses use.
+
+A law is an object. The case states it (``Case.grid.lift_off_smoothing``,
+``Case.foil.damping_law``, ``Case.actuators.reading``), the film model carries it (:class:`foilbearing.film.FilmModel`,
+:class:`foilbearing.reynolds.grid.FilmGrid`), and every analysis — the equilibrium,
+the force coefficients, the orbit — takes it from there; a compiled kernel inlines the
+law's kernel form. So changing a law is one module and its tests, and trying another
+is passing another object (no patching).
+
+==================  ===================================================================
+module              responsibility
+==================  ===================================================================
+``lift_off``        top-foil lift-off: the sharp or smoothed edge (κ) as
+                    :class:`LiftOff` (its width δ√Λ on a grid), and the smoothed row
+                    :func:`smoothed_edge` (``φ/2`` and its weight α), compiled as
+                    :data:`smoothed_edge_kernel` for the steady and BDF kernels
+``foil_damping``    the bump's damping: :class:`ViscousBump` (γ, damper γ k_b/ω) and
+                    its peer :class:`NoFoilDamping`; the frequency-domain compliance
+                    of the bump (coefficients) and the rate of its state U (orbit)
+``actuator``        the actuator reading (:class:`ActuatorReading`, local or lobe ×
+                    compliant or held): the stack's share of the static compliance,
+                    its lobe compliance c_s, and the share that acts during the
+                    motion (coefficients and orbit alike); the four :data:`READINGS`
+==================  ===================================================================
+
+This package is the bottom layer: it imports numpy and numba only. A new law is a new
+module here (or a new peer class in the module of its kind) with the same forms; a
+law with a compiled form is listed in ``reynolds/_kernels/__init__.py`` so that a change
+of it drops the kernels' on-disk caches (docs/architecture.md, "Laws").
+"""
+
+from foilbearing.laws.actuator import READINGS, ActuatorReading
+from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping, ViscousBump, foil_damping_law
+from foilbearing.laws.lift_off import LiftOff, smoothed_edge, smoothed_edge_kernel
+
+__all__ = [
+    "READINGS",
+    "ActuatorReading",
+    "FoilDamping",
+    "LiftOff",
+    "NoFoilDamping",
+    "ViscousBump",
+    "foil_damping_law",
+    "smoothed_edge",
+    "smoothed_edge_kernel",
+]
