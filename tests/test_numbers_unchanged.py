@@ -49,7 +49,9 @@ ORBIT_SAMPLES = 12
 def coarse(volts: float, kappa: float = KAPPA) -> Case:
     """The default case at ``volts`` on 32 x 4 (static, linear and orbit), no disturbance."""
     case = default_case().with_voltages(volts)
-    return replace(case, grid=Grid(32, 4, lift_off_smoothing=kappa), disturbance=None)
+    # one grid for every analysis, as Grid(32, 4) meant when these were recorded
+    grid = Grid(32, 4, lift_off_smoothing=kappa, orbit_n_z=None, orbit_axial_order=None)
+    return replace(case, grid=grid, disturbance=None)
 
 
 def equilibrium(rpm: float, volts: float, kappa: float) -> list[float]:

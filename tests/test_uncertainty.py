@@ -142,7 +142,7 @@ def test_percentiles_of_a_monotone_output_are_its_values_at_the_input_percentile
     data = spec.point_data(0)  # the coarse case; its clearance set below
 
     def eccentricity(c_um: float) -> float:
-        data["bearing"]["clearance"] = c_um * 1e-6
+        data["bearing"]["clearance"] = f"{c_um} um"
         case = case_from_dict(data).with_voltages(150.0)
         return solve_equilibrium(case, speed=60000 * RPM).eccentricity
 
