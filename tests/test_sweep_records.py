@@ -1,17 +1,19 @@
-"""A sweep's results folder read back: damaged files, and points lost to the cluster.
+"""A sweep's results folder read back: damaged files, points lost to the cluster, Ctrl-C.
 
 Issue 48: every damaged point record or manifest is one line naming the file and what is
 wrong (or, for a point record on ``--resume``, set aside and computed again); a point lost
-to the cluster is not a result and ``--resume`` computes it.
+to the cluster is not a result and ``--resume`` computes it; Ctrl-C prints one line.
 One tiny sweep (static analysis on a 24 x 4 grid, 2 points, about 0.1 s a point) on a
 one-worker cluster for the module.
 """
 
 from __future__ import annotations
 
+import argparse
 import asyncio
 import json
 import shutil
+import signal
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +21,7 @@ import pytest
 import xarray as xr
 
 from foilbearing.cli.main import main
+from foilbearing.cli.sweep import register
 from foilbearing.errors import InputError, SolverError
 from foilbearing.sweep import runner
 from foilbearing.sweep.runner import load_sweep, run_point, run_sweep
@@ -153,6 +156,12 @@ def test_a_json_file_that_is_no_point_of_the_sweep_is_named_not_moved(
     assert stray.exists()
 
 
+def _cli(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog="foilbearing")
+    register(parser.add_subparsers())
+    return parser.parse_args(argv)
+
+
 @pytest.mark.parametrize(
     ("damage", "words"),
     [
@@ -257,3 +266,36 @@ def test_the_machine_failing_is_raised_the_physics_failing_is_a_result(tmp_path:
         run_point(0, data, source, no_memory, {})
     rec = run_point(0, data, source, no_equilibrium, {})
     assert rec["status"] == "failed" and rec["error"].startswith("SolverError: equilibrium")
+
+
+# --------------------------------------------------------------------------- Ctrl-C
+
+
+def test_ctrl_c_prints_one_line_and_keeps_the_points(
+    tmp_path: Path, client, capfd, monkeypatch
+) -> None:
+    # The sweep's own local cluster (one worker): Ctrl-C raised from the progress loop
+    # while point 1 comes in; the cluster closes without a word from distributed.
+    (tmp_path / "sweep.toml").write_text(SWEEP, encoding="utf-8")
+    out = tmp_path / "res"
+    argv = ["sweep", str(tmp_path / "sweep.toml"), "--out", str(out), "--workers", "1", "--json"]
+    gather, seen = runner._gather, []
+
+    def interrupted(future):  # Ctrl-C as the second point comes in
+        seen.append(future.key)
+        if len(seen) == 2:
+            raise KeyboardInterrupt
+        return gather(future)
+
+    with monkeypatch.context() as m:
+        m.setattr(runner, "_gather", interrupted)
+        args = _cli(argv)
+        assert args.func(args) == 130
+    captured = capfd.readouterr()
+    assert captured.out == ""
+    assert captured.err == (
+        f"foilbearing: interrupted: 1 of 2 points kept in {out}.d; run again with --resume\n"
+    )
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])
+    summary = run_sweep(load_sweep(tmp_path / "sweep.toml"), out, client=client, resume=True)
+    assert (summary["n_computed"], summary["n_skipped"], summary["n_ok"]) == (1, 1, 2)

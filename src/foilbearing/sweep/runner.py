@@ -22,10 +22,11 @@ import logging
 import math
 import os
 import sys
+import threading
 import time
 import uuid
 from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager, nullcontext
+from contextlib import contextmanager, nullcontext, suppress
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -199,6 +200,10 @@ def _client(
     :data:`DASHBOARD_ADDRESS`. Without ``dashboard`` that server has no
     dashboard, only its health and metrics routes; with it, the dashboard's
     address is printed on stderr.
+
+    Its worker processes ignore SIGINT: a Ctrl-C at the terminal reaches the whole
+    process group, and is this process's to handle (it closes the cluster, quietly),
+    not each worker's to print a traceback of.
     """
     from distributed import Client, LocalCluster
 
@@ -211,8 +216,8 @@ def _client(
         with client:
             yield client
         return
-    with (
-        LocalCluster(
+    with _sigint_held():  # threads and worker processes started here inherit the mask
+        cluster = LocalCluster(
             n_workers=n_workers or os.cpu_count() or 1,
             threads_per_worker=1,
             processes=True,
@@ -222,16 +227,76 @@ def _client(
             dashboard_address=DASHBOARD_ADDRESS,
             scheduler_kwargs={"dashboard": dashboard},
             silence_logs=logging.ERROR,
-        ) as cluster,
-        Client(cluster) as client,
-    ):
-        if dashboard:
-            import importlib.util
+        )
+    with cluster:
+        _release_sigint()  # a Ctrl-C held back while the cluster started is raised here
+        with Client(cluster) as client:
+            if dashboard:
+                import importlib.util
 
-            missing = importlib.util.find_spec("bokeh") is None
-            note = " (a stub: the dashboard needs bokeh, pip install bokeh)" if missing else ""
-            print(f"dashboard: {cluster.dashboard_link}{note}", file=sys.stderr, flush=True)
-        yield client
+                missing = importlib.util.find_spec("bokeh") is None
+                note = " (a stub: the dashboard needs bokeh, pip install bokeh)" if missing else ""
+                print(f"dashboard: {cluster.dashboard_link}{note}", file=sys.stderr, flush=True)
+            try:
+                yield client
+            except BaseException:
+                # Stopped (Ctrl-C, an error): the workers are killed mid-task as the cluster
+                # closes, and distributed would log each lost connection, here and there.
+                with suppress(Exception):
+                    client.run(quiet_distributed, callback_timeout=2)
+                quiet_distributed()
+                raise
+
+
+def quiet_distributed() -> None:
+    """Silence distributed's logging in this process (a cluster closing on a stop)."""
+    names = [n for n in logging.root.manager.loggerDict if n.startswith("distributed.")]
+    for name in ("distributed", *names):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
+def _holds_sigint() -> bool:
+    import signal
+
+    main = threading.current_thread() is threading.main_thread()
+    return main and hasattr(signal, "pthread_sigmask")
+
+
+@contextmanager
+def _sigint_held() -> Iterator[None]:
+    """SIGINT blocked in this thread while the local cluster starts (until
+    :func:`_release_sigint`, or an error).
+
+    The cluster's threads, and the worker processes they start (restarted ones too),
+    inherit the blocked signal, so a Ctrl-C at the terminal, which reaches the whole
+    process group, is this process's alone to handle: it closes the cluster quietly,
+    where each worker would print a traceback. One pressed while the cluster starts is
+    held, not lost.
+
+    The resource tracker of ``multiprocessing`` is started first: starting it unblocks
+    SIGINT in the thread that does (``multiprocessing/resource_tracker.py``), which
+    would be the cluster's.
+    """
+    import signal
+    from multiprocessing import resource_tracker
+
+    if not _holds_sigint():
+        yield
+        return
+    resource_tracker.ensure_running()
+    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    except BaseException:
+        _release_sigint()
+        raise
+
+
+def _release_sigint() -> None:
+    import signal
+
+    if _holds_sigint():
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
 
 
 class PointSet(Protocol):
@@ -278,6 +343,10 @@ def run_points(
     already in ``folder`` are skipped with ``resume`` (the folder's fingerprint
     must match); with ``compute`` False nothing is evaluated. Parameters as
     :func:`run_sweep`.
+
+    A point lost to the cluster (a worker that died for good, ``KilledWorker``; a
+    timeout; a cancelled task; a worker's ``MemoryError`` or ``OSError``) is not a
+    result: it is not written, one line says so, and ``resume`` computes it.
 
     Returns
     -------
