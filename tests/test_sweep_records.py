@@ -299,3 +299,37 @@ def test_ctrl_c_prints_one_line_and_keeps_the_points(
     assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])
     summary = run_sweep(load_sweep(tmp_path / "sweep.toml"), out, client=client, resume=True)
     assert (summary["n_computed"], summary["n_skipped"], summary["n_ok"]) == (1, 1, 2)
+
+
+def test_an_uncertainty_run_sets_a_damaged_point_aside_and_computes_it(
+    tmp_path: Path, client, capsys
+) -> None:
+    # The uncertainty analysis reads its points as a sweep does: an output that is a word
+    # is damage, named in one line and computed again on --resume.
+    from foilbearing.uncertainty import load_uncertainty, run_uncertainty
+
+    path = tmp_path / "uq.toml"
+    path.write_text(
+        "samples = 24\n" + SWEEP.split("[parameters]")[0] + "[inputs]\n"
+        '"gas.viscosity" = { distribution = "uniform", low = "1.8e-5 Pa*s", high = "2.1e-5 Pa*s" }\n'
+        '[outputs.static]\nspeeds = ["60000 rpm"]\n',
+        encoding="utf-8",
+    )
+    spec = load_uncertainty(path)
+    _, summary = run_uncertainty(spec, tmp_path / "r", client=client)
+    assert summary["n_ok"] == spec.n_points
+    point = tmp_path / "r" / "points" / "000002.json"
+    rec = json.loads(point.read_text())
+    name = next(iter(rec["result"]["outputs"]))
+    good = rec["result"]["outputs"][name]
+    rec["result"]["outputs"][name] = "fast"
+    point.write_text(json.dumps(rec), encoding="utf-8")
+    with pytest.raises(InputError, match=r"result\.outputs\[.*\] = 'fast'") as info:
+        run_uncertainty(spec, tmp_path / "r", client=client, resume=True, compute=False)
+    assert str(info.value).startswith(str(point))
+    _, summary = run_uncertainty(spec, tmp_path / "r", client=client, resume=True)
+    assert (summary["n_computed"], summary["n_ok"]) == (1, spec.n_points)
+    assert "set aside as 000002.json.damaged" in capsys.readouterr().err
+    assert json.loads(point.read_text())["result"]["outputs"][name] == pytest.approx(
+        good, rel=1e-12
+    )
