@@ -227,7 +227,8 @@ def test_every_file_of_a_case_without_actuators_reads_back(
 def test_a_sweep_of_a_case_without_actuators_reads_back(coarse: dict[str, Path], tmp_path) -> None:
     """The sweep's dataset of a bearing without actuators has no empty ``actuator``
     dimension (NetCDF 3 cannot hold one after another) and reopens with its values."""
-    from foilbearing.sweep.runner import ANALYSES, _point_file, assemble, load_sweep, run_point
+    from foilbearing.sweep.records import point_file
+    from foilbearing.sweep.runner import ANALYSES, assemble, load_sweep, run_point
 
     sweep = tmp_path / "sweep.toml"
     sweep.write_text(
@@ -242,7 +243,8 @@ def test_a_sweep_of_a_case_without_actuators_reads_back(coarse: dict[str, Path],
         rec = run_point(
             i, spec.point_data(i), spec.point_source(i), ANALYSES["static"].evaluate, spec.options
         )
-        _point_file(folder, i).write_text(json.dumps(rec), encoding="utf-8")
+        rec["parameters"] = spec.point_values(i)  # as the runner writes a record
+        point_file(folder, i).write_text(json.dumps(rec), encoding="utf-8")
     ds = assemble(spec, tmp_path / "out")
     back = xr.load_dataset(tmp_path / "out.nc")
     assert "voltages_V" not in back and (back["status"] == "ok").all()

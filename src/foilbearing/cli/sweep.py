@@ -7,7 +7,8 @@ point of the sweep file (``docs/sweep-format.md``) on a local Dask cluster
 prints its dashboard's address) or on an existing ``dask.distributed`` scheduler,
 writes each finished point to ``RESULT.d/points/`` as it completes and the
 assembled Dataset to ``RESULT.nc``. Exit code 0 when every point is ok, 3 when
-some failed (they are recorded with their message), 2 for bad input.
+some failed (they are recorded with their message) or are missing, 2 for bad input,
+130 when interrupted (Ctrl-C: the finished points are kept for ``--resume``).
 """
 
 from __future__ import annotations
@@ -75,16 +76,25 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     if args.assemble and not folder.is_dir():
         raise InputError(f"--assemble: no results folder {folder} (run the sweep first)")
     claim_output(args, folder, may_exist=True)  # its points say what is done (--resume)
-    summary: dict[str, Any] = run_sweep(
-        spec,
-        out,
-        scheduler=args.scheduler,
-        n_workers=args.workers,
-        dashboard=args.dashboard,
-        resume=args.resume or args.assemble,
-        compute=not args.assemble,
-        progress=not args.json,
-    )
+    try:
+        summary: dict[str, Any] = run_sweep(
+            spec,
+            out,
+            scheduler=args.scheduler,
+            n_workers=args.workers,
+            dashboard=args.dashboard,
+            resume=args.resume or args.assemble,
+            compute=not args.assemble,
+            progress=not args.json,
+        )
+    except KeyboardInterrupt:
+        kept = len(list((folder / "points").glob("*.json")))
+        print(
+            f"foilbearing: interrupted: {kept} of {spec.n_points} points kept in {folder}; "
+            "run again with --resume",
+            file=sys.stderr,
+        )
+        return 130
     if args.json:
         emit(summary)
     else:

@@ -19,7 +19,13 @@ from foilbearing.case import Case
 from foilbearing.errors import InputError
 from foilbearing.units import parse_quantity
 
-__all__ = ["ANALYSES", "Analysis"]
+__all__ = ["ANALYSES", "FLAG_KEYS", "TEXT_KEYS", "Analysis"]
+
+#: Result keys whose values are words (a point's record is checked against these when
+#: read back, :mod:`foilbearing.sweep.records`); every other key holds numbers.
+TEXT_KEYS = frozenset({"bearing", "message", "bifurcation_type"})
+#: Result keys whose values are true or false (a scalar or one per cycle).
+FLAG_KEYS = frozenset({"converged", "stable"})
 
 
 def value_list(raw: Any, kind: str, where: str, src: str) -> tuple[Any, ...]:
@@ -55,7 +61,9 @@ class Analysis:
     evaluate
         ``evaluate(case, options) -> dict``: the headline numbers of one point,
         unit-named keys; values are scalars (float, int, bool, str, None) or
-        1-D lists. A ``converged`` key that is False marks the point failed,
+        1-D lists: words only under :data:`TEXT_KEYS`, true/false only under
+        :data:`FLAG_KEYS`, finite numbers (or None) under every other key. A
+        ``converged`` key that is False marks the point failed,
         with its ``message``. Must be a module-level function (Dask pickles it
         by reference) and pure.
     parse_options

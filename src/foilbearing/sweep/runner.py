@@ -12,20 +12,19 @@ one xarray Dataset (NetCDF, ``RESULT.nc``) with the parameters as dimensions.
 This module runs and assembles; the sweep file is read and validated in
 :mod:`foilbearing.sweep.spec`, and the analysis kinds are the entries of
 :data:`foilbearing.sweep.analyses.ANALYSES` (a new kind is one more entry);
-both are re-exported here.
+both are re-exported here. The results folder is read back, and checked, in
+:mod:`foilbearing.sweep.records`; the Dask client is made in
+:mod:`foilbearing.sweep.cluster`.
 """
 
 from __future__ import annotations
 
 import json
-import logging
 import math
-import os
-import sys
 import time
 import uuid
-from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager, nullcontext
+from collections.abc import Callable, Mapping
+from contextlib import nullcontext
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -35,6 +34,15 @@ from foilbearing.case import Case, case_from_dict
 from foilbearing.errors import InputError
 from foilbearing.io import write_text, write_with
 from foilbearing.sweep.analyses import ANALYSES, Analysis
+from foilbearing.sweep.cluster import client as _client
+from foilbearing.sweep.records import (
+    MANIFEST,
+    done_points,
+    notice,
+    point_file,
+    read_manifest,
+    stored_fingerprint,
+)
 from foilbearing.sweep.spec import FIELD_KINDS, Parameter, SweepSpec, load_sweep
 
 __all__ = [
@@ -51,6 +59,7 @@ __all__ = [
     "run_point",
     "run_points",
     "run_sweep",
+    "stored_fingerprint",
 ]
 
 # --------------------------------------------------------------------------- running
@@ -65,6 +74,11 @@ def run_point(
 ) -> dict[str, Any]:
     """Evaluate one point: the Dask task. Pure: the same inputs give the same record.
 
+    A failure of the point's physics (no equilibrium, contact, a solver that did not
+    converge) is its result, stored as "failed"; a failure of the machine (out of
+    memory, a file system error) is raised: it is no result, and the point stays to be
+    computed (as are points lost to the cluster, :func:`run_points`).
+
     Returns
     -------
     dict
@@ -77,6 +91,8 @@ def run_point(
         result = evaluate(case_from_dict(case_data, source=source), options)
         ok = result.get("converged", True) is not False
         status, error = ("ok", "") if ok else ("failed", str(result.get("message", "")))
+    except (MemoryError, OSError):
+        raise
     except Exception as exc:
         status, error = "failed", f"{type(exc).__name__}: {exc}"
     return {
@@ -107,126 +123,34 @@ def output_paths(out: str | Path) -> tuple[Path, Path]:
     return stem.with_name(stem.name + ".d"), stem.with_name(stem.name + ".nc")
 
 
-def _point_file(folder: Path, index: int) -> Path:
-    return folder / "points" / f"{index:06d}.json"
+def _prepare(
+    spec: PointSet, folder: Path, resume: bool, compute: bool
+) -> dict[int, dict[str, Any]]:
+    """The valid records already in ``folder`` (a new folder: its manifest written).
 
-
-def done_points(folder: Path) -> dict[int, dict[str, Any]]:
-    done: dict[int, dict[str, Any]] = {}
-    for f in sorted((folder / "points").glob("*.json")):
-        rec = json.loads(f.read_text(encoding="utf-8"))
-        done[int(rec["index"])] = rec
-    return done
-
-
-def stored_fingerprint(folder: Path) -> str | None:
-    """The fingerprint of the sweep whose results ``folder`` holds (None: none readable)."""
-    try:
-        return str(json.loads((folder / "sweep.json").read_text(encoding="utf-8"))["fingerprint"])
-    except (OSError, ValueError, KeyError):
-        return None
-
-
-def _prepare(spec: PointSet, folder: Path, resume: bool) -> dict[int, dict[str, Any]]:
-    meta = folder / "sweep.json"
-    if meta.exists() or (folder / "points").exists():
+    The manifest must be there and this sweep's; damaged records are set aside to be
+    computed again when ``compute``, else an error (:func:`~.records.done_points`).
+    """
+    meta = folder / MANIFEST
+    points = folder / "points"
+    if meta.exists() or points.exists():
         if not resume:
             raise InputError(
                 f"results folder {folder} exists: pass --resume to continue it, "
                 "or choose another --out"
             )
-        if stored_fingerprint(folder) != spec.fingerprint():
-            raise InputError(
-                f"results folder {folder} holds another sweep or sample (different case, analysis, "
-                "parameters or inputs): choose another --out"
-            )
-        return done_points(folder)
+        if meta.exists() or any(points.glob("*.json")):
+            if read_manifest(folder)["fingerprint"] != spec.fingerprint():
+                raise InputError(
+                    f"results folder {folder} holds another sweep or sample (different case, "
+                    "analysis, parameters or inputs): choose another --out"
+                )
+            return done_points(folder, spec, set_aside=compute)
     write_text(
         meta,
         json.dumps({"fingerprint": spec.fingerprint(), **spec.describe()}, indent=1, default=str),
     )
     return {}
-
-
-#: Where the local cluster's HTTP server (and dashboard, when asked for) listens: this
-#: machine only, a free port.
-DASHBOARD_ADDRESS = "127.0.0.1:0"
-
-
-#: Dask's configuration keys of a TLS client's files (a config file or DASK_* variables).
-TLS_KEYS = (
-    "distributed.comm.tls.ca-file",
-    "distributed.comm.tls.client.cert",
-    "distributed.comm.tls.client.key",
-)
-
-
-def _security(scheduler: str) -> Any:
-    """The client's ``distributed.Security`` for ``scheduler``: for a ``tls://`` address, the
-    certificate files from Dask's configuration (docs/sweep-format.md), checked to exist;
-    None (Dask's default) for any other address."""
-    if not scheduler.startswith("tls://"):
-        return None
-    import dask
-    from distributed import Security
-
-    missing = [key for key in TLS_KEYS if not dask.config.get(key, None)]
-    if missing:
-        env = ", ".join("DASK_" + k.upper().replace(".", "__").replace("-", "_") for k in missing)
-        raise InputError(
-            f"--scheduler {scheduler!r}: a TLS scheduler needs the client's certificate files: "
-            f"set {', '.join(missing)} in a Dask config file, or {env}"
-        )
-    for key in TLS_KEYS:
-        path = Path(str(dask.config.get(key)))
-        if not path.is_file():
-            raise InputError(f"--scheduler {scheduler!r}: {key} = {str(path)!r}: no such file")
-    return Security(require_encryption=True)
-
-
-@contextmanager
-def _client(
-    scheduler: str | None, n_workers: int | None, *, dashboard: bool = False
-) -> Iterator[Any]:
-    """A client on ``scheduler``, else on a new local cluster of ``n_workers`` processes.
-
-    The local cluster listens on 127.0.0.1 only, its scheduler's HTTP server on
-    :data:`DASHBOARD_ADDRESS`. Without ``dashboard`` that server has no
-    dashboard, only its health and metrics routes; with it, the dashboard's
-    address is printed on stderr.
-    """
-    from distributed import Client, LocalCluster
-
-    if scheduler is not None:
-        security = _security(scheduler)
-        try:
-            client = Client(scheduler, timeout="20s", security=security)
-        except OSError as exc:
-            raise InputError(f"--scheduler {scheduler!r}: cannot connect ({exc})") from None
-        with client:
-            yield client
-        return
-    with (
-        LocalCluster(
-            n_workers=n_workers or os.cpu_count() or 1,
-            threads_per_worker=1,
-            processes=True,
-            host="127.0.0.1",
-            # Not dashboard_address=None: the scheduler's HTTP server (always started) would
-            # then take port 8787, and a second cluster warn that it is in use.
-            dashboard_address=DASHBOARD_ADDRESS,
-            scheduler_kwargs={"dashboard": dashboard},
-            silence_logs=logging.ERROR,
-        ) as cluster,
-        Client(cluster) as client,
-    ):
-        if dashboard:
-            import importlib.util
-
-            missing = importlib.util.find_spec("bokeh") is None
-            note = " (a stub: the dashboard needs bokeh, pip install bokeh)" if missing else ""
-            print(f"dashboard: {cluster.dashboard_link}{note}", file=sys.stderr, flush=True)
-        yield client
 
 
 class PointSet(Protocol):
@@ -274,14 +198,19 @@ def run_points(
     must match); with ``compute`` False nothing is evaluated. Parameters as
     :func:`run_sweep`.
 
+    A point lost to the cluster (a worker that died for good, ``KilledWorker``; a
+    timeout; a cancelled task; a worker's ``MemoryError`` or ``OSError``) is not a
+    result: it is not written, one line says so, and ``resume`` computes it.
+
     Returns
     -------
     dict
-        n_computed, n_skipped, n_failed (of all points in the folder).
+        n_computed (points evaluated, lost ones included), n_skipped, n_failed (of all
+        points in the folder), n_lost.
     """
     from tqdm import tqdm
 
-    done = _prepare(points, folder, resume)
+    done = _prepare(points, folder, resume, compute)
     todo = [i for i in range(points.n_points) if i not in done] if compute else []
     n_failed = sum(r["status"] != "ok" for r in done.values())
     bar = tqdm(
@@ -292,6 +221,7 @@ def run_points(
         dynamic_ncols=True,
     )
     bar.set_postfix(failed=n_failed)
+    n_lost = 0
     try:
         if todo:
             prefix = uuid.uuid4().hex[:12]
@@ -301,10 +231,18 @@ def run_points(
                 else nullcontext(client)
             )
             with pool as cl:
-                n_failed += _run_points(points, todo, folder, cl, evaluate, prefix, bar, on_point)
+                failed, n_lost = _run_points(
+                    points, todo, folder, cl, evaluate, prefix, bar, on_point
+                )
+                n_failed += failed
     finally:
         bar.close()
-    return {"n_computed": len(todo), "n_skipped": len(done), "n_failed": n_failed}
+    return {
+        "n_computed": len(todo),
+        "n_skipped": len(done),
+        "n_failed": n_failed,
+        "n_lost": n_lost,
+    }
 
 
 def run_sweep(
@@ -343,6 +281,10 @@ def run_sweep(
         A tqdm bar on stderr: points done, failed, ETA.
     on_point
         Called with each record after it is written (e.g. to watch a run).
+
+    A point lost to the cluster (a worker that died for good, ``KilledWorker``; a
+    timeout; a cancelled task; a worker's ``MemoryError`` or ``OSError``) is not a
+    result: it is not written, one line says so, and ``resume`` computes it.
 
     Returns
     -------
@@ -389,7 +331,10 @@ def _run_points(
     prefix: str,
     bar: Any,
     on_point: Callable[[dict[str, Any]], None] | None,
-) -> int:
+) -> tuple[int, int]:
+    """Submit ``todo``, write each record as it completes; returns (n_failed, n_lost)."""
+    from asyncio import CancelledError
+
     from distributed import as_completed
 
     futures = {
@@ -404,20 +349,28 @@ def _run_points(
         ): i
         for i in todo
     }
-    n_failed = 0
+    n_failed = n_lost = 0
     try:
         for fut in as_completed(futures):
             i = futures[fut]
             if fut.cancelled():  # cancelled from outside: stays missing, --resume runs it
                 continue
             try:
-                rec = fut.result()
-            except Exception as exc:  # run_point catches everything: e.g. KilledWorker
-                err = f"{type(exc).__name__}: {exc}"
-                rec = {"index": i, "status": "failed", "error": err, "result": {}}
+                rec = _gather(fut)
+            except (Exception, CancelledError) as exc:  # run_point keeps the point's own
+                n_lost += 1
+                bar.clear()
+                why = str(exc).split(". ")[0]  # KilledWorker's first sentence of five
+                notice(
+                    f"point {i} lost to the cluster ({type(exc).__name__}: {why}): not stored, "
+                    "--resume computes it"
+                )
+                bar.refresh()
+                fut.release()
+                continue
             fut.release()
             rec["parameters"] = spec.point_values(i)
-            write_text(_point_file(folder, i), json.dumps(rec, indent=1))
+            write_text(point_file(folder, i), json.dumps(rec, indent=1))
             n_failed += rec["status"] != "ok"
             bar.update(1)
             bar.set_postfix(failed=n_failed)
@@ -425,7 +378,12 @@ def _run_points(
                 on_point(rec)
     finally:
         client.cancel([f for f in futures if not f.done()])
-    return n_failed
+    return n_failed, n_lost
+
+
+def _gather(future: Any) -> dict[str, Any]:
+    """The record of a finished point's task (raises what lost it: ``KilledWorker``, ...)."""
+    return dict(future.result())
 
 
 # --------------------------------------------------------------------------- assembling
@@ -451,7 +409,7 @@ def assemble(spec: SweepSpec, out: str | Path, *, write: bool = True) -> Any:
     import xarray as xr
 
     folder, nc_path = output_paths(out)
-    records = done_points(folder) if (folder / "points").exists() else {}
+    records = done_points(folder, spec) if (folder / "points").exists() else {}
     shape, n = spec.shape, spec.n_points
     dims = tuple(p.dim for p in spec.parameters)
     status = np.full(n, "missing", dtype=object)

@@ -106,7 +106,8 @@ def run_uncertainty(
 def _write_summary(
     spec: UncertaintySpec, paths: dict[str, Path], run: dict[str, Any], t0: float
 ) -> tuple[Any, dict[str, Any]]:
-    ds = summarise(spec, done_points(paths["folder"]) if paths["points"].exists() else {})
+    records = done_points(paths["folder"], spec) if paths["points"].exists() else {}
+    ds = summarise(spec, records)
     write_with(paths["dataset"], lambda tmp: ds.to_netcdf(tmp))
     summary = summary_json(ds)
     summary.update(
