@@ -64,9 +64,16 @@ def test_a_case_reads_back_equal_from_its_tables(name: str) -> None:
     case = _variants()[name]
     tables = case_to_dict(case)
     back = case_from_dict(tables, source=case.source)
-    assert back == case
+    g = case.grid
+    # An orbit grid "the same as the static one" (None) reads back as the values it stands for
+    want = replace(
+        case,
+        grid=replace(g, orbit_n_z=g.orbit_shape[1], orbit_axial_order=g.orbit_order),
+    )
+    assert back == want
+    assert (back.grid.orbit_shape, back.grid.orbit_order) == (g.orbit_shape, g.orbit_order)
     # The tables are plain JSON: the record of a file is the same after a JSON round trip.
-    assert case_from_dict(json.loads(json.dumps(tables)), source=case.source) == case
+    assert case_from_dict(json.loads(json.dumps(tables)), source=case.source) == want
 
 
 @pytest.mark.parametrize("path", _bearing_case_files(), ids=lambda p: p.name)

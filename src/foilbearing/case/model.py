@@ -306,12 +306,13 @@ class Grid:
     def orbit_grid(self) -> Grid:
         """The orbit's grid as a grid of its own, the same for every analysis."""
         n_theta, n_z = self.orbit_shape
+        # the orbit fields stated, not None: a case file (and a run record) reads them back
         return Grid(
             n_theta,
             n_z,
-            orbit_n_z=None,
+            orbit_n_z=n_z,
             axial_order=self.orbit_order,
-            orbit_axial_order=None,
+            orbit_axial_order=self.orbit_order,
             lift_off_smoothing=self.lift_off_smoothing,
         )
 

@@ -38,6 +38,7 @@ from foilbearing.case.model import (
     Rotor,
     Shims,
 )
+from foilbearing.errors import InputError
 
 __all__ = [
     "FIELD_UNITS",
@@ -65,7 +66,14 @@ FIELD_UNITS: dict[type, dict[str, str]] = {
         "top_foil_thickness": "m",
         "formula": "",
     },
-    Foil: {"bump_stiffness": "N/m**3", "loss_factor": "", "bump": "table", "subambient": ""},
+    # damping: a law object given in Python (None: the viscous bump of loss_factor)
+    Foil: {
+        "bump_stiffness": "N/m**3",
+        "loss_factor": "",
+        "bump": "table",
+        "subambient": "",
+        "damping": "law",
+    },
     Actuators: {
         "angles": "rad",
         "stinger_arc": "rad",
@@ -101,6 +109,10 @@ FIELD_UNITS: dict[type, dict[str, str]] = {
         "lift_off_smoothing": "",
     },
 }
+
+#: Fields whose None ("the same as the static grid's") is not the reader's default: the
+#: record writes the value they stand for (the static grid's), which runs the same orbit.
+_EFFECTIVE = {(Grid, "orbit_n_z"): "n_z", (Grid, "orbit_axial_order"): "axial_order"}
 
 #: The case file's name of a field where it differs from the dataclass's.
 _FILE_NAMES = {(Shims, "thicknesses"): "thickness"}
@@ -155,10 +167,18 @@ def _table(obj: Any) -> dict[str, Any]:
                 "FIELD_UNITS: add it there so the run record keeps it"
             )
         value = getattr(obj, f.name)
+        if value is None and (type(obj), f.name) in _EFFECTIVE:
+            value = getattr(obj, _EFFECTIVE[type(obj), f.name])
         if value is None:
             continue
         unit = units[f.name]
         name = _FILE_NAMES.get((type(obj), f.name), f.name)
+        if unit == "law":
+            raise InputError(
+                f"{type(obj).__name__.lower()}.{f.name} = {value!r}: a law given in Python has "
+                "no case-file form, so this run cannot be recorded for --resume; run it "
+                "without a file, or state the law through the case file's fields"
+            )
         if unit == "table":
             table[name] = _table(value)
         elif isinstance(value, tuple):
@@ -180,7 +200,6 @@ def file_digest(path: str | None) -> str | None:
     """:func:`case_digest` of the case file at ``path`` as it reads now (None: the built-in
     case), or None when it does not read as a case (gone, broken)."""
     from foilbearing.case.toml import load_case
-    from foilbearing.errors import InputError
 
     try:
         return case_digest(case_to_dict(load_case(path)))
