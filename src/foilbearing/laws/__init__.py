@@ -23,7 +23,9 @@ module              responsibility
                     motion (coefficients and orbit alike); the four :data:`READINGS`
 ==================  ===================================================================
 
-This package is the bottom layer: it imports numpy and numba only. A new law is a new
+This package is the bottom layer: it imports numpy, and numba only where a kernel asks
+for a law's compiled form (``lift_off.smoothed_edge_kernel``), so that reading a case
+does not load the compiler. A new law is a new
 module here (or a new peer class in the module of its kind) with the same forms; a
 law with a compiled form is listed in ``reynolds/_kernels/__init__.py`` so that a change
 of it drops the kernels' on-disk caches (docs/architecture.md, "Laws").
@@ -31,7 +33,7 @@ of it drops the kernels' on-disk caches (docs/architecture.md, "Laws").
 
 from foilbearing.laws.actuator import READINGS, ActuatorReading
 from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping, ViscousBump, foil_damping_law
-from foilbearing.laws.lift_off import LiftOff, smoothed_edge, smoothed_edge_kernel
+from foilbearing.laws.lift_off import LiftOff, smoothed_edge
 
 __all__ = [
     "READINGS",
@@ -42,5 +44,4 @@ __all__ = [
     "ViscousBump",
     "foil_damping_law",
     "smoothed_edge",
-    "smoothed_edge_kernel",
 ]

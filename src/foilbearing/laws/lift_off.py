@@ -34,9 +34,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numba import njit
 
-__all__ = ["LiftOff", "smoothed_edge", "smoothed_edge_kernel"]
+__all__ = ["LiftOff", "smoothed_edge"]
 
 
 def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:
@@ -72,8 +71,16 @@ def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:
     return 0.5 * (x + y - root), 0.5 * (1.0 + (x - y) / root)
 
 
-#: :func:`smoothed_edge` compiled, inlined into every kernel that writes a smoothed row.
-smoothed_edge_kernel = njit(cache=True, inline="always")(smoothed_edge)
+def __getattr__(name: str) -> Any:
+    """``smoothed_edge_kernel``: :func:`smoothed_edge` compiled for the kernels to inline,
+    made on first use so that importing the laws (every case does) does not import numba."""
+    if name == "smoothed_edge_kernel":
+        from numba import njit
+
+        kernel = njit(cache=True, inline="always")(smoothed_edge)
+        globals()[name] = kernel
+        return kernel
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @dataclass(frozen=True)
