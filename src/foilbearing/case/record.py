@@ -13,8 +13,9 @@ digest, and the digest of its case file's own case, by which a resumed run tells
 the file has changed since (:meth:`CaseRecord.changes`).
 
 The fields are written from the dataclasses' own fields against the table
-:data:`FIELD_UNITS` of each one's SI unit: a field added to a class of
-:mod:`foilbearing.case.model` and not to that table stops the writer (and the
+:data:`FIELD_UNITS` of each one's SI unit, derived from the case schema
+(:mod:`foilbearing.case.schema`): a field added to a class of
+:mod:`foilbearing.case.model` and not to the schema stops the writer (and the
 round-trip tests) instead of being left out of the record.
 """
 
@@ -25,19 +26,8 @@ import json
 from dataclasses import dataclass, field, fields
 from typing import Any
 
-from foilbearing.case.model import (
-    Actuators,
-    Bearing,
-    BumpGeometry,
-    Case,
-    Disturbance,
-    Foil,
-    Gas,
-    Grid,
-    Operation,
-    Rotor,
-    Shims,
-)
+from foilbearing.case.model import Case, Grid
+from foilbearing.case.schema import FIELD_UNITS, FILE_NAMES
 from foilbearing.errors import InputError
 
 __all__ = [
@@ -49,73 +39,9 @@ __all__ = [
     "table_differences",
 ]
 
-#: Per class of the case, each field's SI unit as the case files write it: a unit string,
-#: ``""`` for a plain number (dimensionless, an integer, a word), or ``"table"`` for a
-#: nested table (``[foil.bump]``).
-FIELD_UNITS: dict[type, dict[str, str]] = {
-    Bearing: {"radius": "m", "length": "m", "clearance": "m"},
-    Gas: {"viscosity": "Pa*s", "ambient_pressure": "Pa"},
-    BumpGeometry: {
-        "thickness": "m",
-        "height": "m",
-        "pitch": "m",
-        "half_length": "m",
-        "youngs_modulus": "Pa",
-        "poisson_ratio": "",
-        "friction_coefficient": "",
-        "top_foil_thickness": "m",
-        "formula": "",
-    },
-    # damping: a law object given in Python (None: the viscous bump of loss_factor)
-    Foil: {
-        "bump_stiffness": "N/m**3",
-        "loss_factor": "",
-        "bump": "table",
-        "subambient": "",
-        "damping": "law",
-    },
-    Actuators: {
-        "angles": "rad",
-        "stinger_arc": "rad",
-        "contact_area": "m**2",
-        "d33_quadratic": "m/V**2",
-        "d33_linear": "m/V",
-        "stack_stiffness": "N/m",
-        "holder_spring_stiffness": "N/m**3",
-        "holder_pre_extension": "m",
-        "voltages": "V",
-        "max_voltage": "V",
-        "smoothness": "",
-        "preload_response": "",
-        "dynamics": "",
-    },
-    Shims: {"angles": "rad", "arc": "rad", "thicknesses": "m"},
-    Rotor: {"mass": "kg", "imbalance": "kg*m"},
-    Disturbance: {
-        "force_rms": "N",
-        "min_frequency": "Hz",
-        "max_frequency": "Hz",
-        "seed": "",
-        "tones": "",
-    },
-    Operation: {"load": "N", "speed": "rad/s", "max_speed": "rad/s"},
-    Grid: {
-        "n_theta": "",
-        "n_z": "",
-        "orbit_n_theta": "",
-        "orbit_n_z": "",
-        "axial_order": "",
-        "orbit_axial_order": "",
-        "lift_off_smoothing": "",
-    },
-}
-
 #: Fields whose None ("the same as the static grid's") is not the reader's default: the
 #: record writes the value they stand for (the static grid's), which runs the same orbit.
 _EFFECTIVE = {(Grid, "orbit_n_z"): "n_z", (Grid, "orbit_axial_order"): "axial_order"}
-
-#: The case file's name of a field where it differs from the dataclass's.
-_FILE_NAMES = {(Shims, "thicknesses"): "thickness"}
 
 #: Fields of :class:`Case` that are not tables of the file: the title (written at the top
 #: level), where the case was read from (the reader's ``source``, not data of the bearing)
@@ -164,7 +90,7 @@ def _table(obj: Any) -> dict[str, Any]:
         if f.name not in units:
             raise KeyError(
                 f"{type(obj).__name__}.{f.name} has no unit in foilbearing.case.record."
-                "FIELD_UNITS: add it there so the run record keeps it"
+                "FIELD_UNITS: declare it in foilbearing.case.schema so the run record keeps it"
             )
         value = getattr(obj, f.name)
         if value is None and (type(obj), f.name) in _EFFECTIVE:
@@ -172,7 +98,7 @@ def _table(obj: Any) -> dict[str, Any]:
         if value is None:
             continue
         unit = units[f.name]
-        name = _FILE_NAMES.get((type(obj), f.name), f.name)
+        name = FILE_NAMES.get((type(obj), f.name), f.name)
         if unit == "law":
             raise InputError(
                 f"{type(obj).__name__.lower()}.{f.name} = {value!r}: a law given in Python has "

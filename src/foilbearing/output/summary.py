@@ -1,16 +1,18 @@
 """Headline numbers of a case: what ``foilbearing case show`` prints.
 
-Keys carry their units (``k_assy_N_per_m3``), so scripts can use the JSON.
+Keys carry their units (``k_assy_N_per_m3``), so scripts can use the JSON. A field of
+the case is shown by its key and display unit in the case schema
+(:func:`foilbearing.case.schema.summary_entry`); the derived quantities (Λ, k_assy,
+strokes, the grid an orbit runs on) are computed here.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from typing import Any
 
 from foilbearing.case import Case
-from foilbearing.constants import RPM
+from foilbearing.case.schema import summary_entry
 from foilbearing.structure import walowit_anno_bump_stiffness
 
 __all__ = [
@@ -27,20 +29,19 @@ __all__ = [
 
 def case_summary(case: Case) -> dict[str, Any]:
     """Inputs and derived quantities of a case, in engineering units with unit-named keys."""
-    b, g, op, d = case.bearing, case.gas, case.operation, case.disturbance
+    d = case.disturbance
+
+    def shown(*paths: str) -> dict[str, Any]:
+        # each field's summary key and value in its display unit, from the case schema
+        return {k: v for p in paths for k, v in summary_entry(case, p).items()}
+
     out: dict[str, Any] = {
         "title": case.title,
         "source": case.source,
-        "radius_mm": b.radius * 1e3,
-        "length_mm": b.length * 1e3,
-        "clearance_um": b.clearance * 1e6,
-        "viscosity_Pa_s": g.viscosity,
-        "ambient_pressure_Pa": g.ambient_pressure,
-        "load_N": op.load,
-        "speed_rpm": op.speed / RPM,
+        **shown("bearing.radius", "bearing.length", "bearing.clearance"),
+        **shown("gas.viscosity", "gas.ambient_pressure", "operation.load", "operation.speed"),
         "bearing_number": case.bearing_number(),
-        "rotor_mass_kg": case.rotor.mass,
-        "imbalance_g_mm": case.rotor.imbalance * 1e6,
+        **shown("rotor.mass", "rotor.imbalance"),
         "imbalance_radius_um": case.rotor.imbalance_radius * 1e6,
         "disturbance_N_rms": 0.0 if d is None else d.force_rms,
         **(
@@ -48,7 +49,7 @@ def case_summary(case: Case) -> dict[str, Any]:
             if d is None
             else {
                 "disturbance_band_Hz": [d.min_frequency, d.max_frequency],
-                "disturbance_seed": d.seed,
+                **shown("disturbance.seed"),
             }
         ),
         "grid": {
@@ -72,8 +73,7 @@ def case_summary(case: Case) -> dict[str, Any]:
         ),
     }
     if case.foil is not None:
-        out["k_b_N_per_m3"] = case.foil.bump_stiffness
-        out["loss_factor"] = case.foil.loss_factor
+        out |= shown("foil.bump_stiffness", "foil.loss_factor")
         bump = case.foil.bump
         if bump is not None:
             out["k_b_formula"] = bump.formula
@@ -86,19 +86,15 @@ def case_summary(case: Case) -> dict[str, Any]:
             )
     act = case.actuators
     if act is not None:
-        out["actuator_angles_deg"] = [math.degrees(a) for a in act.angles]
-        out["stinger_arc_deg"] = math.degrees(act.stinger_arc)
-        out["voltages_V"] = list(act.voltages)
+        out |= shown("actuators.angles", "actuators.stinger_arc", "actuators.voltages")
         out["k_p_N_per_m3"] = act.k_p
-        out["k_sp_N_per_m3"] = act.holder_spring_stiffness
+        out |= shown("actuators.holder_spring_stiffness")
         out["k_assy_N_per_m3"] = case.assembly_stiffness()
         out["stack_stroke_um"] = [x * 1e6 for x in act.stack_strokes()]
         out["base_preload_um"] = [x * 1e6 for x in act.base_preloads()]
-        out["smoothness_per_rad"] = act.smoothness
+        out |= shown("actuators.smoothness")
     if case.shims is not None:
-        out["shim_angles_deg"] = [math.degrees(a) for a in case.shims.angles]
-        out["shim_arc_deg"] = math.degrees(case.shims.arc)
-        out["shim_thickness_um"] = [x * 1e6 for x in case.shims.thicknesses]
+        out |= shown("shims.angles", "shims.arc", "shims.thickness")
     return out
 
 

@@ -1,7 +1,7 @@
 """The sweep file: parameters, their units and values, and the validated grid.
 
 :func:`load_sweep` reads a sweep file (``docs/sweep-format.md``), resolves each
-swept name to a case field (:data:`FIELD_KINDS`), converts the values to SI,
+swept name to a case field (:data:`FIELD_KINDS`, from the case schema), converts the values to SI,
 and validates the case of every grid point before any work (:class:`SweepSpec`).
 """
 
@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from foilbearing.case import Case, case_from_dict, default_case_path, load_case
+from foilbearing.case.schema import SWEEP_KINDS
 from foilbearing.errors import InputError
 from foilbearing.io import read_toml
 from foilbearing.sweep.analyses import ANALYSES, value_list
@@ -27,32 +28,9 @@ from foilbearing.units import SI_UNITS, ureg
 
 __all__ = ["FIELD_KINDS", "Parameter", "SweepSpec", "base_tables", "load_sweep", "write_field"]
 
-_KINDS_FIELDS = {
-    "length": "bearing.radius bearing.length bearing.clearance foil.bump.thickness "
-    "foil.bump.height foil.bump.pitch foil.bump.half_length actuators.holder_pre_extension "
-    "shims.thickness",
-    "dimensionless": "foil.loss_factor foil.bump.poisson_ratio foil.bump.friction_coefficient "
-    "actuators.smoothness grid.lift_off_smoothing",
-    "pressure": "gas.ambient_pressure foil.bump.youngs_modulus",
-    "stiffness_per_area": "foil.bump_stiffness actuators.holder_spring_stiffness",
-    "angle": "actuators.stinger_arc shims.arc",
-    "voltage": "actuators.voltages actuators.max_voltage",
-    "integer": "grid.n_theta grid.n_z grid.axial_order grid.orbit_n_theta grid.orbit_n_z "
-    "grid.orbit_axial_order",
-    "viscosity": "gas.viscosity",
-    "area": "actuators.contact_area",
-    "length_per_voltage2": "actuators.d33_quadratic",
-    "length_per_voltage": "actuators.d33_linear",
-    "stiffness": "actuators.stack_stiffness",
-    "mass": "rotor.mass",
-    "mass_length": "rotor.imbalance",
-    "force": "operation.load",
-    "speed": "operation.speed",
-    # a stated modelling choice, one of its allowed words (checked as in a case file)
-    "choice": "actuators.preload_response actuators.dynamics foil.subambient",
-}
-#: Sweepable case fields (dotted TOML path) and the kind of quantity each takes.
-FIELD_KINDS: dict[str, str] = {f: k for k, fs in _KINDS_FIELDS.items() for f in fs.split()}
+#: Sweepable case fields (dotted TOML path) and the kind of quantity each takes: those of
+#: the case schema not marked as not swept (:data:`foilbearing.case.schema.SWEEP_KINDS`).
+FIELD_KINDS: dict[str, str] = SWEEP_KINDS
 ALIASES = {"speed": "operation.speed", "voltage": "actuators.voltages"}
 _VOLTAGE_I = re.compile(r"^voltage\[(\d+)\]$")
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
