@@ -71,10 +71,15 @@ def test_the_package_and_the_film_commands_need_no_ross(
     assert headline["converged"] and headline["load_N"] == pytest.approx(20.0)
 
 
-def test_a_rotor_command_without_ross_says_how_to_add_it(no_ross: dict[str, str]) -> None:
+def test_a_rotor_command_without_ross_says_how_to_add_it(
+    no_ross: dict[str, str], tmp_path: Path
+) -> None:
     out = _run(no_ross, "rotor", str(ROTOR))
     assert out.returncode == 2
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1, out.stderr
     assert "the rotor command needs ROSS" in lines[0]
     assert "pip install 'foilbearing[ross]'" in lines[0]
+    out = _run(no_ross, "study", str(ROTOR), "--out", str(tmp_path / "study"))
+    assert out.returncode == 2
+    assert out.stderr.strip().count("\n") == 0 and "the study of a rotor needs ROSS" in out.stderr
