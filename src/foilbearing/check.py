@@ -26,6 +26,7 @@ from typing import Any
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
+from foilbearing.output.display import Summarised
 
 __all__ = ["READOUTS", "RELIABLE_ORDER", "GridCheck", "error_estimate", "grid_check", "refined"]
 
@@ -168,9 +169,11 @@ def error_estimate(values: Sequence[float | None]) -> dict[str, Any]:
     return out
 
 
-@dataclass(frozen=True)
-class GridCheck:
+@dataclass(frozen=True, repr=False)
+class GridCheck(Summarised):
     """The readouts of a case on its grid and on refined grids, with their error estimates.
+
+    Printed, it shows :meth:`table`; in a notebook, the same as an HTML table.
 
     Attributes
     ----------
@@ -197,6 +200,21 @@ class GridCheck:
     def estimates(self) -> dict[str, dict[str, Any]]:
         """:func:`error_estimate` of each readout."""
         return {key: error_estimate(v) for key, v in self.values.items()}
+
+    def __repr__(self) -> str:
+        return f"{self._summary()[0]}\n{self.table()}"
+
+    def _summary(self) -> tuple[str, dict[str, Any], None]:
+        grids = ", ".join(f"{n} × {m}" for n, m in self.grids)
+        title = f"Grid check of {self.title or 'case'}: grids {grids}, lift-off {self.lift_off_law}"
+        rows: dict[str, Any] = {}
+        for key, est in self.estimates().items():
+            if all(v is None for v in self.values[key]):
+                continue
+            rel = est["relative_error"]
+            note = "error –" if rel is None else f"error {100 * rel:+.2f} %"
+            rows[key] = [*self.values[key], note]
+        return title, rows, None
 
     def headline(self) -> dict[str, Any]:
         """Unit-named keys (the CLI's ``--json``)."""

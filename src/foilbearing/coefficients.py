@@ -46,6 +46,7 @@ from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel
 from foilbearing.headline import Field, headline_view
 from foilbearing.laws.foil_damping import ViscousBump
+from foilbearing.output.display import Summarised
 from foilbearing.reynolds import Workspace
 from foilbearing.reynolds.perturbed import pressure_response
 from foilbearing.static import StaticResult
@@ -56,9 +57,12 @@ __all__ = ["ForceCoefficients", "dynamic_compliance", "force_coefficients"]
 FloatArray = NDArray[np.float64]
 
 
-@dataclass(frozen=True)
-class ForceCoefficients:
+@dataclass(frozen=True, repr=False)
+class ForceCoefficients(Summarised):
     """Linearised film force coefficients about one static point.
+
+    Printed, it shows its headline in a few lines (a table in a notebook);
+    :meth:`plot` draws K and C against the excitation frequency.
 
     Attributes
     ----------
@@ -81,6 +85,17 @@ class ForceCoefficients:
         """Unit-named keys for ``--json``, one entry per frequency: a view of
         :meth:`to_dataset` (:data:`COEFFICIENT_HEADLINE`)."""
         return headline_view(self.to_dataset(), COEFFICIENT_HEADLINE)
+
+    def _summary(self) -> tuple[str, dict[str, Any], None]:
+        title = f"Force coefficients at {self.frequencies.size} frequencies about: "
+        return title + repr(self.static).splitlines()[0], self.headline(), None
+
+    def plot(self) -> Any:
+        """Stiffness and damping against excitation frequency (:func:`~foilbearing.output.
+        plots.dynamics.plot_coefficients`); returns the matplotlib Figure."""
+        from foilbearing.output.plots.dynamics import plot_coefficients
+
+        return plot_coefficients(self)
 
     def to_dataset(self) -> Any:
         """xarray Dataset in SI with dims (frequency, i, j), and the static point it is about."""

@@ -24,6 +24,7 @@ from foilbearing.coefficients import force_coefficients
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel, film_model
+from foilbearing.output.display import Summarised
 from foilbearing.reynolds import Workspace
 from foilbearing.static import StaticResult, solve_equilibrium
 from foilbearing.units import as_si_array
@@ -148,9 +149,13 @@ def whirl_mode(
     )
 
 
-@dataclass(frozen=True)
-class OnsetResult:
-    """Onset speed of instability for one bearing configuration."""
+@dataclass(frozen=True, repr=False)
+class OnsetResult(Summarised):
+    """Onset speed of instability for one bearing configuration.
+
+    Printed, it shows the onset, the whirl there and the scan in a few lines (a table
+    in a notebook); :meth:`plot` draws the log decrement against speed.
+    """
 
     onset_speed: float | None  # rad/s, None if stable over the range
     whirl_ratio: float | None
@@ -171,6 +176,26 @@ class OnsetResult:
             "whirl_ratio": self.whirl_ratio,
             "message": self.message,
         }
+
+    def _summary(self) -> tuple[str, dict[str, Any], None]:
+        scan = {
+            "scan_speeds_rpm": [self.speeds[0] / RPM, self.speeds[-1] / RPM],
+            "scan_points": int(self.speeds.size),
+        }
+        return "Linear stability onset (least stable whirl mode)", self.headline() | scan, None
+
+    def plot(self) -> Any:
+        """Log decrement of the least stable whirl mode against speed, with the onset
+        (:func:`~foilbearing.output.plots.bearing.plot_log_decrement`); returns the Figure."""
+        from foilbearing.output.plots.bearing import plot_log_decrement
+
+        modes = [
+            {"speed_rpm": w / RPM, "log_decrement": float(d)}
+            for w, d in zip(self.speeds, self.log_decrement, strict=True)
+            if np.isfinite(d)
+        ]
+        onset = self.onset_speed
+        return plot_log_decrement(modes, None if onset is None else onset / RPM)
 
 
 class _Scanner:

@@ -22,6 +22,7 @@ from foilbearing.case import Case
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, drag_torque, film_model
 from foilbearing.headline import Field, headline_view
+from foilbearing.output.display import Summarised
 from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, film_force, solve_steady
 from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
 from foilbearing.units import QuantityLike, as_si
@@ -72,9 +73,12 @@ class EquilibriumOptions:
     newton: NewtonOptions = field(default_factory=NewtonOptions)
 
 
-@dataclass(frozen=True)
-class StaticResult:
+@dataclass(frozen=True, repr=False)
+class StaticResult(Summarised):
     """One static operating point. SI units unless stated; arrays on the half-bearing grid.
+
+    Printed, it shows its headline (:meth:`headline`) in a few lines, in a notebook
+    as a table; :meth:`plot` draws the pressure and film around the bearing.
 
     Attributes
     ----------
@@ -148,6 +152,20 @@ class StaticResult:
         """Headline numbers with unit-named keys (the CLI's ``--json``): a view of
         :meth:`to_dataset` (:data:`STATIC_HEADLINE`)."""
         return headline_view(self.to_dataset(), STATIC_HEADLINE)
+
+    def _summary(self) -> tuple[str, dict[str, Any], tuple[str, ...]]:
+        from foilbearing.output.summary import grid_line
+
+        what = "Static equilibrium" if self.equilibrium else "Static point (position prescribed)"
+        title = f"{what}, {self.case.title or 'case'}; {grid_line(self.case)}"
+        return title, self.headline(), _SHOWN
+
+    def plot(self) -> Any:
+        """Pressure and film thickness around the bearing (:func:`~foilbearing.output.plots.
+        static.plot_point`); returns the matplotlib Figure."""
+        from foilbearing.output.plots.static import plot_point
+
+        return plot_point(self)
 
     def to_dataset(self) -> Any:
         """The result as an xarray Dataset in SI, every variable with its ``units``.
@@ -258,6 +276,22 @@ STATIC_HEADLINE: tuple[Field, ...] = (
     ("force_residual", "@force_residual", None),
     ("converged", "@converged", "bool"),
     ("message", "@message", None),
+)
+
+#: The headline entries a printed :class:`StaticResult` shows.
+_SHOWN = (
+    "speed_rpm",
+    "load_N",
+    "voltages_V",
+    "bearing",
+    "eccentricity",
+    "attitude_deg",
+    "min_film_um",
+    "preload_um",
+    "power_loss_W",
+    "converged",
+    "iterations",
+    "message",
 )
 
 

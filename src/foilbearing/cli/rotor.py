@@ -99,10 +99,13 @@ def cmd_rotor(args: argparse.Namespace) -> int:
     """Run ``rotor``; returns the exit code (0)."""
     from foilbearing.constants import RPM
     from foilbearing.errors import InputError
+    from foilbearing.export.ross import _import_ross
     from foilbearing.io import save_figure
     from foilbearing.rotor import load_rotor
     from foilbearing.units import parse_speed_range
 
+    # Before any work (a coefficient table takes minutes): the core install has no ROSS.
+    _import_ross("the rotor command")
     resume = None
     if args.resume is not None:
         resume, rotor = _resume(args)

@@ -73,9 +73,11 @@ def cmd_study(args: argparse.Namespace) -> int:
 
     claim_output(args, args.out, may_exist=True)  # a folder of results, rewritten by a new run
     if is_rotor_file(args.case):
+        from foilbearing.export.ross import _import_ross
         from foilbearing.rotor import load_rotor
         from foilbearing.study.rotor import run_rotor_study
 
+        _import_ross("the study of a rotor")  # before any stage: the core install has no ROSS
         result = run_rotor_study(
             load_rotor(args.case), args.out, progress=not args.json, orbits=args.orbits == "full"
         )

@@ -281,12 +281,13 @@ def to_ross_bearing(
     )
 
 
-def _import_ross() -> Any:
-    """ROSS, or an InputError saying how to install it."""
+def _import_ross(what: str = "the ROSS export") -> Any:
+    """ROSS, or an InputError saying that ``what`` needs it and how to install it: the core
+    install (``pip install foilbearing``) has no ROSS, the ``ross`` extra adds it."""
     try:
         ross = _quiet_import("ross")
     except ImportError as exc:
-        raise InputError(f"the ROSS export needs ROSS: {_INSTALL_HINT}") from exc
+        raise InputError(f"{what} needs ROSS: {_INSTALL_HINT}") from exc
     version = getattr(ross, "__version__", "0")
     parts = tuple(int(p) for p in version.split(".")[:2] if p.isdigit())
     if parts < ROSS_MIN_VERSION:

@@ -11,6 +11,7 @@ from numpy.typing import NDArray
 
 from foilbearing.case import Case
 from foilbearing.orbit.settings import OrbitSettings
+from foilbearing.output.display import Summarised
 
 __all__ = ["OrbitResult", "RunStatus"]
 
@@ -67,9 +68,14 @@ _ADVICE = {
 }
 
 
-@dataclass
-class OrbitResult:
+@dataclass(repr=False)
+class OrbitResult(Summarised):
     """Time series of a run (SI), its settings and how it ended.
+
+    Printed, it shows how the run ended, its speeds, largest excursion, smallest film
+    and (at constant speed) the 1X amplitude in a few lines (a table in a notebook);
+    :meth:`plot` draws the journal's motion and the speed against time. The signal
+    analysis (waterfall, onset): :func:`foilbearing.orbit.analysis.analyse_orbit`.
 
     Attributes
     ----------
@@ -112,6 +118,44 @@ class OrbitResult:
 
     def __post_init__(self) -> None:
         self.status = RunStatus(self.status)
+
+    def summary(self) -> dict[str, Any]:
+        """The run at a glance, unit-named keys: status, duration, speeds, largest
+        eccentricity |e|/C, smallest film, 1X amplitude (0-pk, X and Y) of a
+        constant-speed run, steps and wall time. Cheap: no waterfall."""
+        from foilbearing.orbit.analysis import synchronous_amplitude
+
+        rpm = 30.0 / np.pi
+        n = self.time.size
+        c = self.case.bearing.clearance
+        sync = synchronous_amplitude(self) if n >= 2 else None
+        return {
+            "status": self.status.value,
+            "duration_s": float(self.time[-1] - self.time[0]) if n else 0.0,
+            "start_speed_rpm": float(self.speed[0]) * rpm if n else None,
+            "end_speed_rpm": float(self.speed[-1]) * rpm if n else None,
+            "max_eccentricity": float(np.max(np.hypot(self.e_x, self.e_y)) / c) if n else None,
+            "min_film_um": float(np.min(self.min_film)) * 1e6 if n else None,
+            **({} if sync is None else {"one_x_amplitude_0pk_um": [a * 1e6 for a in sync[0]]}),
+            "steps": self.steps,
+            "wall_time_s": self.wall_time,
+            "message": self.message,
+        }
+
+    def _summary(self) -> tuple[str, dict[str, Any], None]:
+        from foilbearing.output.summary import grid_line
+
+        title = f"Orbit of {self.case.title or 'case'}; {grid_line(self.case)}"
+        return title, self.summary(), None
+
+    def plot(self) -> Any:
+        """The journal's e_X, e_Y (µm) and the speed against time (:func:`~foilbearing.
+        output.plots.orbit.plot_transient`); returns the matplotlib Figure. The
+        waterfall and orbit figures: :func:`foilbearing.orbit.analysis.write_orbit_figures`."""
+        from foilbearing.output.plots.orbit import plot_transient
+
+        c = self.case.bearing.clearance
+        return plot_transient(self.time, self.e_x, self.e_y, self.speed, c)
 
     def to_dataset(self) -> Any:
         """The run as an xarray Dataset in SI units (time series, settings, status, checkpoint).

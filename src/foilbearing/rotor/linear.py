@@ -124,8 +124,9 @@ def ross_rotor(
 ) -> Any:
     """The ROSS ``Rotor``: the shaft's beam elements, the disks, and each bearing's exported
     coefficient table over ``speeds`` (rad/s) × ``frequencies`` (rad/s) at its load."""
-    from foilbearing.export.ross import coefficient_table, to_ross_bearing
+    from foilbearing.export.ross import _import_ross, coefficient_table, to_ross_bearing
 
+    _import_ross("the rotor's ROSS model")  # before the tables, which take minutes
     freqs = DEFAULT_FREQUENCIES if frequencies is None else np.asarray(frequencies, float)
     bearings = []
     for site, case in zip(rotor.bearings, rotor.loaded_cases(), strict=True):
