@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from foilbearing.orbit import OrbitResult
+from foilbearing.orbit.result import synchronous_amplitude
 from foilbearing.output.summary import grid_used
 from foilbearing.signals import (
     Onset,
@@ -105,35 +106,6 @@ def mean_power_loss(result: OrbitResult, until_rpm: float | None = None) -> floa
     from scipy.integrate import trapezoid  # numpy >= 1.26 (the floor) has no np.trapezoid
 
     return float(trapezoid(p[keep], result.time[keep]) / np.ptp(result.time[keep]))
-
-
-def synchronous_amplitude(
-    result: OrbitResult,
-) -> tuple[tuple[float, float], tuple[float, float]] | None:
-    """The 1X amplitudes (0-pk, m) in X and Y of a constant-speed run, and their window (s).
-
-    Read over the whole revolutions of the run's second half (the first half lets the
-    start from the equilibrium without imbalance die out) by least squares on
-    1, cos φ, sin φ, φ the rotor's angle: a whirl at another frequency is rejected over
-    the window's revolutions. None for a run whose speed changes, or with fewer than two
-    revolutions in its second half.
-    """
-    t, w = result.time, result.speed
-    if t.size < 8 or np.ptp(w) > 1e-9 * float(np.max(w)):
-        return None
-    phase = result.phase
-    start = int(np.searchsorted(t, 0.5 * (t[0] + t[-1])))
-    turns = math.floor((phase[-1] - phase[start]) / (2 * math.pi))
-    if turns < 2:
-        return None
-    keep = np.zeros(t.size, dtype=bool)  # whole revolutions from the middle of the run
-    keep[start:] = phase[start:] - phase[start] < turns * 2 * math.pi
-    basis = np.column_stack([np.ones(keep.sum()), np.cos(phase[keep]), np.sin(phase[keep])])
-    amps = []
-    for x in (result.e_x, result.e_y):
-        coef = np.linalg.lstsq(basis, x[keep], rcond=None)[0]
-        amps.append(float(np.hypot(coef[1], coef[2])))
-    return (amps[0], amps[1]), (float(t[keep][0]), float(t[keep][-1]))
 
 
 def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) -> OrbitAnalysis:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any
@@ -13,7 +14,7 @@ from foilbearing.case import Case
 from foilbearing.orbit.settings import OrbitSettings
 from foilbearing.output.display import Summarised
 
-__all__ = ["OrbitResult", "RunStatus"]
+__all__ = ["OrbitResult", "RunStatus", "synchronous_amplitude"]
 
 FloatArray = NDArray[np.float64]
 
@@ -123,8 +124,6 @@ class OrbitResult(Summarised):
         """The run at a glance, unit-named keys: status, duration, speeds, largest
         eccentricity |e|/C, smallest film, 1X amplitude (0-pk, X and Y) of a
         constant-speed run, steps and wall time. Cheap: no waterfall."""
-        from foilbearing.orbit.analysis import synchronous_amplitude
-
         rpm = 30.0 / np.pi
         n = self.time.size
         c = self.case.bearing.clearance
@@ -233,3 +232,32 @@ class OrbitResult(Summarised):
         for k, v in self.checkpoint.items():
             ds[f"checkpoint_{k}"] = (f"checkpoint_{k}_dim", np.atleast_1d(np.asarray(v, float)))
         return ds
+
+
+def synchronous_amplitude(
+    result: OrbitResult,
+) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The 1X amplitudes (0-pk, m) in X and Y of a constant-speed run, and their window (s).
+
+    Read over the whole revolutions of the run's second half (the first half lets the
+    start from the equilibrium without imbalance die out) by least squares on
+    1, cos φ, sin φ, φ the rotor's angle: a whirl at another frequency is rejected over
+    the window's revolutions. None for a run whose speed changes, or with fewer than two
+    revolutions in its second half.
+    """
+    t, w = result.time, result.speed
+    if t.size < 8 or np.ptp(w) > 1e-9 * float(np.max(w)):
+        return None
+    phase = result.phase
+    start = int(np.searchsorted(t, 0.5 * (t[0] + t[-1])))
+    turns = math.floor((phase[-1] - phase[start]) / (2 * math.pi))
+    if turns < 2:
+        return None
+    keep = np.zeros(t.size, dtype=bool)  # whole revolutions from the middle of the run
+    keep[start:] = phase[start:] - phase[start] < turns * 2 * math.pi
+    basis = np.column_stack([np.ones(keep.sum()), np.cos(phase[keep]), np.sin(phase[keep])])
+    amps = []
+    for x in (result.e_x, result.e_y):
+        coef = np.linalg.lstsq(basis, x[keep], rcond=None)[0]
+        amps.append(float(np.hypot(coef[1], coef[2])))
+    return (amps[0], amps[1]), (float(t[keep][0]), float(t[keep][-1]))
