@@ -456,3 +456,15 @@ def test_an_uncertainty_run_records_its_case_and_refuses_an_edited_one(tmp_path:
     with pytest.raises(InputError, match=r"bearing\.clearance: 9\.99.*e-05 m recorded") as info:
         run_points(load_uncertainty(path), folder, evaluate_sample, resume=True, compute=False)
     assert "\n" not in str(info.value) and "give a new --out" in str(info.value)
+
+
+def test_a_case_file_edited_without_changing_the_case_resumes(
+    own: Path, client, finished_own_case: Path
+) -> None:
+    # "100.0 um" reads to the same float as "100 um": the same bearing, so the same sweep.
+    case = own / "case.toml"
+    case.write_text(case.read_text().replace('"100 um"', '"100.0 um"', 1), encoding="utf-8")
+    summary = run_sweep(load_sweep(own / "sweep.toml"), own / "res", client=client, resume=True)
+    assert (summary["n_computed"], summary["n_skipped"], summary["n_ok"]) == (1, 1, 2)
+    got, want = _record(own)["result"], _record(finished_own_case)["result"]
+    assert got["eccentricity"] == pytest.approx(want["eccentricity"], rel=1e-9)

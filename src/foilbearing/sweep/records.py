@@ -30,6 +30,7 @@ it, resume as before.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import json
 import math
 import re
@@ -52,6 +53,7 @@ __all__ = [
     "point_file",
     "point_problem",
     "read_manifest",
+    "same_sweep",
     "stored_fingerprint",
 ]
 
@@ -184,6 +186,26 @@ def case_change(manifest: Mapping[str, Any], points: Any, folder: Path) -> str |
         f"must all come from one case; give a new --out to run the edited case, or {restore} "
         "to resume"
     )
+
+
+def same_sweep(manifest: Mapping[str, Any], points: Any) -> bool:
+    """Whether ``manifest`` (read by :func:`read_manifest`) is of the sweep or sample
+    ``points``, whose case :func:`case_change` found unchanged.
+
+    The same fingerprint; or, for a manifest that records its case, the same once the
+    case's tables as written when the run started (``case``) are put back: the case file
+    was edited without changing the case (a value written another way that reads to the
+    same float), and the points computed now are those of the recorded case.
+    """
+    if manifest["fingerprint"] == points.fingerprint():
+        return True
+    written = manifest.get("case")
+    if "base_case" not in manifest or not isinstance(written, dict):
+        return False
+    if not dataclasses.is_dataclass(points) or isinstance(points, type):
+        return False
+    as_written: Any = dataclasses.replace(points, base=written)
+    return bool(as_written.fingerprint() == manifest["fingerprint"])
 
 
 def _finite_number(v: Any) -> bool:

@@ -43,6 +43,7 @@ from foilbearing.sweep.records import (
     notice,
     point_file,
     read_manifest,
+    same_sweep,
     stored_fingerprint,
 )
 from foilbearing.sweep.spec import FIELD_KINDS, Parameter, SweepSpec, load_sweep
@@ -149,7 +150,7 @@ def _prepare(
             changed = case_change(manifest, spec, folder)
             if changed is not None:
                 raise InputError(changed)
-            if manifest["fingerprint"] != spec.fingerprint():
+            if not same_sweep(manifest, spec):
                 raise InputError(
                     f"results folder {folder} holds another sweep or sample (different case, "
                     "analysis, parameters or inputs): choose another --out"
