@@ -333,3 +333,138 @@ def test_an_uncertainty_run_sets_a_damaged_point_aside_and_computes_it(
     assert json.loads(point.read_text())["result"]["outputs"][name] == pytest.approx(
         good, rel=1e-12
     )
+
+
+# ------------------------------------------------- the case recorded in the manifest
+
+
+@pytest.fixture(scope="module")
+def finished_own_case(tmp_path_factory: pytest.TempPathFactory, client) -> Path:
+    """A finished run of the tiny sweep of a case file of its own: ``case.toml``,
+    ``sweep.toml``, ``res.d/``."""
+    from foilbearing.case import default_case_path
+
+    folder = tmp_path_factory.mktemp("own_case")
+    shutil.copy(default_case_path(), folder / "case.toml")
+    (folder / "sweep.toml").write_text('case = "case.toml"\n' + SWEEP, encoding="utf-8")
+    summary = run_sweep(load_sweep(folder / "sweep.toml"), folder / "res", client=client)
+    assert summary["n_ok"] == 2
+    return folder
+
+
+@pytest.fixture
+def own(tmp_path: Path, finished_own_case: Path) -> Path:
+    """A copy of that run with point 1 lost (to be computed by --resume)."""
+    for name in ("case.toml", "sweep.toml"):
+        shutil.copy(finished_own_case / name, tmp_path / name)
+    shutil.copytree(finished_own_case / "res.d", tmp_path / "res.d")
+    (tmp_path / "res.d" / "points" / "000001.json").unlink()
+    return tmp_path
+
+
+def _resume(run: Path, client, *extra: str) -> int:
+    argv = ["sweep", str(run / "sweep.toml"), "--out", str(run / "res"), *extra]
+    return main([*argv, "--scheduler", client.scheduler.address])
+
+
+def test_the_manifest_records_the_case_the_points_start_from(finished_own_case: Path) -> None:
+    from foilbearing.case import load_case
+    from foilbearing.case.record import CaseRecord
+
+    manifest = json.loads((finished_own_case / "res.d" / "sweep.json").read_text())
+    record = CaseRecord.from_dict(manifest["base_case"])
+    case = record.case(source="record")
+    # the [set] edits are in, the swept speed is the case file's own (not a point's)
+    assert (case.grid.n_theta, case.grid.n_z) == (24, 4)
+    assert case.operation.speed == load_case(finished_own_case / "case.toml").operation.speed
+    assert case.bearing.clearance == pytest.approx(100e-6, rel=1e-15)
+
+
+@pytest.mark.parametrize("flag", ["--resume", "--assemble"])
+def test_resume_after_the_case_file_was_edited_refuses_in_one_line(
+    flag: str, own: Path, client, capsys
+) -> None:
+    # Points computed on two clearances would be one Dataset of two bearings: refused.
+    case = own / "case.toml"
+    case.write_text(case.read_text().replace('"100 um"', '"90 um"', 1), encoding="utf-8")
+    before = sorted(p.name for p in (own / "res.d" / "points").iterdir())
+    assert _resume(own, client, flag) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1, err
+    assert f"case file {case} has changed since the run" in err
+    assert "bearing.clearance: 9.999999999999999e-05 m recorded, 8.999999999999999e-05 m now" in err
+    assert "give a new --out to run the edited case, or restore the file" in err
+    assert sorted(p.name for p in (own / "res.d" / "points").iterdir()) == before
+    assert not (own / "res.nc").exists()
+
+
+def test_resume_with_the_case_file_unchanged_computes_the_lost_point(
+    own: Path, client, finished_own_case: Path
+) -> None:
+    assert _resume(own, client, "--resume") == 0
+    got = _record(own)["result"]
+    want = _record(finished_own_case)["result"]
+    assert got["eccentricity"] == pytest.approx(want["eccentricity"], rel=1e-9)
+
+
+def test_a_manifest_of_an_earlier_version_without_the_case_still_resumes(own: Path, client) -> None:
+    manifest = own / "res.d" / "sweep.json"
+    data = json.loads(manifest.read_text())
+    del data["base_case"]
+    manifest.write_text(json.dumps(data, indent=1), encoding="utf-8")
+    summary = run_sweep(load_sweep(own / "sweep.toml"), own / "res", client=client, resume=True)
+    assert (summary["n_computed"], summary["n_skipped"], summary["n_ok"]) == (1, 1, 2)
+
+
+def test_a_recorded_case_that_does_not_match_its_digest_is_one_line_exit_2(
+    own: Path, client, capsys
+) -> None:
+    manifest = own / "res.d" / "sweep.json"
+    data = json.loads(manifest.read_text())
+    data["base_case"]["tables"]["bearing"]["clearance"] = "9e-05 m"
+    manifest.write_text(json.dumps(data, indent=1), encoding="utf-8")
+    assert _resume(own, client, "--resume") == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1, err
+    assert f"{manifest}: damaged manifest: base_case: the recorded case does not match" in err
+    assert not (own / "res.d" / "points" / "000001.json").exists()
+
+
+def test_an_uncertainty_run_records_its_case_and_refuses_an_edited_one(tmp_path: Path) -> None:
+    # The uncertainty analysis keeps its points in a results folder of the same kind
+    # (run_points' sweep.json), so the same record and check cover it.
+    from foilbearing.case import default_case_path
+    from foilbearing.sweep.runner import run_points
+    from foilbearing.uncertainty import load_uncertainty
+    from foilbearing.uncertainty.evaluate import evaluate_sample
+
+    shutil.copy(default_case_path(), tmp_path / "case.toml")
+    path = tmp_path / "uq.toml"
+    path.write_text(
+        'case = "case.toml"\nsamples = 24\n' + SWEEP.split("[parameters]")[0] + "[inputs]\n"
+        '"gas.viscosity" = { distribution = "uniform", low = "1.8e-5 Pa*s", high = "2.1e-5 Pa*s" }\n'
+        '[outputs.static]\nspeeds = ["60000 rpm"]\n',
+        encoding="utf-8",
+    )
+    folder = tmp_path / "r"
+    run_points(load_uncertainty(path), folder, evaluate_sample, compute=False)  # the manifest
+    assert "base_case" in json.loads((folder / "sweep.json").read_text())
+    again = run_points(load_uncertainty(path), folder, evaluate_sample, resume=True, compute=False)
+    assert again["n_skipped"] == 0
+    case = tmp_path / "case.toml"
+    case.write_text(case.read_text().replace('"100 um"', '"90 um"', 1), encoding="utf-8")
+    with pytest.raises(InputError, match=r"bearing\.clearance: 9\.99.*e-05 m recorded") as info:
+        run_points(load_uncertainty(path), folder, evaluate_sample, resume=True, compute=False)
+    assert "\n" not in str(info.value) and "give a new --out" in str(info.value)
+
+
+def test_a_case_file_edited_without_changing_the_case_resumes(
+    own: Path, client, finished_own_case: Path
+) -> None:
+    # "100.0 um" reads to the same float as "100 um": the same bearing, so the same sweep.
+    case = own / "case.toml"
+    case.write_text(case.read_text().replace('"100 um"', '"100.0 um"', 1), encoding="utf-8")
+    summary = run_sweep(load_sweep(own / "sweep.toml"), own / "res", client=client, resume=True)
+    assert (summary["n_computed"], summary["n_skipped"], summary["n_ok"]) == (1, 1, 2)
+    got, want = _record(own)["result"], _record(finished_own_case)["result"]
+    assert got["eccentricity"] == pytest.approx(want["eccentricity"], rel=1e-9)

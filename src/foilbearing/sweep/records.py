@@ -18,10 +18,19 @@ are read back on ``--resume`` and ``--assemble``; nothing read is trusted:
 Records written by earlier versions for a point lost to the Dask cluster
 (``KilledWorker``, no ``elapsed_s``) are not results: they are removed and the point is
 computed again.
+
+The manifest records the case the points start from as data (``base_case``, a
+:class:`~foilbearing.case.record.CaseRecord`: the case's tables before the swept values
+are written in, their sha256, and that of the case file's own case). A sweep's points
+must all come from one case, so a folder whose recorded case is not the one the files
+give now is not resumed (:func:`case_change`); manifests of earlier versions, without
+it, resume as before.
 """
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import json
 import math
 import re
@@ -30,16 +39,21 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from foilbearing.case.record import CaseRecord, case_to_dict, file_digest, table_differences
+from foilbearing.case.toml import case_from_dict
 from foilbearing.errors import InputError
 from foilbearing.sweep.analyses import FLAG_KEYS, TEXT_KEYS
 
 __all__ = [
     "MANIFEST",
+    "base_record",
+    "case_change",
     "done_points",
     "notice",
     "point_file",
     "point_problem",
     "read_manifest",
+    "same_sweep",
     "stored_fingerprint",
 ]
 
@@ -112,6 +126,11 @@ def read_manifest(folder: Path) -> dict[str, Any]:
         fp = data.get("fingerprint")
         if not isinstance(fp, str) or not _FINGERPRINT.match(fp):
             problem = f"fingerprint = {fp!r}: expected 64 hexadecimal digits"
+        elif "base_case" in data:
+            try:
+                CaseRecord.from_dict(data["base_case"])
+            except ValueError as exc:
+                problem = f"base_case: {exc}"
     if problem is not None:
         raise InputError(
             f"damaged manifest: {problem}; it defines the sweep and cannot be guessed: restore "
@@ -127,6 +146,66 @@ def stored_fingerprint(folder: Path) -> str | None:
         return str(read_manifest(folder)["fingerprint"])
     except InputError:
         return None
+
+
+def base_record(points: Any) -> CaseRecord:
+    """The case the points of a sweep or sample start from, as data.
+
+    ``points`` has ``base`` (the case file's tables with the fixed ``[set]`` edits, before
+    any point's values are written in) and ``case_file`` (the file they were read from);
+    the record's ``file_sha256`` is the digest of that file's own case.
+    """
+    case = case_from_dict(copy.deepcopy(points.base), source=str(points.case_file))
+    return CaseRecord(case_to_dict(case), file_digest(str(points.case_file)))
+
+
+def case_change(manifest: Mapping[str, Any], points: Any, folder: Path) -> str | None:
+    """One line saying how the case ``points`` start from differs from the one recorded in
+    ``manifest`` (read by :func:`read_manifest`), or None: the same case, or a manifest of
+    an earlier version that recorded none.
+
+    The fields named are those where the case now differs from the recorded one; the line
+    says what to do (a new ``--out`` for the edited case, or restore the file).
+    """
+    data = manifest.get("base_case")
+    if data is None:
+        return None
+    recorded = CaseRecord.from_dict(data)
+    now = base_record(points)
+    if now.sha256 == recorded.sha256:
+        return None
+    diffs = table_differences(recorded.tables, now.tables)
+    shown = "; ".join(f"{k}: {a} recorded, {b} now" for k, a, b in diffs[:3])
+    more = f" and {len(diffs) - 3} more" if len(diffs) > 3 else ""
+    if recorded.file_sha256 is not None and now.file_sha256 != recorded.file_sha256:
+        what, restore = f"case file {points.case_file}", "restore the file"
+    else:
+        what, restore = f"the case of {points.source} (its [set] table)", "restore the table"
+    return (
+        f"{what} has changed since the run in {folder} started ({shown}{more}): its points "
+        f"must all come from one case; give a new --out to run the edited case, or {restore} "
+        "to resume"
+    )
+
+
+def same_sweep(manifest: Mapping[str, Any], points: Any) -> bool:
+    """Whether ``manifest`` (read by :func:`read_manifest`) is of the sweep or sample
+    ``points``, whose case :func:`case_change` found unchanged.
+
+    The same fingerprint; or, for a manifest that records its case, the same once the
+    case's tables as written when the run started (``case``) are put back: the case file
+    was edited without changing the case (a value written another way that reads to the
+    same float), and the points computed now are those of the recorded case.
+    """
+    if manifest["fingerprint"] == points.fingerprint():
+        return True
+    written = manifest.get("case")
+    if "base_case" not in manifest or not isinstance(written, dict):
+        return False
+    if not dataclasses.is_dataclass(points) or isinstance(points, type):
+        return False
+    as_written: Any = dataclasses.replace(points, base=written)
+    return bool(as_written.fingerprint() == manifest["fingerprint"])
 
 
 def _finite_number(v: Any) -> bool:

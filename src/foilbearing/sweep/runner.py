@@ -37,10 +37,13 @@ from foilbearing.sweep.analyses import ANALYSES, Analysis
 from foilbearing.sweep.cluster import client as _client
 from foilbearing.sweep.records import (
     MANIFEST,
+    base_record,
+    case_change,
     done_points,
     notice,
     point_file,
     read_manifest,
+    same_sweep,
     stored_fingerprint,
 )
 from foilbearing.sweep.spec import FIELD_KINDS, Parameter, SweepSpec, load_sweep
@@ -128,8 +131,11 @@ def _prepare(
 ) -> dict[int, dict[str, Any]]:
     """The valid records already in ``folder`` (a new folder: its manifest written).
 
-    The manifest must be there and this sweep's; damaged records are set aside to be
-    computed again when ``compute``, else an error (:func:`~.records.done_points`).
+    The manifest must be there and this sweep's, its recorded case (if it has one, an
+    earlier version's has none) the one the points start from now
+    (:func:`~.records.case_change`); damaged records are set aside to be computed again
+    when ``compute``, else an error (:func:`~.records.done_points`). A new manifest
+    records the case as data (``base_case``, :func:`~.records.base_record`).
     """
     meta = folder / MANIFEST
     points = folder / "points"
@@ -140,7 +146,11 @@ def _prepare(
                 "or choose another --out"
             )
         if meta.exists() or any(points.glob("*.json")):
-            if read_manifest(folder)["fingerprint"] != spec.fingerprint():
+            manifest = read_manifest(folder)
+            changed = case_change(manifest, spec, folder)
+            if changed is not None:
+                raise InputError(changed)
+            if not same_sweep(manifest, spec):
                 raise InputError(
                     f"results folder {folder} holds another sweep or sample (different case, "
                     "analysis, parameters or inputs): choose another --out"
@@ -148,7 +158,15 @@ def _prepare(
             return done_points(folder, spec, set_aside=compute)
     write_text(
         meta,
-        json.dumps({"fingerprint": spec.fingerprint(), **spec.describe()}, indent=1, default=str),
+        json.dumps(
+            {
+                "fingerprint": spec.fingerprint(),
+                **spec.describe(),
+                "base_case": base_record(spec).to_dict(),
+            },
+            indent=1,
+            default=str,
+        ),
     )
     return {}
 
@@ -165,6 +183,15 @@ class PointSet(Protocol):
 
     @property
     def n_points(self) -> int: ...
+
+    @property
+    def base(self) -> dict[str, Any]: ...
+
+    @property
+    def case_file(self) -> str: ...
+
+    @property
+    def source(self) -> str: ...
 
     def point_data(self, index: int) -> dict[str, Any]: ...
 
