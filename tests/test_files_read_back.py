@@ -6,9 +6,10 @@ it, a sweep with ``analysis = "bifurcation"`` writes it), ``uncertainty`` and th
 nonlinear run (``rotor --orbit --out``, stopped and resumed), over the four kinds of
 bearing: the built-in C-GFB, the first-generation bump foil bearing, the shimmed GFB and
 the rigid gas bearing, each on a coarse grid (32 x 4, the shims 48 x 4: see
-``tests/test_own_bearing.py``). Each file reopens with ``xarray.load_dataset`` and holds the
-numbers the command prints with ``--json``. Where an option does not apply (a voltage on a
-bearing without actuators), the answer is the one-line error.
+``tests/test_own_bearing.py``); and the study of a passive bearing. Each file reopens
+(``xarray.load_dataset``, ``json.loads``) and holds the numbers the command prints with
+``--json``. Where an option does not apply (a voltage on a bearing without actuators),
+the answer is the one-line error.
 
 The sweeps and the sample run on an in-process Dask cluster (``--scheduler``), so that
 its worker reuses this process's compiled kernels.
@@ -244,3 +245,22 @@ def test_a_voltage_program_for_a_rotor_without_actuators_is_one_line_saying_why(
     argv = ["rotor", str(rotor), "--orbit", "40000rpm:0.005s", *option]
     err = _one_line_error(argv, capsys)
     assert err.endswith(f"{option[0]}: no bearing of the rotor has actuators")
+
+
+def test_the_study_of_a_passive_bearing_writes_the_summary_it_prints(
+    coarse: dict[str, Path], tmp_path: Path, capsys
+) -> None:
+    """``study BUMP.toml --orbits none --json`` on the bump foil bearing: its
+    ``summary.json`` reads back as the object printed, every figure it names is in the
+    folder, and the onset it reports is the one ``stability`` prints (the same scan)."""
+    path = str(coarse["bump_foil_bearing"])
+    out = tmp_path / "study"
+    printed = _run(["study", path, "--out", str(out), "--orbits", "none"], capsys)
+    assert json.loads((out / "summary.json").read_text(encoding="utf-8")) == printed
+    assert (out / "report.html").stat().st_size > 1000
+    names = [name for stage in printed["figures"].values() for name in stage]
+    assert "log_decrement.png" in names and all((out / name).is_file() for name in names)
+    linear = _run(["stability", path], capsys)
+    study = printed["bearing_stability"]["onset"]
+    for key in ("onset_speed_rpm", "whirl_frequency_Hz"):
+        assert study[key] == linear[key], key
