@@ -55,11 +55,12 @@ def cmd_bifurcation(args: argparse.Namespace) -> int:
     from foilbearing.bifurcation import ShootingError
     from foilbearing.bifurcation.bearing import whirl_branch_headline
     from foilbearing.case import load_case
-    from foilbearing.cli.common import voltage_list
+    from foilbearing.cli.common import refuse_without_actuators, voltage_list
     from foilbearing.units import parse_speed_range
 
     case = apply_reading(apply_subambient(load_case(args.case), args.subambient), args)
     if args.voltage is not None:
+        refuse_without_actuators(case, "--voltage", args.voltage)
         volts = voltage_list(args.voltage, case)
         if len(volts) != 1:
             raise InputError(f"--voltage {args.voltage!r}: one voltage, e.g. 150V")
