@@ -55,24 +55,23 @@ twins of the transient Newton iteration take the ``TransientSystem`` or
 
 Modules
 -------
-=================  ===================================================================
-module             responsibility
-=================  ===================================================================
-``faces``          the flux through one cell face: Bernoulli function, θ-, Z- and end
-                   faces with their derivatives, the order-4 axial flux
-``patterns``       CSR sparsity patterns of the stencil and of the foil-coupled Jacobian
-``flux``           the steady residual of Eq. (4), dR/dP, dR/dH, the coupled Jacobian
-                   and the lift-off rows
-``blockcyclic``    the block cyclic LU of the coupled Jacobian
-``film_rows``      the film rows of a transient state (mean gauge pressure, H per row)
-``bdf``            the BDF equations of the transient system: residual, storage, set-up
-``bdf_linear``     the linear system of a BDF Newton step: Jacobian blocks, border, solve
-``newton``         the Newton iteration on the BDF equations, with lift-off branch
-                   switching
-``groups``         the named argument groups the kernels take
-``notice``         the one-line notice on a cold cache
-``_cache``         drops the on-disk caches when any kernel or inlined law changes
-=================  ===================================================================
+===============  ===============================================================================
+module           responsibility
+===============  ===============================================================================
+``faces``        the flux through one cell face: Bernoulli function, θ-, Z- and end faces with
+                 their derivatives, the order-4 axial flux
+``patterns``     CSR sparsity patterns of the stencil and of the foil-coupled Jacobian
+``flux``         the steady residual of Eq. (4), dR/dP, dR/dH, the coupled Jacobian and the
+                 lift-off rows
+``blockcyclic``  the block cyclic LU of the coupled Jacobian
+``film_rows``    the film rows of a transient state (mean gauge pressure, H per row)
+``bdf``          the BDF equations of the transient system: residual, storage, set-up
+``bdf_linear``   the linear system of a BDF Newton step: Jacobian blocks, border, solve
+``newton``       the Newton iteration on the BDF equations, with lift-off branch switching
+``groups``       the named argument groups the kernels take
+``notice``       the one-line notice on a cold cache
+``_cache``       drops the on-disk caches when any kernel or inlined law changes
+===============  ===============================================================================
 
 Each module's names stay importable from the module that held them before
 (``flux`` re-exports ``faces`` and ``patterns``, ``bdf`` re-exports ``film_rows``
