@@ -281,3 +281,21 @@ def test_the_table_readers_see_a_missing_module_and_a_changed_row(tmp_path: Path
         "p": {"a": "first line and its `continuation`", "sub/": "a subpackage"}
     }
     assert markdown_tables(md)["p"] != table  # one code mark apart
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        ("foilbearing.static", "foilbearing.analysis.equilibrium"),
+        ("foilbearing.coefficients", "foilbearing.analysis.coefficients"),
+        ("foilbearing.stability", "foilbearing.analysis.stability"),
+    ],
+)
+def test_an_analysis_s_old_module_name_is_its_new_module(old: str, new: str) -> None:
+    """Code that imports an analysis from its old module, or patches a name there, reaches
+    the module that runs: the old name is the same module object, not a copy of its names."""
+    import importlib
+
+    old_module, new_module = importlib.import_module(old), importlib.import_module(new)
+    assert old_module is new_module
+    assert set(new_module.__all__) <= set(vars(old_module))

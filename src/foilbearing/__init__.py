@@ -31,14 +31,11 @@ module               responsibility
                      compliance on the grid
 ``reynolds/``        finite-volume solvers of the Reynolds equation: steady, perturbed,
                      transient
-``static``           static analysis: the equilibrium under load, or the film at a given
-                     position
-``static_result``    the result of a static analysis and its views (headline, summary, Dataset,
-                     plot)
-``coefficients``     dynamic force coefficients: stiffness and damping against excitation
-                     frequency
-``stability``        linear stability of a rigid rotor on the bearing: whirl eigenvalues and
-                     onset speed
+``analysis/``        the analyses of the bearing at a speed: equilibrium, force coefficients,
+                     linear stability
+``static``           moved: the same module as ``analysis/equilibrium``, under its old name
+``coefficients``     moved: the same module as ``analysis/coefficients``, under its old name
+``stability``        moved: the same module as ``analysis/stability``, under its old name
 ``orbit/``           the nonlinear orbit of the journal during a speed-up (BDF in physical time)
 ``signals``          signal analysis of a speed-up orbit: waterfall, sub-synchronous amplitude,
                      onset, divergence
@@ -85,14 +82,14 @@ from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 
 if TYPE_CHECKING:
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+    from foilbearing.analysis.stability import onset_speed, stability_map, whirl_mode
     from foilbearing.case import Case, default_case, load_case
-    from foilbearing.coefficients import force_coefficients
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
     from foilbearing.orbit import OrbitSettings, simulate
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.schedule import voltage_schedule
-    from foilbearing.stability import onset_speed, stability_map, whirl_mode
-    from foilbearing.static import solve_equilibrium
     from foilbearing.study.paper import run_study
     from foilbearing.sweep.runner import run_sweep
     from foilbearing.uncertainty import run_uncertainty
@@ -102,11 +99,11 @@ _LAZY = {
     "Case": "foilbearing.case",
     "default_case": "foilbearing.case",
     "load_case": "foilbearing.case",
-    "solve_equilibrium": "foilbearing.static",
-    "force_coefficients": "foilbearing.coefficients",
-    "whirl_mode": "foilbearing.stability",
-    "onset_speed": "foilbearing.stability",
-    "stability_map": "foilbearing.stability",
+    "solve_equilibrium": "foilbearing.analysis.equilibrium",
+    "force_coefficients": "foilbearing.analysis.coefficients",
+    "whirl_mode": "foilbearing.analysis.stability",
+    "onset_speed": "foilbearing.analysis.stability",
+    "stability_map": "foilbearing.analysis.stability",
     "simulate": "foilbearing.orbit",
     "OrbitSettings": "foilbearing.orbit",
     "analyse_orbit": "foilbearing.orbit.analysis",

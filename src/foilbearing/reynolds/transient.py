@@ -20,7 +20,7 @@ loss factor's equivalent at the running speed, docs/model.md §3) in series
 with the massless elastic actuator of compliance c_a = φ(θ) p_a/(C k_act) under
 the stingers. With γ = 0 the bump is purely elastic and joins c_a. The dynamic
 coefficients use the same bump, ``k_b (1 + jγ ω_e/ω)``
-(:mod:`foilbearing.coefficients`).
+(:mod:`foilbearing.analysis.coefficients`).
 
 Top-foil lift-off (``lift_off``, docs/model.md §3): the film holds no
 sub-ambient pressure. Each pressure cell's BDF equation G = 0 becomes the

@@ -5,7 +5,7 @@ the grid), the film force, the actuators' preload and pressure and the solver's
 outcome, in SI; it gives its headline (:data:`STATIC_HEADLINE`, the CLI's ``--json``),
 its printed summary, an xarray Dataset and a plot. :func:`static_result` builds it
 from a solved film: the force, the preload of Eq. (3b) and the drag torque.
-The solvers that produce it live in :mod:`foilbearing.static`.
+The solvers that produce it live in :mod:`foilbearing.analysis.equilibrium`.
 """
 
 from __future__ import annotations
