@@ -7,8 +7,8 @@ the two extra equations. Each iteration factorises the coupled Jacobian once
 and eliminates (ε_X, ε_Y) by a 2 × 2 Schur complement. The same residual and
 Jacobian (``reynolds.coupled_system``) serve the dynamic coefficients and
 the orbit, so static, linear and nonlinear results agree by construction.
-The result, :class:`~foilbearing.static_result.StaticResult`, and its views live in
-:mod:`foilbearing.static_result` (re-exported here).
+The result, :class:`~foilbearing.analysis.static_result.StaticResult`, and its views live in
+:mod:`foilbearing.analysis.static_result` (re-exported here).
 """
 
 from __future__ import annotations
