@@ -1,18 +1,35 @@
-"""The layout's rules, read from the source's imports (no module is run): the test oracles of
+"""The layout's rules, read from the source (no module is run): the test oracles of
 :mod:`foilbearing.testing` stay off the production path, and the modules import each other
 without cycles. Every import counts: at module level, inside functions, and under
-``TYPE_CHECKING`` (a type-only import back is still a loop a reader must untangle)."""
+``TYPE_CHECKING`` (a type-only import back is still a loop a reader must untangle). No module
+of ``src/`` or ``benchmarks/`` exceeds 600 lines, and each package's docstring carries its
+module → responsibility table, the same as docs/architecture.md's."""
 
 from __future__ import annotations
 
 import ast
+import re
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
-SRC = Path(__file__).resolve().parents[1] / "src"
+ROOT = Path(__file__).resolve().parents[1]
+SRC = ROOT / "src"
 TESTING = "foilbearing.testing"
+
+#: The longest a module of src/ or benchmarks/ may be, in lines.
+MAX_LINES = 600
+#: Modules over MAX_LINES that are being split: each entry says by whom. Shrink it as they are.
+OVER_MAX_LINES = {
+    "src/foilbearing/output/report/sections.py": "the report's sections, split with the report",
+    "src/foilbearing/rotor/stepper.py": "the rotor's stepper, split with the rotor's Newton",
+}
+#: Packages whose docstring does not carry its table yet, and why.
+NO_TABLE_YET = {
+    "foilbearing.output.report": "the report package is being reorganised",
+    "foilbearing.integrate": "the generic BDF integrator, being built (issue 46, item 4)",
+}
 
 
 def module_name(path: Path) -> str:
@@ -159,3 +176,127 @@ def test_the_rotor_s_moved_solve_ivp_methods_name_their_new_home() -> None:
         system.run(0.01)
     with pytest.raises(AttributeError, match="no attribute 'runn'"):
         system.runn  # noqa: B018
+
+
+def test_no_module_is_over_600_lines() -> None:
+    """A long module is one that holds more than one responsibility: split it by them."""
+    files = sorted([*(SRC / "foilbearing").rglob("*.py"), *(ROOT / "benchmarks").glob("*.py")])
+    long = {
+        str(f.relative_to(ROOT)): n
+        for f in files
+        if (n := len(f.read_text(encoding="utf-8").splitlines())) > MAX_LINES
+    }
+    over = [f"{f}: {n} lines" for f, n in long.items() if f not in OVER_MAX_LINES]
+    assert not over, f"over {MAX_LINES} lines: " + "; ".join(over)
+    gone = [f for f in OVER_MAX_LINES if not (ROOT / f).exists()]
+    assert not gone, f"OVER_MAX_LINES names files that are gone: {gone}"
+
+
+def _markup_free(text: str) -> str:
+    """A table cell as words: code marks and runs of whitespace made uniform."""
+    return " ".join(text.replace("``", "`").split())
+
+
+def docstring_table(docstring: str) -> dict[str, str]:
+    """The rows of the ``module  responsibility`` table (an RST simple table) of a docstring:
+    module → responsibility, continuation lines joined; empty if it has none."""
+    lines = docstring.splitlines()
+    rows: dict[str, str] = {}
+    for i in range(len(lines) - 2):
+        if lines[i].startswith("==") and re.match(r"module\s+responsibility$", lines[i + 1]):
+            width = len(lines[i].split()[0]) + 2
+            last = ""
+            for line in lines[i + 3 :]:
+                if line.startswith("=="):
+                    return {k: _markup_free(v) for k, v in rows.items()}
+                name, text = line[:width].strip(), line[width:]
+                if name:
+                    last = name.strip("`")
+                    rows[last] = text
+                else:
+                    rows[last] += " " + text
+    return {k: _markup_free(v) for k, v in rows.items()}
+
+
+def markdown_tables(text: str) -> dict[str, dict[str, str]]:
+    """The tables of docs/architecture.md's "Packages" section: package → module → responsibility."""
+    section = text.split("## Packages", 1)[1].split("\n## ", 1)[0]
+    tables: dict[str, dict[str, str]] = {}
+    for block in section.split("\n### ")[1:]:
+        package = block.split("\n", 1)[0].strip().strip("`")
+        rows = re.findall(r"^\| `([^`]+)` \| (.*) \|$", block, flags=re.M)
+        tables[package] = {name: _markup_free(cell) for name, cell in rows}
+    return tables
+
+
+def package_entries(directory: Path) -> set[str]:
+    """The modules (stems) and subpackages (``name/``) of a package directory."""
+    modules = {p.stem for p in directory.glob("*.py") if p.name != "__init__.py"}
+    return modules | {d.name + "/" for d in directory.iterdir() if (d / "__init__.py").exists()}
+
+
+def packages() -> dict[str, Path]:
+    """Every package of ``foilbearing`` by dotted name, with its directory."""
+    return {module_name(p): p.parent for p in sorted((SRC / "foilbearing").rglob("__init__.py"))}
+
+
+@pytest.mark.parametrize("package", sorted(set(packages()) - set(NO_TABLE_YET)))
+def test_a_package_docstring_tables_its_modules_as_the_architecture_does(package: str) -> None:
+    directory = packages()[package]
+    doc = ast.get_docstring(ast.parse((directory / "__init__.py").read_text(encoding="utf-8")))
+    table = docstring_table(doc or "")
+    entries = package_entries(directory)
+    assert set(table) == entries, (
+        f"{package}'s docstring table: missing {sorted(entries - set(table))}, "
+        f"not a module {sorted(set(table) - entries)}"
+    )
+    docs = markdown_tables((ROOT / "docs" / "architecture.md").read_text(encoding="utf-8"))
+    assert docs.get(package) == table, f"docs/architecture.md's table of {package} differs"
+
+
+def test_the_table_readers_see_a_missing_module_and_a_changed_row(tmp_path: Path) -> None:
+    """The check above can fail: a docstring table is read with its continuation lines, a
+    module missing from it shows, and a row that differs from the document's shows."""
+    doc = (
+        "Words.\n\n"
+        "==========  =====\n"
+        "module      responsibility\n"
+        "==========  =====\n"
+        "``a``       first line\n"
+        "            and its continuation\n"
+        "``sub/``    a subpackage\n"
+        "==========  =====\n"
+    )
+    table = docstring_table(doc)
+    assert table == {"a": "first line and its continuation", "sub/": "a subpackage"}
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "__init__.py").write_text("")
+    for name in ("__init__.py", "a.py", "b.py"):
+        (tmp_path / name).write_text("")
+    assert package_entries(tmp_path) - set(table) == {"b"}
+    md = (
+        "## Packages\n\n### `p`\n\n| module | responsibility |\n|---|---|\n"
+        "| `a` | first line and its `continuation` |\n| `sub/` | a subpackage |\n\n## Next\n"
+    )
+    assert markdown_tables(md) == {
+        "p": {"a": "first line and its `continuation`", "sub/": "a subpackage"}
+    }
+    assert markdown_tables(md)["p"] != table  # one code mark apart
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        ("foilbearing.static", "foilbearing.analysis.equilibrium"),
+        ("foilbearing.coefficients", "foilbearing.analysis.coefficients"),
+        ("foilbearing.stability", "foilbearing.analysis.stability"),
+    ],
+)
+def test_an_analysis_s_old_module_name_is_its_new_module(old: str, new: str) -> None:
+    """Code that imports an analysis from its old module, or patches a name there, reaches
+    the module that runs: the old name is the same module object, not a copy of its names."""
+    import importlib
+
+    old_module, new_module = importlib.import_module(old), importlib.import_module(new)
+    assert old_module is new_module
+    assert set(new_module.__all__) <= set(vars(old_module))

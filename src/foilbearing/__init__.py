@@ -17,6 +17,60 @@ loads no numerics, so the command line starts quickly)::
     fc = fb.force_coefficients(st, [st.speed])          # K (N/m), C (N·s/m)
     onset = fb.onset_speed(case)                        # linear stability threshold
     run = fb.simulate(case, fb.linear_ramp(3e3 * fb.RPM, 90e3 * fb.RPM, 500.0))
+
+===================  ===========================================================================
+module               responsibility
+===================  ===========================================================================
+``case/``            the bearing case: frozen dataclasses (SI), the case file's schema, reader
+                     and record
+``structure/``       structure models: PZT stack and actuator springs, bump foil, stiffness
+                     k(θ), preload shape r_p(θ)
+``identification/``  the PZT stack's parameters identified from measured stack data
+``laws/``            the modelling laws, one a module, each in every form the analyses use
+``film``             the film model of a case: journal position, preload shape and foil
+                     compliance on the grid
+``reynolds/``        finite-volume solvers of the Reynolds equation: steady, perturbed,
+                     transient
+``analysis/``        the analyses of the bearing at a speed: equilibrium, force coefficients,
+                     linear stability
+``static``           moved: the same module as ``analysis/equilibrium``, under its old name
+``coefficients``     moved: the same module as ``analysis/coefficients``, under its old name
+``stability``        moved: the same module as ``analysis/stability``, under its old name
+``orbit/``           the nonlinear orbit of the journal during a speed-up (BDF in physical time)
+``signals``          signal analysis of a speed-up orbit: waterfall, sub-synchronous amplitude,
+                     onset, divergence
+``bifurcation/``     periodic orbits past a Hopf point: shooting, Floquet multipliers,
+                     continuation
+``rotor/``           rotors on foil bearings: a shaft of beam elements with disks, linear and
+                     nonlinear
+``control``          speed profiles, actuator voltage programs and a closed-loop preload
+                     controller
+``design``           what the stack's stiffness buys: the 150 V onset against k_p under each
+                     reading
+``optimize``         actuator voltages chosen by optimisation, beyond the paper's equal voltages
+``schedule``         a voltage schedule: the least-drag voltages that keep the rotor stable,
+                     speed by speed
+``schedule_file``    the voltage-schedule file a controller (or ``foilbearing orbit``) reads
+``check``            how far to trust a case's numbers: its headline readouts on its grid and on
+                     refined grids
+``study/``           studies: the paper's full analysis and the same analysis of any bearing
+``sweep/``           parameter sweeps on Dask, from a laptop to a cluster
+``uncertainty/``     uncertainty envelopes and sensitivity indices of a case's readouts
+``paper``            the paper's reported numbers and ours beside them
+``headline``         headlines: the unit-named numbers of a result, read off its Dataset
+``output/``          what the user reads: summaries, figures and the HTML report
+``export/``          export to other rotordynamics tools (ROSS)
+``cli/``             the ``foilbearing`` command, one module per subcommand family
+``units``            quantities at the edges: ``"100 um"``, ``"90000 rpm"`` parsed once, to SI
+``constants``        conversion constants (everything inside the package is SI)
+``errors``           errors a user can act on: bad input (``InputError``, exit 2), a solve that
+                     did not converge (``SolverError``, exit 3)
+``io``               atomic writes: a result is either there whole or not at all
+``warmup``           compiles the film kernels once, ahead of the first run
+``__main__``         ``python -m foilbearing`` is the ``foilbearing`` command
+``testing/``         test oracles (NumPy twins, ``solve_ivp`` references): tests import them,
+                     production never
+===================  ===========================================================================
 """
 
 from __future__ import annotations
@@ -28,14 +82,14 @@ from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 
 if TYPE_CHECKING:
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+    from foilbearing.analysis.stability import onset_speed, stability_map, whirl_mode
     from foilbearing.case import Case, default_case, load_case
-    from foilbearing.coefficients import force_coefficients
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
     from foilbearing.orbit import OrbitSettings, simulate
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.schedule import voltage_schedule
-    from foilbearing.stability import onset_speed, stability_map, whirl_mode
-    from foilbearing.static import solve_equilibrium
     from foilbearing.study.paper import run_study
     from foilbearing.sweep.runner import run_sweep
     from foilbearing.uncertainty import run_uncertainty
@@ -45,11 +99,11 @@ _LAZY = {
     "Case": "foilbearing.case",
     "default_case": "foilbearing.case",
     "load_case": "foilbearing.case",
-    "solve_equilibrium": "foilbearing.static",
-    "force_coefficients": "foilbearing.coefficients",
-    "whirl_mode": "foilbearing.stability",
-    "onset_speed": "foilbearing.stability",
-    "stability_map": "foilbearing.stability",
+    "solve_equilibrium": "foilbearing.analysis.equilibrium",
+    "force_coefficients": "foilbearing.analysis.coefficients",
+    "whirl_mode": "foilbearing.analysis.stability",
+    "onset_speed": "foilbearing.analysis.stability",
+    "stability_map": "foilbearing.analysis.stability",
     "simulate": "foilbearing.orbit",
     "OrbitSettings": "foilbearing.orbit",
     "analyse_orbit": "foilbearing.orbit.analysis",

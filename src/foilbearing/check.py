@@ -71,9 +71,9 @@ def _readouts(
 
     ``near_onset`` (rad/s): scan only a bracket around it first (a refined level).
     """
-    from foilbearing.coefficients import force_coefficients
-    from foilbearing.stability import onset_speed
-    from foilbearing.static import solve_equilibrium
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+    from foilbearing.analysis.stability import onset_speed
 
     st = solve_equilibrium(case)
     if not st.converged:

@@ -4,7 +4,7 @@ The paper's conclusion asks for it ("the PZT stack stiffness should be carefully
 designed"). A stack is a spring in series with the bump: the film's pressure
 shortens it, by a pocket under the stinger or by lowering the whole lobe, and an
 elastic stack also yields during the whirl (docs/model.md §3.8). The answer is
-read off the linear onset (:func:`foilbearing.stability.onset_speed`, coefficients
+read off the linear onset (:func:`foilbearing.analysis.stability.onset_speed`, coefficients
 at the whirl's own frequency) on the case's grid:
 
 - the shimmed GFB, rigid shims as thick as the base preloads: an ideal positioner
@@ -26,11 +26,11 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
+from foilbearing.analysis.stability import onset_speed
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.laws.actuator import READINGS as ACTUATOR_READINGS
-from foilbearing.stability import onset_speed
 
 __all__ = ["READINGS", "StackDesign", "stack_design"]
 

@@ -258,7 +258,7 @@ def _onset_of(case: Case, speeds: np.ndarray) -> tuple[float, bool]:
     NaN when the stability analysis finds no equilibrium on the scan. This is the
     one place the onset objective touches the physics (tests replace it).
     """
-    from foilbearing.stability import onset_speed
+    from foilbearing.analysis.stability import onset_speed
 
     try:
         res = onset_speed(case, list(speeds))
@@ -281,7 +281,7 @@ def maximize_onset(
 ) -> VoltageOptimum:
     """Actuator voltages that maximise the linear onset speed of instability.
 
-    The onset (:func:`foilbearing.stability.onset_speed`, refined by Brent's
+    The onset (:func:`foilbearing.analysis.stability.onset_speed`, refined by Brent's
     method) is continuous in the voltages but only piecewise smooth: it kinks
     where the least stable mode changes. Each evaluation costs about 0.5 s, so
     the search is derivative-free and frugal: the paper's equal voltages and
@@ -378,8 +378,8 @@ def minimize_drag(
     -------
     VoltageOptimum with ``value`` the drag torque, N·m, and ``min_film``, m.
     """
+    from foilbearing.analysis.equilibrium import solve_equilibrium
     from foilbearing.film import film_model
-    from foilbearing.static import solve_equilibrium
 
     lo, hi = voltage_box(case, bounds, method, max_evaluations)
     if not (math.isfinite(speed) and speed > 0.0):

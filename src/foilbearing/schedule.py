@@ -8,7 +8,7 @@ that
 
 - minimise the power loss P(v) = T_drag(v) · Ω of the static equilibrium, subject
   to a stability margin: the logarithmic decrement δ(v) of the least stable
-  whirl mode of the rotor on the bearing (:func:`foilbearing.stability.whirl_mode`,
+  whirl mode of the rotor on the bearing (:func:`foilbearing.analysis.stability.whirl_mode`,
   the linear analysis of docs/model.md §4) is at least ``margin``;
 - where no voltages meet the margin, the most stable voltages found (largest δ).
 
@@ -121,9 +121,9 @@ def evaluate_voltages(
     equilibrium or whirl mode is found) and the equilibrium as a start for the
     next evaluation.
     """
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+    from foilbearing.analysis.stability import whirl_mode
     from foilbearing.film import film_model
-    from foilbearing.stability import whirl_mode
-    from foilbearing.static import solve_equilibrium
 
     volts = tuple(float(v) for v in voltages)
     try:

@@ -29,13 +29,13 @@ def compile_kernels() -> float:
     float
         The wall time it took, s.
     """
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+    from foilbearing.analysis.stability import whirl_mode
     from foilbearing.case import Grid, default_case
-    from foilbearing.coefficients import force_coefficients
     from foilbearing.constants import RPM
     from foilbearing.control import constant_speed
     from foilbearing.orbit import simulate
-    from foilbearing.stability import whirl_mode
-    from foilbearing.static import solve_equilibrium
 
     start = time.perf_counter()
     base = default_case()

@@ -9,6 +9,17 @@
 The numerics take a :class:`~foilbearing.bifurcation.shooting.FlowMap` (callables:
 the flow over a time, the vector field), not a bearing: they are checked on the
 Hopf normal form and the van der Pol oscillator (``tests/test_bifurcation.py``).
+
+============  ==================================================================================
+module        responsibility
+============  ==================================================================================
+``shooting``  a periodic orbit of an autonomous system by Newton shooting, and its Floquet
+              multipliers
+``branch``    the branch of periodic orbits born at a Hopf point, by pseudo-arclength
+              continuation
+``bearing``   the whirl's limit cycles of a rotor on the bearing, past and before the linear
+              onset
+============  ==================================================================================
 """
 
 from foilbearing.bifurcation.branch import Branch, HopfPoint, hopf_branch

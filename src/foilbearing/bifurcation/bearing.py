@@ -8,7 +8,7 @@ continuation (:mod:`foilbearing.bifurcation.branch`) find the branch of periodic
 orbits born at the linear onset, the Hopf point, with the parameter the rotor
 speed. The Hopf point and its eigenvector come from the semi-discrete system's
 own linearisation at the static equilibrium (a generalised eigenproblem of its
-Jacobian and storage matrix), seeded by the onset of :func:`~foilbearing.stability.onset_speed`
+Jacobian and storage matrix), seeded by the onset of :func:`~foilbearing.analysis.stability.onset_speed`
 on the same grid.
 
 The state is scaled for shooting: pressures in p_a, bump deflections and ε in C,
@@ -327,10 +327,10 @@ def whirl_branch(
         The bearing case; its orbit grid is used throughout.
     scan
         Speeds of the onset search, rad/s (default that of
-        :func:`~foilbearing.stability.onset_speed`).
+        :func:`~foilbearing.analysis.stability.onset_speed`).
     onset
         The onset already found on the case's orbit grid (an
-        :class:`~foilbearing.stability.OnsetResult`); then ``scan`` is not used.
+        :class:`~foilbearing.analysis.stability.OnsetResult`); then ``scan`` is not used.
     steps
         Orbits after the two first ones.
     amplitude
@@ -353,7 +353,7 @@ def whirl_branch(
     InputError
         No onset in the scan (stable throughout, or unstable from its start).
     """
-    from foilbearing.stability import onset_speed
+    from foilbearing.analysis.stability import onset_speed
 
     on_grid = case.orbit_case()
     if onset is None:
@@ -425,7 +425,7 @@ def whirl_branch_headline(
     :class:`~foilbearing.bifurcation.shooting.ShootingError` when the first cycles from
     the onset do not converge (its message says how far it got).
     """
-    from foilbearing.stability import onset_speed
+    from foilbearing.analysis.stability import onset_speed
 
     onset = onset_speed(case.orbit_case(), scan)
     if onset.onset_speed is None or onset.onset_speed <= scan[0]:

@@ -1,4 +1,15 @@
-"""The bearing case: ``model`` (frozen dataclasses, SI) and ``toml`` (reading, validating and finding case files)."""
+"""The bearing case: ``model`` (frozen dataclasses, SI) and ``toml`` (reading, validating and finding case files).
+
+==========  ====================================================================================
+module      responsibility
+==========  ====================================================================================
+``model``   the bearing case as frozen dataclasses, SI inside, validated on creation and on
+            change
+``schema``  every field of a case file declared once: TOML path, dimension, bounds, display unit
+``toml``    reading, validating and finding case files
+``record``  a case written back as the tables of a case file (the run record)
+==========  ====================================================================================
+"""
 
 from foilbearing.case.model import (
     ACTUATOR_DYNAMICS,

@@ -69,10 +69,10 @@ def cmd_coefficients(args: argparse.Namespace) -> int:
     """
     import numpy as np
 
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
     from foilbearing.case import load_case
-    from foilbearing.coefficients import force_coefficients
     from foilbearing.io import save_figure
-    from foilbearing.static import solve_equilibrium
 
     loads = load_list(args.load)
     if loads is not None and len(loads) > 1:

@@ -67,10 +67,10 @@ def register(sub: Any) -> argparse.ArgumentParser:
 
 def cmd_stability(args: argparse.Namespace) -> int:
     """Run ``stability``; returns the exit code (0)."""
+    from foilbearing.analysis.stability import onsets_per_voltage, stability_map
     from foilbearing.case import load_case
     from foilbearing.constants import RPM
     from foilbearing.io import save_figure
-    from foilbearing.stability import onsets_per_voltage, stability_map
     from foilbearing.units import parse_speed_range
 
     loads = load_list(args.load)
@@ -126,9 +126,9 @@ def _passive(case: Any, args: argparse.Namespace) -> int:
     Without ``--speed-range`` the scan is the study's (:meth:`StudyPlan.onset_scan`), so
     that ``stability`` and ``study`` report the same onset for the case.
     """
+    from foilbearing.analysis.stability import onset_speed
     from foilbearing.constants import RPM
     from foilbearing.io import save_figure
-    from foilbearing.stability import onset_speed
     from foilbearing.study.plan import study_plan
     from foilbearing.units import parse_speed_range
 

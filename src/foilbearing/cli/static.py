@@ -125,7 +125,7 @@ def cmd_static(args: argparse.Namespace) -> int:
 
 
 def _static_point(case: Case, speed: float, eccentricity: str | None) -> Any:
-    from foilbearing.static import film_at_position, solve_equilibrium
+    from foilbearing.analysis.equilibrium import film_at_position, solve_equilibrium
 
     if eccentricity is None:
         return solve_equilibrium(case, speed=speed)

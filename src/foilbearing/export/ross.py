@@ -45,13 +45,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.analysis.coefficients import force_coefficients
+from foilbearing.analysis.equilibrium import StaticResult, solve_equilibrium
 from foilbearing.case import Case
-from foilbearing.coefficients import force_coefficients
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.reynolds import Workspace
-from foilbearing.static import StaticResult, solve_equilibrium
 
 __all__ = ["coefficient_table", "ross_coefficients", "to_ross_bearing"]
 

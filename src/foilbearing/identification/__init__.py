@@ -18,6 +18,14 @@ comments of the form ``# key: value`` are kept as metadata. Columns:
 Everything inside is SI (m, V, N); the fit objects offer µm views for reports.
 R² is everywhere the usual ``1 − SS_res/SS_tot`` with SS_tot the sum of squares
 about the mean, also for the fits through the origin (where it may be negative).
+
+==============  ================================================================================
+module          responsibility
+==============  ================================================================================
+``stack_data``  measured PZT-stack data: the no-load and stiffness test files (CSV)
+``fits``        fits of the stack model of Eqs. (1)-(2): D33,1, D33,2 and K_p
+``case_file``   the identified parameters written into a case file, its comments and layout kept
+==============  ================================================================================
 """
 
 from __future__ import annotations

@@ -7,21 +7,20 @@ the force coefficients, the orbit — takes it from there; a compiled kernel inl
 law's kernel form. So changing a law is one module and its tests, and trying another
 is passing another object (no patching).
 
-==================  ===================================================================
-module              responsibility
-==================  ===================================================================
-``lift_off``        top-foil lift-off: the sharp or smoothed edge (κ) as
-                    :class:`LiftOff` (its width δ√Λ on a grid), and the smoothed row
-                    :func:`smoothed_edge` (``φ/2`` and its weight α), compiled as
-                    :data:`smoothed_edge_kernel` for the steady and BDF kernels
-``foil_damping``    the bump's damping: :class:`ViscousBump` (γ, damper γ k_b/ω) and
-                    its peer :class:`NoFoilDamping`; the frequency-domain compliance
-                    of the bump (coefficients) and the rate of its state U (orbit)
-``actuator``        the actuator reading (:class:`ActuatorReading`, local or lobe ×
-                    compliant or held): the stack's share of the static compliance,
-                    its lobe compliance c_s, and the share that acts during the
-                    motion (coefficients and orbit alike); the four :data:`READINGS`
-==================  ===================================================================
+================  ==============================================================================
+module            responsibility
+================  ==============================================================================
+``lift_off``      top-foil lift-off: the sharp or smoothed edge (κ) as ``LiftOff`` (its width
+                  δ√Λ on a grid), and the smoothed row ``smoothed_edge`` (φ/2 and its weight α),
+                  compiled as ``smoothed_edge_kernel`` for the steady and BDF kernels
+``foil_damping``  the bump's damping: ``ViscousBump`` (γ, damper γ k_b/ω) and its peer
+                  ``NoFoilDamping``; the frequency-domain compliance of the bump (coefficients)
+                  and the rate of its state U (orbit)
+``actuator``      the actuator reading (``ActuatorReading``, local or lobe × compliant or held):
+                  the stack's share of the static compliance, its lobe compliance c_s, and the
+                  share that acts during the motion (coefficients and orbit alike); the four
+                  ``READINGS``
+================  ==============================================================================
 
 This package is the bottom layer: it imports numpy, and numba only where a kernel asks
 for a law's compiled form (``lift_off.smoothed_edge_kernel``), so that reading a case

@@ -4,7 +4,7 @@ The bump layer is a spring k_b per unit area (``structure/bump.py`` gives k_b); 
 foil damping law says what acts beside it. The law is stated once here, in each form
 an analysis uses (docs/model.md §3, docs/lift-off.md):
 
-- frequency domain (the force coefficients, :mod:`foilbearing.coefficients`): the
+- frequency domain (the force coefficients, :mod:`foilbearing.analysis.coefficients`): the
   bump's complex compliance at an excitation frequency ω_e, :meth:`~ViscousBump.compliance`;
 - time domain (the orbit, :mod:`foilbearing.reynolds.transient` and the BDF kernels):
   the bump deflection U obeys ``dU/dt = r (c_b q − U)`` with the rate

@@ -21,7 +21,7 @@ Two forms, one law:
   (``∂(φ/2)/∂x = 1 − α``), written once: called on arrays by ``reynolds/assembly.py``,
   and compiled as :data:`smoothed_edge_kernel`, which every kernel that writes a
   smoothed row inlines (the steady rows of ``reynolds/_kernels/flux.py``, the BDF
-  rows of ``reynolds/_kernels/bdf.py``).
+  rows of ``reynolds/_kernels/bdf.py`` and ``bdf_linear.py``).
 
 The NumPy twin of the row (``reynolds/reference.py``, ``smoothed_lift_off_py``) is an
 independent test oracle and does not import this module.

@@ -12,6 +12,29 @@ imbalance; while the history is shorter than the order, the order is lower
 and each missing past state halves the step. It stops cleanly at
 contact (minimum film below ``contact_film`` × C), on Ctrl-C or at the end of
 the speed profile, and keeps every sample computed until then.
+
+===============  ===============================================================================
+module           responsibility
+===============  ===============================================================================
+``spec``         the specification of an orbit run as plain data (SI): what a file stores to be
+                 resumed
+``settings``     settings of the integrator: step rule, Newton iteration, sampling, stopping
+``system``       assembly of the orbit's system from the case, the programs, the preload and the
+                 inputs
+``problem``      what the stepper integrates: callables and arrays, no case, programs or
+                 settings
+``stepper``      the variable-step BDF stepper, its modified Newton iteration and its checkpoint
+``held``         held stingers: the stacks' quasi-static compression along a run
+``disturbance``  the random force on the rotor of a case's ``[disturbance]``, against time
+``sampling``     the samples at a fixed rate, interpolated between steps, and the progress bar
+``result``       the result of a run: sampled time series, status and checkpoint
+``analysis``     what a run shows: waterfall, sub-synchronous amplitude, onset, whip, divergence
+``tangent``      the derivative of a run with respect to its start state (the BDF steps'
+                 variational equations)
+``netcdf``       orbit runs on disk: NetCDF with the time series, the run specification and the
+                 checkpoint
+``reference``    moved: names the new home of the ``solve_ivp`` reference
+===============  ===============================================================================
 """
 
 from __future__ import annotations

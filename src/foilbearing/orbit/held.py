@@ -10,7 +10,7 @@ enters the film as a prescribed input, the opening it adds to the rigid film
   of the quasi-static pressure q_s;
 - ``"lobe"``: the lowered lobes ``Σ_n D_n,s lobe_n(θ)``.
 
-The quasi-static film comes from :func:`foilbearing.static.solve_equilibrium`
+The quasi-static film comes from :func:`foilbearing.analysis.equilibrium.solve_equilibrium`
 at knots in time, each started from the last, placed so that between two knots
 the speed changes by at most ``speed_step`` and every voltage by at most
 ``voltage_step``; between knots the opening is interpolated linearly in time.
@@ -26,10 +26,10 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.analysis.equilibrium import solve_equilibrium
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import SolverError
-from foilbearing.static import solve_equilibrium
 
 __all__ = ["HeldStingers"]
 

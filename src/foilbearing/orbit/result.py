@@ -87,7 +87,7 @@ class OrbitResult(Summarised):
         for a bearing without actuators.
     power_loss
         Viscous power loss of the film, W: the drag law of the static analysis
-        (:func:`foilbearing.static.drag_torque`) × speed, evaluated on the
+        (:func:`foilbearing.analysis.equilibrium.drag_torque`) × speed, evaluated on the
         accepted states every :data:`~foilbearing.orbit.sampling.POWER_INTERVAL` s and interpolated to the
         samples (None for runs saved before it was recorded).
     status

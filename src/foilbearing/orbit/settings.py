@@ -127,7 +127,7 @@ class OrbitSettings:
         factor is kept until it fails or asks for a refresh). 4-6 makes a step 1.3-2.2
         times cheaper on a 6-cell axial grid; on 96 × 12 it gains a few per cent on large
         orbits and nothing on a whole 1 g·mm speed-up; the solution is the same to the
-        Newton tolerance (``benchmarks/bench_orbit.py --refresh``;
+        Newton tolerance (``benchmarks/bench_orbit_steps.py --refresh``;
         docs/orbit-performance.md, "Route 4").
 
     The Newton defaults (``newton_tol = 0.3``, ``newton_fraction = 0.001``,

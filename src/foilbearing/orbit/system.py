@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.analysis.equilibrium import solve_equilibrium
 from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError, SolverError
@@ -29,7 +30,6 @@ from foilbearing.reynolds.transient import (
     Inputs,
     TransientSystem,
 )
-from foilbearing.static import solve_equilibrium
 from foilbearing.structure import base_preload, preload_shape
 
 __all__ = ["OrbitSimulation"]

@@ -1,8 +1,13 @@
 """What the user reads: figures, summaries and the HTML report.
 
-- ``summary``: the inputs and derived quantities of a case, in engineering units.
-- ``figures``: writes the figures of each analysis (PNG), atomically.
-- ``result``: a study's summary, folder and figures by section, as the report reads them.
-- ``report``: the HTML report that sets the results beside the paper's.
-- ``plots``: the figures themselves (matplotlib, imported lazily).
+===========  ===================================================================================
+module       responsibility
+===========  ===================================================================================
+``summary``  headline numbers of a case: what ``foilbearing case show`` prints
+``display``  a result as a person reads it: a few text lines, or an HTML table in a notebook
+``figures``  the figures of each stage written as PNG files, atomically
+``result``   what a study hands its report: summary, folder and figures by section
+``plots/``   the figures themselves (matplotlib, imported lazily)
+``report/``  the HTML report that sets the results beside the paper's
+===========  ===================================================================================
 """

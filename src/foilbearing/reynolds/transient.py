@@ -20,7 +20,7 @@ loss factor's equivalent at the running speed, docs/model.md §3) in series
 with the massless elastic actuator of compliance c_a = φ(θ) p_a/(C k_act) under
 the stingers. With γ = 0 the bump is purely elastic and joins c_a. The dynamic
 coefficients use the same bump, ``k_b (1 + jγ ω_e/ω)``
-(:mod:`foilbearing.coefficients`).
+(:mod:`foilbearing.analysis.coefficients`).
 
 Top-foil lift-off (``lift_off``, docs/model.md §3): the film holds no
 sub-ambient pressure. Each pressure cell's BDF equation G = 0 becomes the
@@ -46,6 +46,10 @@ the diagonal; ``lift_off`` is then False (no branches) and ``lift_delta`` > 0. I
 form ``dQ/dt = f + s δ²Λ/(P − 1)`` (:meth:`TransientSystem.lift_source`) is what
 :meth:`TransientSystem.rhs` gives the ``solve_ivp`` references (docs/lift-off.md, "The
 smoothed edge").
+
+The system's matrices in SciPy sparse form (the Newton matrix of :meth:`TransientSystem.jacobian`,
+the storage Jacobian and its operator), which the linearisations use and the compiled factor is
+checked against, are built in :mod:`foilbearing.reynolds.transient_matrices`.
 """
 
 from __future__ import annotations
@@ -60,6 +64,7 @@ from numpy.typing import NDArray
 from foilbearing.laws.foil_damping import FoilDamping, foil_damping_law
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds import fallback
+from foilbearing.reynolds import transient_matrices as matrices
 from foilbearing.reynolds.assembly import Workspace
 from foilbearing.reynolds.blocksolve import BlockCyclicLU, factor_coupled
 from foilbearing.reynolds.grid import FilmGrid
@@ -479,65 +484,19 @@ class TransientSystem:
         """Smallest film thickness h/C."""
         return float(self.film(y, preload)[0].min())
 
-    # --------------------------------------------------------------- Jacobian
+    # ------------------------------------------- sparse matrices (transient_matrices.py)
     def _film_derivatives(self, P: FloatArray) -> tuple[Any, Any, Any, Any]:
-        """∂q/∂P (n_theta, n) and ∂H/∂P, ∂H/∂U, ∂H/∂ε per cell, sparse, at pressures P."""
-        g = self.grid
-        active = (g.gauge_mean(P) > 0.0).astype(float)
-        dq_dp = sp.diags(active) @ self.mean  # (nt, n)
-        # ∂H/∂P through the actuator compliance (and the lobes that follow their stacks)
-        dh_dp = self.expand @ sp.diags(self.c_act) @ dq_dp
-        if self.n_lobe:  # D_n = c_s max(q(θ_n), 0)
-            dd_dp = self.lobe_gain(P)[:, None] * self.lobe_mean  # (n_lobe, n)
-            dh_dp = dh_dp + sp.csr_matrix(np.repeat(self.lobes.T, g.n_z, axis=0) @ dd_dp)
-        return dq_dp, dh_dp, self.expand, sp.csr_matrix(self.dh_de)
+        """∂q/∂P and ∂H/∂P, ∂H/∂U, ∂H/∂ε at pressures P (:func:`.transient_matrices.film_derivatives`)."""
+        return matrices.film_derivatives(self, P)
 
     def storage_jacobian(self, y: FloatArray, preload: FloatArray) -> sp.csr_matrix:
-        """∂Q/∂y at y (sparse CSR): ``∂(PH)/∂y`` on the pressure rows, the identity on U, ε, v."""
-        P = self.split(y)[0]
-        H, _q = self.film(y, preload)
-        _dq_dp, dh_dp, dh_du, dh_de = self._film_derivatives(P)
-        p_diag = sp.diags(P.ravel())
-        n, rest = self.n, self.size - self.n
-        top = sp.hstack(
-            [
-                sp.diags(H.ravel()) + p_diag @ dh_dp,
-                p_diag @ dh_du,
-                p_diag @ dh_de,
-                sp.csr_matrix((n, 2)),
-            ]
-        )
-        bottom = sp.hstack([sp.csr_matrix((rest, n)), sp.eye(rest)])
-        return sp.vstack([top, bottom], format="csr")
+        """∂Q/∂y at y, sparse CSR (:func:`.transient_matrices.storage_jacobian`)."""
+        return matrices.storage_jacobian(self, y, preload)
 
     def storage_operator(self, y: FloatArray, preload: FloatArray) -> Any:
-        """``dy -> (∂Q/∂y) dy`` at y for blocks dy of shape (size, m), dense and vectorised
-        (:meth:`storage_jacobian` is the same matrix, sparse), its state-dependent parts
-        computed once (a run's derivative applies it at every step for every block)."""
-        g = self.grid
-        n, nt, nz = self.n, self.nt, g.n_z
-        P = np.array(self.split(y)[0])
-        h_row = self.film(y, preload)[0][:, 0]
-        active = (g.gauge_mean(P) > 0.0).astype(float)
-        c_eff = (self.c_act * active)[:, None]
-        lobe_at = (
-            self.lobes.T @ (self.lobe_gain(P)[:, None] * self.lobe_rows) if self.n_lobe else None
-        )
-        cos_t, sin_t = self.cos_t[:, None], self.sin_t[:, None]
-
-        def apply(dy: FloatArray) -> FloatArray:
-            m = dy.shape[1]
-            d_p = dy[:n].reshape(nt, nz, m)
-            mean = g.axial_mean(d_p)  # (nt, m)
-            d_h = cos_t * dy[n + nt] + sin_t * dy[n + nt + 1] + dy[n : n + nt] + c_eff * mean
-            if lobe_at is not None:
-                d_h = d_h + lobe_at @ mean
-            out = np.empty_like(dy)
-            out[:n] = (h_row[:, None, None] * d_p + P[:, :, None] * d_h[:, None, :]).reshape(n, m)
-            out[n:] = dy[n:]
-            return out
-
-        return apply
+        """``dy -> (∂Q/∂y) dy`` at y, dense and vectorised
+        (:func:`.transient_matrices.storage_operator`)."""
+        return matrices.storage_operator(self, y, preload)
 
     def smoothed_scales(self, lift_state: FloatArray | None = None) -> FloatArray:
         """s_k of each film cell's row under the smoothed lift-off law, shape (n,), 1/s.
@@ -591,61 +550,6 @@ class TransientSystem:
         hist: FloatArray,
         lift_state: FloatArray | None = None,
     ) -> sp.csc_matrix:
-        """∂/∂y of c0·Q(y) − f(y, t) (the BDF Newton matrix, c0 = α₀/Δt), sparse CSC.
-
-        Under lift-off the rows of the cells held at ambient (decided with
-        ``hist``, or given by ``lift_state``, a :meth:`lift_state`) are ``d e_k`` (the
-        generalised derivative of ``min(d (P − 1), G)``).
-        """
-        P, _U, _eps, _v = self.split(y)
-        H, _q = self.film(y, inputs.preload)
-        g = self.grid
-        Pc = np.ascontiguousarray(P)
-        kern.jacobian_P(Pc, H, inputs.lam, g.d_theta, g.d_z, tuple(g.axial), self.ws.jp)
-        kern.jacobian_H(Pc, H, inputs.lam, g.d_theta, g.d_z, tuple(g.axial), self.ws.jh)
-        n = self.n
-        j_p = sp.csr_matrix((self.ws.jp, self.ws.indices, self.ws.indptr), shape=(n, n))
-        j_h = sp.csr_matrix((self.ws.jh, self.ws.indices, self.ws.indptr), shape=(n, n))
-        dq_dp, dh_dp, dh_du, dh_de = self._film_derivatives(P)
-        scale = 1.0 / (self.area * self.sigma)
-        p_diag = sp.diags(P.ravel())
-        # Reynolds rows: c0 ∂(PH)/∂y − ∂R/∂y /(Aσ)
-        rp_p = c0 * (sp.diags(H.ravel()) + p_diag @ dh_dp) - scale * (j_p + j_h @ dh_dp)
-        rp_u = c0 * (p_diag @ dh_du) - scale * (j_h @ dh_du)
-        rp_e = c0 * (p_diag @ dh_de) - scale * (j_h @ dh_de)
-        zeros_2 = sp.csr_matrix((n, 2))
-        # Foil rows
-        if self.dynamic_bump:
-            rate = self.rate(inputs)
-            fu_p = -rate * sp.diags(self.c_bump) @ dq_dp
-            fu_u = sp.diags(np.full(self.nt, c0 + rate))
-        else:
-            fu_p = sp.csr_matrix((self.nt, n))
-            fu_u = sp.diags(np.full(self.nt, c0))
-        # Journal rows: c0 ε − v ; c0 v − accel
-        je_v = sp.diags([-1.0, -1.0])
-        je_e = sp.diags([c0, c0])
-        jv_p = sp.csr_matrix(-self.force_scale * self.w)
-        jv_v = sp.diags([c0, c0])
-        blocks = [
-            [rp_p, rp_u, rp_e, zeros_2],
-            [fu_p, fu_u, None, None],
-            [None, None, je_e, je_v],
-            [jv_p, None, None, jv_v],
-        ]
-        full = sp.bmat(blocks, format="csr")
-        if self.lift_delta > 0.0:
-            # The smoothed law: each pressure row times α, plus (1 − α) s_k on its diagonal
-            # (s_k a factor's own where ``lift_state`` is a factor's).
-            a = self.smoothed_weights(y, inputs, c0, hist, lift_state)
-            s = np.zeros(self.size)
-            s[:n] = self.smoothed_scales(lift_state)
-            full = sp.diags(a) @ full + sp.diags((1.0 - a) * s)
-        if self.lift_off:
-            d = np.zeros(self.size)
-            if lift_state is None:
-                lift_state = self.lift_state(y, inputs, c0, hist)
-            d[:n] = np.maximum(lift_state, 0.0)
-            held = (d > 0.0).astype(float)
-            full = sp.diags(1.0 - held) @ full + sp.diags(d)
-        return sp.csc_matrix(full)
+        """∂/∂y of c0·Q(y) − f(y, t), the BDF Newton matrix, sparse CSC
+        (:func:`.transient_matrices.newton_matrix`)."""
+        return matrices.newton_matrix(self, y, inputs, c0, hist, lift_state)

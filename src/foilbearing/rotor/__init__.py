@@ -10,6 +10,21 @@
   the basis of the nonlinear rotor (:func:`reduce_rotor`, :func:`reduced_onset`);
 - :mod:`.nonlinear`: the nonlinear rotor, both bearings' films integrated with the reduced
   rotor (``RotorOrbitSystem``; imported from there, it brings the orbit's kernels).
+
+=============  =================================================================================
+module         responsibility
+=============  =================================================================================
+``model``      the rotor: shaft of beam elements, rigid disks, bearings at nodes; the weight
+               each carries
+``toml``       the rotor file, read into a ``RotorCase``
+``linear``     modes, log decrements and the onset speed on ROSS with matched whirl
+``response``   the unbalance response and the mode shapes, on ROSS
+``reduced``    the rotor reduced to its journals and a few shaft modes
+``nonlinear``  the nonlinear rotor: every bearing's film and foil integrated with the reduced
+               rotor
+``stepper``    the nonlinear rotor on the orbit's stepper: every film's compiled kernels, one
+               rotor solve
+=============  =================================================================================
 """
 
 from foilbearing.rotor.linear import RotorModes, ross_rotor, rotor_modes, rotor_onset

@@ -2,6 +2,16 @@
 
 Paper Eqs. (1)-(3) and (6)-(8); conventions of docs/model.md §3. Every function
 takes and returns SI values (per-unit-area stiffnesses in N/m³).
+
+=============  =================================================================================
+module         responsibility
+=============  =================================================================================
+``pzt``        the PZT stack and actuator springs: stiffness and preload (Eqs. (1)-(3))
+``bump``       bump-foil stiffness per unit area from the foil geometry
+``stiffness``  assembly stiffness under a stinger and the structural stiffness function k(θ)
+``preload``    the preload shape r_p(θ): the sinusoidal lobe of Eq. (6)
+``_angles``    angle helpers shared by the structure models
+=============  =================================================================================
 """
 
 from foilbearing.structure.bump import iordanoff_bump_stiffness, walowit_anno_bump_stiffness

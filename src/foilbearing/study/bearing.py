@@ -69,7 +69,7 @@ def _equilibrium(
 ) -> tuple[Any, str]:
     """The converged equilibrium and its message, or None and why not: a failed solve is
     recorded by the stage, never raised through the study."""
-    from foilbearing.static import solve_equilibrium
+    from foilbearing.analysis.equilibrium import solve_equilibrium
 
     try:
         st = solve_equilibrium(case, speed=speed, model=model, start=start)
@@ -165,7 +165,7 @@ def _load_capacity(
 def _coefficients(
     case: Case, plan: StudyPlan, found: dict[float, Any], out: Path, stage: Callable[[str], None]
 ) -> dict[str, Any]:
-    from foilbearing.coefficients import force_coefficients
+    from foilbearing.analysis.coefficients import force_coefficients
     from foilbearing.io import save_figure
     from foilbearing.output.plots.bearing import plot_synchronous
     from foilbearing.output.plots.dynamics import plot_coefficients
@@ -197,9 +197,9 @@ def _coefficients(
 def _stability(
     case: Case, plan: StudyPlan, found: dict[float, Any], out: Path, stage: Callable[[str], None]
 ) -> dict[str, Any]:
+    from foilbearing.analysis.stability import whirl_mode
     from foilbearing.io import save_figure
     from foilbearing.output.plots.bearing import plot_log_decrement
-    from foilbearing.stability import whirl_mode
 
     modes = []
     for w, st in found.items():
@@ -225,7 +225,7 @@ def _stability(
 
 
 def _onset(case: Case, plan: StudyPlan) -> dict[str, Any]:
-    from foilbearing.stability import onset_speed
+    from foilbearing.analysis.stability import onset_speed
 
     try:
         return onset_speed(case, plan.onset_scan()).headline()
@@ -306,7 +306,7 @@ def _actuators(
 
 def _case_point(case: Case, found: dict[float, Any]) -> dict[str, Any]:
     """Static readouts and synchronous K, C at the case speed and load (reference values)."""
-    from foilbearing.coefficients import force_coefficients
+    from foilbearing.analysis.coefficients import force_coefficients
 
     w = case.operation.speed
     st = next((s for speed, s in found.items() if math.isclose(speed, w, rel_tol=1e-9)), None)

@@ -400,11 +400,11 @@ def _stability_stage(
     """Coefficients at 50 krpm and 150 V; onset speeds per voltage; the stability map."""
     import math
 
-    from foilbearing.coefficients import force_coefficients
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+    from foilbearing.analysis.stability import onsets_per_voltage, stability_map
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
-    from foilbearing.stability import onsets_per_voltage, stability_map
-    from foilbearing.static import solve_equilibrium
     from foilbearing.study.static import PAPER_VOLTAGES
 
     rpm = math.pi / 30.0

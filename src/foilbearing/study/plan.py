@@ -381,7 +381,7 @@ def check_load_is_carried(case: Case, plan: StudyPlan) -> None:
     A gas bearing carries more as it turns faster; if the top speed cannot carry the
     load, no speed of the plan can, and the study would only collect failures.
     """
-    from foilbearing.static import solve_equilibrium
+    from foilbearing.analysis.equilibrium import solve_equilibrium
 
     top = plan.speeds[-1]
     st = solve_equilibrium(case, speed=top)

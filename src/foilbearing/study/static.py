@@ -12,10 +12,10 @@ from typing import Any
 
 import numpy as np
 
+from foilbearing.analysis.equilibrium import StaticResult, solve_equilibrium
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.film import film_model
-from foilbearing.static import StaticResult, solve_equilibrium
 
 __all__ = ["PAPER_SPEEDS_RPM", "PAPER_VOLTAGES", "speed_sweep", "static_sweep"]
 

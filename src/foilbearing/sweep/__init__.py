@@ -1,6 +1,13 @@
 """Parameter sweeps, from a laptop to a Dask cluster.
 
-- ``spec``: the sweep file (docs/sweep-format.md), read into a :class:`~foilbearing.sweep.spec.SweepSpec`.
-- ``analyses``: what is computed at each point (static, coefficients, stability).
-- ``runner``: :func:`~foilbearing.sweep.runner.run_sweep`, each point written as it finishes.
+============  ==================================================================================
+module        responsibility
+============  ==================================================================================
+``spec``      the sweep file: parameters, their units and values, the validated grid
+``analyses``  what each grid point computes (static, coefficients, stability)
+``runner``    ``run_sweep``: one Dask task per point, each written as it finishes
+``cluster``   the Dask client: an existing scheduler's, or a new local cluster's
+``records``   the results folder of a sweep or sample: manifest and point records, checked as
+              read
+============  ==================================================================================
 """

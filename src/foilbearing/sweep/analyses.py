@@ -84,7 +84,7 @@ class Analysis:
 
 
 def _static(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
-    from foilbearing.static import solve_equilibrium
+    from foilbearing.analysis.equilibrium import solve_equilibrium
 
     return solve_equilibrium(case).headline()
 
@@ -98,8 +98,8 @@ def _static_layout(options: Mapping[str, Any]) -> tuple[dict[str, str], dict[str
 
 
 def _coefficients(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
-    from foilbearing.coefficients import force_coefficients
-    from foilbearing.static import solve_equilibrium
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
 
     static = solve_equilibrium(case)
     out = static.headline()
@@ -146,7 +146,7 @@ def _coefficient_layout(options: Mapping[str, Any]) -> tuple[dict[str, str], dic
 
 
 def _stability(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
-    from foilbearing.stability import onset_speed
+    from foilbearing.analysis.stability import onset_speed
 
     return onset_speed(case, options["speeds_rad_s"]).headline()
 

@@ -8,6 +8,16 @@ sample (:mod:`~foilbearing.uncertainty.design`) runs on the sweep's Dask
 machinery, each finished point written as it completes; the result is the
 5th, 50th and 95th percentiles of every output and its sensitivity indices
 per input (:mod:`~foilbearing.uncertainty.result`).
+
+============  ==================================================================================
+module        responsibility
+============  ==================================================================================
+``spec``      the uncertainty file: uncertain inputs, their distributions, the outputs and the
+              sample
+``design``    the sample design and the sensitivity estimators
+``evaluate``  one sample point: every output for one case
+``result``    percentiles and sensitivity indices of every output, as a Dataset and as JSON
+============  ==================================================================================
 """
 
 from __future__ import annotations

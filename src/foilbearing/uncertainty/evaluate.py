@@ -155,8 +155,8 @@ def _at(case: Case, volt: float | None) -> Case:
 
 
 def _static(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
+    from foilbearing.analysis.equilibrium import solve_equilibrium
     from foilbearing.film import film_model
-    from foilbearing.static import solve_equilibrium
 
     n_act = len(case.actuators.angles) if case.actuators is not None else 0
     for volt in opts["voltages_V"]:
@@ -184,7 +184,7 @@ def _static(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: li
 
 
 def _stability(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
-    from foilbearing.stability import onset_speed
+    from foilbearing.analysis.stability import onset_speed
 
     speeds = opts["speeds_rad_s"]
     for volt in opts["voltages_V"]:

@@ -49,27 +49,48 @@ factorised by block cyclic elimination (:func:`block_cyclic_factor`,
 
 Every kernel has a plain-NumPy twin (suffix ``_py``, the same signature; the
 twins of the transient Newton iteration take the ``TransientSystem`` or
-``TransientFactor`` as first argument) in :mod:`foilbearing.reynolds.reference`;
+``TransientFactor`` as first argument) in :mod:`foilbearing.testing.twins`;
 ``tests/test_kernels.py``, ``tests/test_block_solver.py`` and
 ``tests/test_transient_kernels.py`` check each kernel against its twin.
 
-Modules: :mod:`.flux` (Bernoulli function, face fluxes, patterns, residual and
-Jacobians), :mod:`.blockcyclic` (the block cyclic LU), :mod:`.bdf` (the BDF
-equations of the transient system: residual, Jacobian blocks, solve, step
-set-up) and :mod:`.newton` (the Newton iteration on them, with the lift-off
-branch switching), whose arguments come in the named groups of :mod:`.groups`;
-their names are all here. The laws they inline live in :mod:`foilbearing.laws`
-(:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`); :mod:`._cache` drops the on-disk
-caches when any of these sources changes.
+Modules
+-------
+===============  ===============================================================================
+module           responsibility
+===============  ===============================================================================
+``faces``        the flux through one cell face: Bernoulli function, θ-, Z- and end faces with
+                 their derivatives, the order-4 axial flux
+``patterns``     CSR sparsity patterns of the stencil and of the foil-coupled Jacobian
+``flux``         the steady residual of Eq. (4), dR/dP, dR/dH, the coupled Jacobian and the
+                 lift-off rows
+``blockcyclic``  the block cyclic LU of the coupled Jacobian
+``film_rows``    the film rows of a transient state (mean gauge pressure, H per row)
+``bdf``          the BDF equations of the transient system: residual, storage, set-up
+``bdf_linear``   the linear system of a BDF Newton step: Jacobian blocks, border, solve
+``newton``       the Newton iteration on the BDF equations, with lift-off branch switching
+``groups``       the named argument groups the kernels take
+``notice``       the one-line notice on a cold cache
+``_cache``       drops the on-disk caches when any kernel or inlined law changes
+===============  ===============================================================================
+
+Each module's names stay importable from the module that held them before
+(``flux`` re-exports ``faces`` and ``patterns``, ``bdf`` re-exports ``film_rows``
+and ``bdf_linear``); all the kernels' names are here. The laws they inline live in
+:mod:`foilbearing.laws` (:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`);
+:mod:`._cache` drops the on-disk caches when any of these sources changes.
 """
 
 from foilbearing.laws import lift_off as _lift_off_law
 from foilbearing.reynolds._kernels import _cache
 from foilbearing.reynolds._kernels import bdf as _bdf
+from foilbearing.reynolds._kernels import bdf_linear as _bdf_linear
 from foilbearing.reynolds._kernels import blockcyclic as _blockcyclic
+from foilbearing.reynolds._kernels import faces as _faces
+from foilbearing.reynolds._kernels import film_rows as _film_rows
 from foilbearing.reynolds._kernels import flux as _flux
 from foilbearing.reynolds._kernels import groups as _groups
 from foilbearing.reynolds._kernels import newton as _newton
+from foilbearing.reynolds._kernels import patterns as _patterns
 from foilbearing.reynolds._kernels.bdf import (
     bdf_setup,
     lobe_correct,
@@ -135,7 +156,7 @@ _install_compile_notice()  # a cold cache says so once on stderr (notice.py), be
 # inlines from another file (a law of ``foilbearing.laws``, a BDF row) changed: drop the
 # caches whenever any of these sources changed (docs/numerics.md §3).
 _cache.drop_stale_caches(
-    (_bdf, _blockcyclic, _flux, _groups, _newton),
+    (_bdf, _bdf_linear, _blockcyclic, _faces, _film_rows, _flux, _groups, _newton, _patterns),
     (_lift_off_law,),
 )
 

@@ -1,5 +1,7 @@
-"""Finite-volume Reynolds residual and Jacobians: Bernoulli function, face fluxes,
-sparsity patterns and the compiled kernels (NumPy twins in :mod:`foilbearing.reynolds.reference`)."""
+"""Finite-volume Reynolds residual and Jacobians, compiled: the residual of Eq. (4), dR/dP and
+dR/dH on the stencil pattern, the foil-coupled Jacobian, and the lift-off rows (NumPy twins in
+:mod:`foilbearing.testing.twins`). They sum the face fluxes of :mod:`.faces` over the cells and
+fill the patterns of :mod:`.patterns`; the names of both stay importable from here."""
 
 from __future__ import annotations
 
@@ -10,6 +12,24 @@ from numba import njit
 from numpy.typing import NDArray
 
 from foilbearing.laws.lift_off import smoothed_edge_kernel
+from foilbearing.reynolds._kernels.faces import (
+    _SERIES_X,
+    C,
+    E,
+    N,
+    S,
+    W,
+    _axial_flux4,
+    _bern_both,
+    _bern_pos,
+    _end_face,
+    _theta_face,
+    _theta_flux,
+    _z_face,
+    bernoulli,
+    bernoulli_deriv,
+)
+from foilbearing.reynolds._kernels.patterns import _row_slots, coupled_pattern, stencil_pattern
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -18,272 +38,38 @@ DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a freque
 #: An argument group as a kernel takes it (a plain tuple; here the AxialStencil).
 Group = tuple[Any, ...]
 
-# Below this |x| the Bernoulli function and its derivative use their Taylor
-# series: x/expm1(x) loses digits to cancellation in B'(x) = B(1−B)/x − B.
-_SERIES_X = 1e-2
-
-# Stencil directions, in the order of the slot maps: W = (i−1, j),
-# S = (i, j−1), C = (i, j), N = (i, j+1), E = (i+1, j).
-W, S, C, N, E = 0, 1, 2, 3, 4
-
-
-# ---------------------------------------------------------------------------
-# Bernoulli function
-# ---------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def _bern_pos(x: float) -> tuple[float, float]:
-    """B(x) and B'(x) for x >= 0."""
-    if x < _SERIES_X:
-        x2 = x * x
-        b = 1.0 - 0.5 * x + x2 / 12.0 - x2 * x2 / 720.0
-        db = -0.5 + x / 6.0 - x2 * x / 180.0 + x2 * x2 * x / 5040.0
-        return b, db
-    b = x / np.expm1(x)  # → 0 (not NaN) when expm1 overflows to inf
-    return b, b * (1.0 - b) / x - b
-
-
-@njit(cache=True)
-def bernoulli(x: float) -> float:
-    """Bernoulli function ``B(x) = x/(eˣ − 1)``, robust for all real x.
-
-    Twin: :func:`~foilbearing.reynolds.reference.bernoulli_py`. Negative arguments use
-    ``B(x) = B(−x) − x``, which is exact and free of overflow.
-    """
-    if x >= 0.0:
-        return _bern_pos(x)[0]
-    return _bern_pos(-x)[0] - x
-
-
-@njit(cache=True)
-def bernoulli_deriv(x: float) -> float:
-    """Derivative ``B'(x)``; twin :func:`~foilbearing.reynolds.reference.bernoulli_deriv_py`.
-
-    Negative arguments use ``B'(x) = −B'(−x) − 1``.
-    """
-    if x >= 0.0:
-        return _bern_pos(x)[1]
-    return -_bern_pos(-x)[1] - 1.0
-
-
-# ---------------------------------------------------------------------------
-# Sparsity patterns
-# ---------------------------------------------------------------------------
-
-
-def stencil_pattern(
-    n_theta: int, n_z: int, axial_order: int = 2
-) -> tuple[IntArray, IntArray, IntArray]:
-    """CSR pattern of the film stencil, periodic in θ, columns sorted.
-
-    Order 2: the 5-point stencil; order 4: 7 points, ``(i, j−2 .. j+2)`` axially.
-
-    Parameters
-    ----------
-    n_theta, n_z : int
-        Grid size (``n_theta >= 3`` so that W, C, E are distinct; ``n_z >= 2``).
-    axial_order : int
-        2 or 4 (:class:`~foilbearing.reynolds.grid.AxialStencil`).
-
-    Returns
-    -------
-    indptr : ndarray, shape (n_theta*n_z + 1,)
-    indices : ndarray, shape (nnz,), ``nnz = n_theta (5 n_z − 2)`` at order 2
-    slots : ndarray, shape (n_theta, n_z, 5) at order 2, (n_theta, n_z, 7) at order 4
-        Position in ``data`` of the entry of row ``(i, j)`` in direction
-        W, S, C, N, E (see module constants; order 4: W, j−2, j−1, C, j+1, j+2, E),
-        ``-1`` where absent (S on the mid-plane row ``j = 0``, N on the end row
-        ``j = n_z−1``). The order-2 kernels compute the same positions in place
-        (:func:`_row_slots`).
-    """
-    reach = 1 if axial_order == 2 else 2
-    i = np.repeat(np.arange(n_theta), n_z)
-    j = np.tile(np.arange(n_z), n_theta)
-    row = i * n_z + j
-    axial = [np.where((j + d >= 0) & (j + d < n_z), row + d, -1) for d in range(-reach, reach + 1)]
-    cols = np.stack(
-        [((i - 1) % n_theta) * n_z + j, *axial, ((i + 1) % n_theta) * n_z + j],
-        axis=1,
-    )
-    width = cols.shape[1]
-    present = cols >= 0
-    big = n_theta * n_z + 1
-    key = np.where(present, cols, big)
-    order = np.argsort(key, axis=1, kind="stable")
-    rank = np.empty_like(order)
-    np.put_along_axis(rank, order, np.arange(width)[None, :].repeat(len(row), 0), axis=1)
-    counts = present.sum(axis=1)
-    indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    sorted_key = np.take_along_axis(key, order, axis=1)
-    indices = sorted_key[sorted_key < big].astype(np.int64)
-    slots = np.where(present, indptr[:-1, None] + rank, -1).astype(np.int64)
-    return indptr, indices, slots.reshape(n_theta, n_z, width)
-
-
-def coupled_pattern(n_theta: int, n_z: int) -> tuple[IntArray, IntArray]:
-    """CSR pattern of the foil-coupled Jacobian: dense blocks on 3 θ-diagonals.
-
-    Row ``(i, j)`` holds every column of the θ-blocks ``i−1, i, i+1``
-    (periodic), blocks in increasing column order, ``3 n_z`` entries per row.
-
-    Returns
-    -------
-    indptr : ndarray, shape (n_theta*n_z + 1,)
-    indices : ndarray, shape (3 n_z · n_theta n_z,)
-    """
-    n = n_theta * n_z
-    i = np.repeat(np.arange(n_theta), n_z)
-    blocks = np.sort(np.stack([(i - 1) % n_theta, i, (i + 1) % n_theta], axis=1), axis=1)
-    indices = (blocks[:, :, None] * n_z + np.arange(n_z)[None, None, :]).reshape(-1)
-    indptr = np.arange(n + 1, dtype=np.int64) * (3 * n_z)
-    return indptr, indices.astype(np.int64)
-
-
-@njit(cache=True)
-def _row_slots(i: int, j: int, n_theta: int, n_z: int) -> tuple[int, int, int, int, int]:
-    """Positions (W, S, C, N, E) of row (i, j) in the data of :func:`stencil_pattern`.
-
-    Rows of one θ-block hold ``5 n_z − 2`` entries; row ``j`` starts at
-    ``0`` (``j = 0``) or ``5 j − 1``. Sorted columns put W after the block for
-    ``i = 0`` and E before it for ``i = n_theta − 1`` (periodic wrap).
-    """
-    start = i * (5 * n_z - 2) + (0 if j == 0 else 5 * j - 1)
-    has_s = j > 0
-    has_n = j < n_z - 1
-    k = start
-    w = -1
-    e = -1
-    if i == n_theta - 1:
-        e = k
-        k += 1
-        w = k
-        k += 1
-    elif i > 0:
-        w = k
-        k += 1
-    s = -1
-    if has_s:
-        s = k
-        k += 1
-    c = k
-    k += 1
-    nn = -1
-    if has_n:
-        nn = k
-        k += 1
-    if i == 0:
-        e = k
-        k += 1
-        w = k
-    elif i < n_theta - 1:
-        e = k
-    return w, s, c, nn, e
-
-
-# ---------------------------------------------------------------------------
-# Face fluxes and their derivatives
-# ---------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def _bern_both(x: float) -> tuple[float, float]:
-    """``(bernoulli(x), bernoulli_deriv(x))`` from one exponential (same values)."""
-    if x >= 0.0:
-        return _bern_pos(x)
-    b, db = _bern_pos(-x)
-    return b - x, -db - 1.0
-
-
-@njit(cache=True)
-def _theta_flux(pa: float, pb: float, ha: float, hb: float, lam: float, dth: float) -> float:
-    """The flux of :func:`_theta_face` alone (same value, no derivatives)."""
-    pf = 0.5 * (pa + pb)
-    hf = 0.5 * (ha + hb)
-    hf2 = hf * hf
-    hf3 = hf2 * hf
-    pe = lam * dth / (pf * hf2)
-    b = bernoulli(pe)
-    dp = pb - pa
-    g = pf * hf3 * b / dth
-    return g * dp - lam * hf * pa
-
-
-@njit(cache=True)
-def _theta_face(
-    pa: float, pb: float, ha: float, hb: float, lam: float, dth: float
-) -> tuple[float, float, float, float]:
-    """Fitted θ-flux and (dq/dP_a, dq/dP_b, dq/dH_a = dq/dH_b)."""
-    pf = 0.5 * (pa + pb)
-    hf = 0.5 * (ha + hb)
-    hf2 = hf * hf
-    hf3 = hf2 * hf
-    pe = lam * dth / (pf * hf2)
-    b, db = _bern_both(pe)
-    dp = pb - pa
-    g = pf * hf3 * b / dth
-    q = g * dp - lam * hf * pa
-    # g = (P_f H_f³/Δθ) B(Pe) with Pe ∝ 1/(P_f H_f²): chain rule through Pe.
-    g_pf = hf3 * (b - pe * db) / dth
-    g_hf = pf * hf2 * (3.0 * b - 2.0 * pe * db) / dth
-    dqa = 0.5 * g_pf * dp - g - lam * hf
-    dqb = 0.5 * g_pf * dp + g
-    dqh = 0.5 * (g_hf * dp - lam * pa)
-    return q, dqa, dqb, dqh
-
-
-@njit(cache=True)
-def _z_face(
-    pa: float, pb: float, ha: float, hb: float, dz: float
-) -> tuple[float, float, float, float]:
-    """Axial diffusive flux and (dq/dP_a, dq/dP_b, dq/dH_a = dq/dH_b)."""
-    pf = 0.5 * (pa + pb)
-    hf = 0.5 * (ha + hb)
-    hf2 = hf * hf
-    d = pf * hf2 * hf
-    dp = pb - pa
-    q = d * dp / dz
-    dqa = (0.5 * hf2 * hf * dp - d) / dz
-    dqb = (0.5 * hf2 * hf * dp + d) / dz
-    dqh = 1.5 * pf * hf2 * dp / dz
-    return q, dqa, dqb, dqh
-
-
-@njit(cache=True)
-def _end_face(pa: float, ha: float, dz: float) -> tuple[float, float, float]:
-    """Flux through the end face (P = 1 at ΔZ/2) and (dq/dP_a, dq/dH_a)."""
-    h3 = ha * ha * ha
-    # P_f (1 − P_a) = (1 − P_a²)/2
-    q = h3 * (1.0 - pa * pa) / dz
-    dqa = -2.0 * h3 * pa / dz
-    dqh = 3.0 * ha * ha * (1.0 - pa * pa) / dz
-    return q, dqa, dqh
+__all__ = [
+    "_SERIES_X",
+    "C",
+    "E",
+    "N",
+    "S",
+    "W",
+    "_axial_flux4",
+    "_bern_both",
+    "_bern_pos",
+    "_end_face",
+    "_jacobian_both",
+    "_row_slots",
+    "_theta_face",
+    "_theta_flux",
+    "_z_face",
+    "bernoulli",
+    "bernoulli_deriv",
+    "coupled_jacobian",
+    "coupled_pattern",
+    "jacobian_H",
+    "jacobian_P",
+    "lift_off_rows",
+    "residual",
+    "stencil_pattern",
+    "unit_coupled_row",
+]
 
 
 # ---------------------------------------------------------------------------
 # Residual and Jacobians (compiled)
 # ---------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def _axial_flux4(
-    P: FloatArray, H: FloatArray, i: int, f: int, d_z: float, axial: Group
-) -> tuple[float, float]:
-    """Fourth-order axial flux through face f of θ-row i, and its H-factor ``3 H_f² ψ_f/ΔZ``.
-
-    ``q = H_f³ (Σ_m c_m ψ_m + c)/ΔZ`` with ``ψ = P²`` (:class:`~..grid.AxialStencil`).
-    """
-    cols, coef, const = axial[1], axial[2], axial[3]
-    n_z = P.shape[1]
-    acc = const[f]
-    for m in range(4):
-        c = coef[f, m]
-        if c != 0.0:
-            p = P[i, cols[f, m]]
-            acc += c * p * p
-    hf = H[i, f] if f == n_z - 1 else 0.5 * (H[i, f] + H[i, f + 1])
-    hf2 = hf * hf
-    return hf2 * hf * acc / d_z, 3.0 * hf2 * acc / d_z
 
 
 @njit(cache=True)

@@ -1,0 +1,290 @@
+"""Benchmark of an orbit's step: what it costs, how its Newton iteration and factor refresh
+behave, and where its time goes. Prints its figures.
+
+Run: .venv/bin/python benchmarks/bench_orbit_steps.py [--steps] [--newton] [--refresh]
+     [--readings] [--profile]
+
+
+- ``--steps`` (the default): the cost of a step on a smooth orbit (C-GFB, 0 V, 1 g·mm, 30 krpm: the kind
+  of step most of a speed-up is made of) and on a large one (shimmed GFB, 150 V, 8.5 g·mm,
+  50 krpm), 0.05 s each, best of 3, with the iterations and factorisations and e_X at the
+  end (to compare two versions of the stepper: the same orbit must give the same e_X).
+- ``--newton``: the modified Newton iteration of the full speed-up's orbit at 50 krpm
+  (0.05 s) under lift-off and with suction retained: calls of the compiled iteration by
+  fresh/kept factor and outcome, mean iterations, and the cost per step (about 10 s).
+
+The cost model behind these figures and every route tried towards the 60 s target:
+docs/orbit-performance.md.
+- ``--refresh``: route 4 of issue 30, a fresh factor at the start of a step after a step
+  that took more than T iterations (T = 0: a fresh factor every step), on three orbits of
+  0.05 s and on 96 x 12 and 96 x 6: iterations and factorisations per step, the cost by
+  the measured cost of each, and e_X at the end (about 3 minutes).
+- ``--readings``: the orbit's cost under each reading of the actuator in the film
+  (docs/model.md §3.8): the C-GFB at 150 V, 8.5 g·mm, 0.05 s at 50 krpm, ms per step,
+  iterations and factorisations per step, best of 3 (about 1 minute).
+- ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
+  0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
+
+The cost model behind these figures and every route tried towards the 60 s target:
+docs/orbit-performance.md.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import replace
+from pathlib import Path
+
+from foilbearing.case import default_case
+from foilbearing.control import constant_speed
+from foilbearing.orbit import simulate
+
+sys.path.insert(0, str(Path(__file__).parent))
+from bench_orbit import (
+    RPM,
+)
+
+
+def step_costs() -> None:
+    """ms a step on a smooth and a large orbit, best of 3 (0.05 s each, after a warm-up)."""
+    base = default_case()
+    runs = {
+        "C-GFB, 0 V, 1 g·mm, 30 krpm": (
+            replace(base, rotor=replace(base.rotor, imbalance=1e-6)),
+            30e3,
+        ),
+        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm": (base.with_voltages(150.0).shimmed(), 50e3),
+    }
+    print("cost of a step, 0.05 s of each orbit, 96 x 12, default settings, best of 3:")
+    for name, (case, rpm) in runs.items():
+        simulate(case, constant_speed(rpm * RPM, 2e-3))  # compile, warm up
+        costs = []
+        for _ in range(3):
+            res = simulate(case, constant_speed(rpm * RPM, 0.05))
+            costs.append(1e3 * res.wall_time / res.steps)
+        print(
+            f"  {name}: {min(costs):.3f} ms a step (runs {', '.join(f'{c:.3f}' for c in costs)}); "
+            f"{res.steps} steps, {res.newton_iterations} iterations, {res.factorizations} "
+            f"factorisations; e_X at the end {res.e_x[-1]:.9e} m"
+        )
+
+
+def newton_statistics() -> None:
+    """Calls of the compiled Newton iteration by factor age and outcome (lift-off's cost)."""
+    import collections
+
+    from foilbearing.reynolds import _kernels as kern
+
+    calls: list[tuple[bool, int, int]] = []
+    compiled = kern.transient_newton_solve
+
+    def counted(*args):
+        r = compiled(*args)
+        calls.append((bool(args[8]), int(r[0]), int(r[1])))
+        return r
+
+    kern.transient_newton_solve = counted
+    names = {0: "converged", 3: "too slow", 4: "diverged", 5: "refresh asked"}
+    print(
+        "Newton iteration: full speed-up's orbit (shimmed GFB, 150 V, 8.5 g·mm), 0.05 s at 50 krpm"
+    )
+    for model in ("lift-off", "retained"):
+        case = default_case().with_voltages(150.0).shimmed().with_subambient(model)
+        simulate(case, constant_speed(50e3 * RPM, 5e-4))  # compile, warm up
+        calls.clear()
+        res = simulate(case, constant_speed(50e3 * RPM, 0.05))
+        print(
+            f"  {model}: {1e3 * res.wall_time / res.steps:.3f} ms per step, "
+            f"{res.newton_iterations / res.steps:.2f} iterations and "
+            f"{res.factorizations / res.steps:.3f} factorisations per step"
+        )
+        groups: dict[tuple[bool, int], list[int]] = collections.defaultdict(list)
+        for fresh, outcome, its in calls:
+            groups[fresh, outcome].append(its)
+        for (fresh, outcome), counts in sorted(groups.items()):
+            print(
+                f"    {'fresh' if fresh else 'kept'} factor, {names.get(outcome, outcome)}: "
+                f"{len(counts)} calls, {sum(counts) / len(counts):.2f} iterations each"
+            )
+    kern.transient_newton_solve = compiled
+
+
+def reading_costs() -> None:
+    """Cost per step of one orbit under each reading of the actuator (best of 3)."""
+    print("Orbit cost by reading: C-GFB, 150 V, 8.5 g·mm, 0.05 s at 50 krpm, 96 x 12")
+    for response, dynamics in (
+        ("local", "compliant"),
+        ("local", "held"),
+        ("lobe", "compliant"),
+        ("lobe", "held"),
+    ):
+        case = default_case().with_voltages(150.0).with_actuator_reading(response, dynamics)
+        simulate(case, constant_speed(50e3 * RPM, 5e-4))  # compile, warm up
+        runs = [simulate(case, constant_speed(50e3 * RPM, 0.05)) for _ in range(3)]
+        res = min(runs, key=lambda r: r.wall_time)
+        print(
+            f"  {response} + {dynamics:<9}: {1e3 * res.wall_time / res.steps:.3f} ms per step "
+            f"({res.steps} steps, {res.newton_iterations / res.steps:.2f} iterations and "
+            f"{res.factorizations / res.steps:.3f} factorisations per step, status {res.status})"
+        )
+
+
+#: Orbits of ``--refresh``: (label, case maker, speed rpm, imbalance kg·m or None: the case's).
+REFRESH_RUNS = (
+    (
+        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm",
+        lambda: default_case().with_voltages(150.0).shimmed(),
+        50e3,
+        None,
+    ),
+    ("C-GFB, 0 V, 8.5 g·mm, 10 krpm", default_case, 10e3, None),
+    ("C-GFB, 0 V, 1 g·mm, 40 krpm", default_case, 40e3, 1e-6),
+)
+
+
+def refresh_policy() -> None:
+    """A fresh factor at the start of a step after a step of more than T iterations."""
+    from foilbearing.case import Grid
+    from foilbearing.orbit import stepper
+
+    kept = stepper._step_newton
+    rule = {"T": 10**9, "drop": False}
+
+    def policy(problem, newton, y0, inp, c0, hist, weights, lu, lu_c0, work, branches=None):
+        r = kept(
+            problem,
+            newton,
+            y0,
+            inp,
+            c0,
+            hist,
+            weights,
+            None if rule["drop"] else lu,
+            lu_c0,
+            work,
+            branches,
+        )
+        rule["drop"] = bool(r[0]) and r[2] > rule["T"]
+        return r
+
+    stepper._step_newton = policy
+    print(
+        "route 4: a fresh factor after a step of more than T iterations (T = none: today's "
+        "rule; T = 0: a fresh factor every step), 0.05 s at constant speed"
+    )
+    for n_z in (12, 6):
+        for label, make, rpm, imbalance in REFRESH_RUNS:
+            case = replace(make(), grid=Grid(96, n_z))
+            if imbalance is not None:
+                case = replace(case, rotor=replace(case.rotor, imbalance=imbalance))
+            profile = constant_speed(rpm * RPM, 0.05)
+            simulate(case, constant_speed(rpm * RPM, 5e-4))  # compile, warm up
+            for threshold in (None, 6, 4, 2, 0):
+                rule["T"], rule["drop"] = (10**9 if threshold is None else threshold), False
+                res = simulate(case, profile)
+                print(
+                    f"  96 x {n_z:2d}, {label}, T = {threshold}: "
+                    f"{res.newton_iterations / res.steps:.2f} iterations and "
+                    f"{res.factorizations / res.steps:.3f} factorisations per step, "
+                    f"{1e3 * res.wall_time / res.steps:.3f} ms per step, e_X at the end "
+                    f"{res.e_x[-1] * 1e6:.4f} µm",
+                    flush=True,
+                )
+    stepper._step_newton = kept
+
+
+#: The compiled kernels --profile times, and the modules that call them by name.
+_PROFILED_KERNELS = (
+    "transient_newton_solve",
+    "block_cyclic_factor",
+    "transient_jacobian",
+    "transient_border",
+    "bdf_setup",
+)
+
+
+@contextmanager
+def _kernels_seen_by_cprofile() -> Iterator[None]:
+    """Wrap the profiled kernels in Python functions of their own names while the block runs.
+
+    On Python 3.13 cProfile does not see a call into a numba dispatcher: its time goes to
+    the Python caller, and a breakdown by kernel reads nothing. A thin wrapper (well under
+    a microsecond a call) is a Python frame cProfile records under the kernel's name."""
+    import foilbearing.orbit.stepper as stepper_module
+    from foilbearing.reynolds import _kernels
+
+    saved: list[tuple[object, str, object]] = []
+
+    def wrapped(name: str, kernel: Callable[..., object]) -> Callable[..., object]:
+        def call(*args: object) -> object:
+            return kernel(*args)
+
+        call.__code__ = call.__code__.replace(co_name=name, co_qualname=name)
+        return call
+
+    for module in (_kernels, stepper_module):
+        for name in _PROFILED_KERNELS:
+            if hasattr(module, name):
+                kernel = getattr(module, name)
+                saved.append((module, name, kernel))
+                setattr(module, name, wrapped(name, kernel))
+    try:
+        yield
+    finally:
+        for module, name, kernel in saved:
+            setattr(module, name, kernel)
+
+
+def step_profile() -> None:
+    """Where a step's time goes: cProfile of the full speed-up's orbit at 50 krpm, per kernel."""
+    import cProfile
+    import pstats
+
+    case = default_case().with_voltages(150.0).shimmed()
+    simulate(case, constant_speed(50e3 * RPM, 2e-3), progress=False)  # compile, warm up
+    plain = simulate(case, constant_speed(50e3 * RPM, 0.05), progress=False)
+    prof = cProfile.Profile()
+    with _kernels_seen_by_cprofile():
+        prof.enable()
+        res = simulate(case, constant_speed(50e3 * RPM, 0.05), progress=False)
+        prof.disable()
+    stats = pstats.Stats(prof).stats  # type: ignore[attr-defined]
+    parts = {
+        "transient_newton_solve": "compiled Newton iterations",
+        "block_cyclic_factor": "block-cyclic LU",
+        "transient_jacobian": "Newton-matrix blocks (with lift-off)",
+        "transient_border": "Woodbury border",
+        "bdf_setup": "BDF set-up",
+    }
+    total = sum(tottime for (_cc, _calls, tottime, _cum, _callers) in stats.values())
+    print(
+        f"profile: shimmed GFB, 150 V, 8.5 g·mm, 0.05 s at 50 krpm, default settings: "
+        f"{res.steps} steps, {1e3 * plain.wall_time / plain.steps:.3f} ms per step unprofiled, "
+        f"{res.newton_iterations / res.steps:.2f} iterations and "
+        f"{res.factorizations / res.steps:.3f} factorisations per step"
+    )
+    compiled = 0.0
+    for (_file, _line, name), (_cc, calls, tottime, _cum, _callers) in sorted(stats.items()):
+        if name in parts:
+            compiled += tottime
+            print(
+                f"  {parts[name]:<38} {1e3 * tottime / res.steps:.3f} ms per step "
+                f"({calls / res.steps:.2f} calls)"
+            )
+    python = 1e3 * (total - compiled) / res.steps
+    print(f"  {'Python around them':<38} {python:.3f} ms per step (cProfile's own cost included)")
+
+
+if __name__ == "__main__":
+    if "--profile" in sys.argv:
+        step_profile()
+    elif "--newton" in sys.argv:
+        newton_statistics()
+    elif "--refresh" in sys.argv:
+        refresh_policy()
+    elif "--readings" in sys.argv:
+        reading_costs()
+    else:
+        step_costs()
