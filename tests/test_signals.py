@@ -19,6 +19,7 @@ import pytest
 from foilbearing.errors import InputError
 from foilbearing.signals import (
     SubsyncResult,
+    divergence,
     divergence_speed,
     onset,
     subsynchronous_amplitude,
@@ -172,10 +173,19 @@ def test_divergence_of_a_growing_whirl():
         t[cut], e_x[cut], e_y[cut], speed[cut], clearance, stopped_by_contact=False
     )
     assert no is None
-    stop = divergence_speed(
-        t, e_x, e_y, speed, clearance, stopped_by_contact=True, contact_time=3.0
-    )
-    assert stop == pytest.approx((W0 + ALPHA * 3.0) * RPM)
+    # A contact before the radius reaches 0.9 C is the divergence, at its time.
+    early = divergence(t, e_x, e_y, speed, clearance, stopped_by_contact=True, contact_time=1.5)
+    assert early is not None and early.by == "contact"
+    assert early.speed_rpm == pytest.approx((W0 + ALPHA * 1.5) * RPM, rel=1e-12)
+    assert not early.contact_after_large_orbit
+    # A contact 1.1 s after the radius passed 0.9 C: the divergence is the radius reading
+    # (the first of the two), and the contact is marked as following a sustained large orbit.
+    late = divergence(t, e_x, e_y, speed, clearance, stopped_by_contact=True, contact_time=3.0)
+    assert late is not None and late.by == "orbit radius"
+    assert late.speed_rpm == pytest.approx(rpm, rel=1e-12)
+    assert late.contact_speed_rpm == pytest.approx((W0 + ALPHA * 3.0) * RPM, rel=1e-12)
+    assert abs(late.large_orbit_before_contact_s - (3.0 - t_true)) < T_WIN
+    assert late.contact_after_large_orbit
 
 
 def test_rejects_non_uniform_time():
@@ -486,8 +496,8 @@ def test_order_interval_reads_its_first_last_and_peak_samples() -> None:
 def test_divergence_reads_the_first_sample_beyond_and_the_last_at_contact() -> None:
     """A whirl turning a quarter turn a sample, its radius growing by 1 µm a sample: the
     speed at the first sample whose distance from the orbit's centre (the mean over the
-    three-sample window) exceeds 0.9 C is read exactly. A contact stop without a time is
-    read at the last sample. A one-sample window makes the orbit's centre the journal
+    three-sample window) exceeds 0.9 C is read exactly, also in a run that stopped by contact
+    later (at its last sample, without a contact time). A one-sample window makes the orbit's centre the journal
     itself: no orbit."""
     t = np.arange(200) * 1e-4
     speed = 1000.0 + 10.0 * np.arange(200)
@@ -497,8 +507,26 @@ def test_divergence_reads_the_first_sample_beyond_and_the_last_at_contact() -> N
     rpm = _diverge(t, e_x, e_y, speed, window_s=2e-4)
     k = int(np.flatnonzero(np.abs((e_x + 1j * e_y) - _centre(e_x + 1j * e_y, 2)) > 90e-6)[0])
     assert rpm == pytest.approx(speed[k] * RPM, rel=1e-12) and k > 80
-    stop = divergence_speed(t, e_x, e_y, speed, 100e-6, stopped_by_contact=True)
-    assert stop == pytest.approx(speed[-1] * RPM, rel=1e-12)
+    # A contact stop without a time is at the last sample; the radius passed 0.9 C first.
+    stop = divergence(t, e_x, e_y, speed, 100e-6, stopped_by_contact=True, window_s=2e-4)
+    assert stop is not None and stop.by == "orbit radius"
+    assert stop.speed_rpm == pytest.approx(speed[k] * RPM, rel=1e-12)
+    assert stop.contact_speed_rpm == pytest.approx(speed[-1] * RPM, rel=1e-12)
+    # The sustain rule at its edge: the radius over 0.9 C from sample k on, contact put
+    # just under and just over LARGE_ORBIT_SUSTAIN_S later (a time grid of 1e-4 s, scaled).
+    short = divergence(
+        t,
+        e_x,
+        e_y,
+        speed,
+        100e-6,
+        stopped_by_contact=True,
+        contact_time=t[k] + 0.4 * t[1],
+        window_s=2e-4,
+    )
+    assert short is not None and short.by == "orbit radius"
+    assert short.large_orbit_before_contact_s == pytest.approx(0.4e-4, rel=1e-9)
+    assert not short.contact_after_large_orbit
     assert _diverge(t, e_x, e_y, speed, window_s=0.5e-4) is None
 
 

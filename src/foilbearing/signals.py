@@ -31,9 +31,11 @@ from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 
 __all__ = [
+    "Divergence",
     "Onset",
     "SubsyncResult",
     "Waterfall",
+    "divergence",
     "divergence_speed",
     "onset",
     "order_amplitude",
@@ -466,6 +468,101 @@ def onset(
     )
 
 
+#: A contact that followed an orbit of radius over the divergence fraction of C for at least
+#: this long (s) "follows a sustained large orbit": its speed is set by how the film's grid
+#: resolves a near-touching orbit, not by the whirl's growth (docs/lift-off.md).
+LARGE_ORBIT_SUSTAIN_S = 0.5
+
+
+@dataclass(frozen=True)
+class Divergence:
+    """Where a speed-up diverges: the first of the orbit-radius criterion and contact.
+
+    Attributes
+    ----------
+    speed_rpm, time_s
+        Speed (rpm) and time (s) of the divergence.
+    by
+        ``"orbit radius"`` (the orbit's radius first exceeded the fraction of C) or
+        ``"contact"`` (the run touched before the radius criterion met).
+    contact_speed_rpm
+        Speed at contact (rpm), None for a run that did not touch.
+    large_orbit_before_contact_s
+        How long the orbit's radius stayed over the fraction of C before contact, s
+        (0 when it touched first, or did not touch).
+    """
+
+    speed_rpm: float
+    time_s: float
+    by: str
+    contact_speed_rpm: float | None
+    large_orbit_before_contact_s: float
+
+    @property
+    def contact_after_large_orbit(self) -> bool:
+        """A contact that followed a sustained large orbit (``LARGE_ORBIT_SUSTAIN_S``): the
+        contact speed is then not a converged readout; the orbit-radius one is."""
+        return self.large_orbit_before_contact_s >= LARGE_ORBIT_SUSTAIN_S
+
+
+def divergence(
+    t: np.ndarray,
+    e_x: np.ndarray,
+    e_y: np.ndarray,
+    speed: np.ndarray,
+    clearance: float,
+    *,
+    stopped_by_contact: bool,
+    contact_time: float | None = None,
+    fraction: float = 0.9,
+    window_s: float = WINDOW_S,
+) -> Divergence | None:
+    """Where the journal motion diverges: the first of two events; None if neither.
+
+    - the orbit's radius exceeds ``fraction × clearance``: the radius is the distance of
+      the journal centre from the orbit's centre, a centred moving mean of (e_x, e_y)
+      over ``window_s`` (so a static eccentricity, however large, does not count);
+    - contact, at ``contact_time`` (the last sample if None) of a run that stopped there.
+
+    The radius criterion is the well-posed readout: a whirl that has jumped to an orbit
+    of radius about 1.5 C touches at a speed that the film's θ resolution decides (the
+    minimum film of such an orbit is a fraction of a micrometre), while the speed at which
+    its radius passes 0.9 C converges with the grid. A contact that followed such an orbit
+    for ``LARGE_ORBIT_SUSTAIN_S`` or longer is marked as such.
+
+    Parameters
+    ----------
+    t, e_x, e_y, speed
+        Time (s), journal position (m), ω (rad/s), shape (n,), uniform in t.
+    clearance
+        Radial clearance C, m.
+    stopped_by_contact, contact_time
+        Whether and when (s) the simulation stopped at contact.
+    fraction
+        Orbit radius, as a fraction of C, taken as divergence (0.9).
+    window_s
+        Averaging length for the orbit centre, s.
+    """
+    t, e_x, e_y, speed = (np.asarray(a, dtype=float) for a in (t, e_x, e_y, speed))
+    fs = _sampling(t, e_x, e_y, speed)
+    n = max(1, round(window_s * fs))
+    z = e_x + 1j * e_y
+    radius = np.abs(z - _moving_mean(z, n))
+    over = np.flatnonzero(radius > fraction * clearance)
+    t_radius = float(t[over[0]]) if over.size else None
+    if not stopped_by_contact:
+        if t_radius is None:
+            return None
+        return Divergence(float(speed[over[0]] / RPM), t_radius, "orbit radius", None, 0.0)
+    t_contact = float(t[-1] if contact_time is None else contact_time)
+    contact_rpm = float(np.interp(t_contact, t, speed) / RPM)
+    if t_radius is None or t_radius >= t_contact:
+        return Divergence(contact_rpm, t_contact, "contact", contact_rpm, 0.0)
+    return Divergence(
+        float(speed[over[0]] / RPM), t_radius, "orbit radius", contact_rpm, t_contact - t_radius
+    )
+
+
 def divergence_speed(
     t: np.ndarray,
     e_x: np.ndarray,
@@ -478,35 +575,17 @@ def divergence_speed(
     fraction: float = 0.9,
     window_s: float = WINDOW_S,
 ) -> float | None:
-    """Speed (rpm) at which the journal motion diverges; None if it does not.
-
-    If the run stopped by contact, the speed at ``contact_time`` (the last
-    sample if None). Otherwise the first time the orbit amplitude exceeds
-    ``fraction × clearance``; the orbit amplitude is the distance of the
-    journal centre from the orbit's centre, the latter a centred moving mean
-    of (e_x, e_y) over ``window_s`` (so a static eccentricity, however large,
-    does not count).
-
-    Parameters
-    ----------
-    t, e_x, e_y, speed
-        Time (s), journal position (m), ω (rad/s), shape (n,), uniform in t.
-    clearance
-        Radial clearance C, m.
-    stopped_by_contact, contact_time
-        Whether and when (s) the simulation stopped at contact.
-    fraction
-        Orbit amplitude, as a fraction of C, taken as divergence (0.9).
-    window_s
-        Averaging length for the orbit centre, s.
-    """
-    t, e_x, e_y, speed = (np.asarray(a, dtype=float) for a in (t, e_x, e_y, speed))
-    fs = _sampling(t, e_x, e_y, speed)
-    if stopped_by_contact:
-        tc = t[-1] if contact_time is None else contact_time
-        return float(np.interp(tc, t, speed) / RPM)
-    n = max(1, round(window_s * fs))
-    z = e_x + 1j * e_y
-    radius = np.abs(z - _moving_mean(z, n))
-    over = np.flatnonzero(radius > fraction * clearance)
-    return float(speed[over[0]] / RPM) if over.size else None
+    """Speed (rpm) at which the journal motion diverges (`divergence`); None if it does
+    not. Parameters as for `divergence`."""
+    d = divergence(
+        t,
+        e_x,
+        e_y,
+        speed,
+        clearance,
+        stopped_by_contact=stopped_by_contact,
+        contact_time=contact_time,
+        fraction=fraction,
+        window_s=window_s,
+    )
+    return None if d is None else d.speed_rpm

@@ -19,10 +19,11 @@ from foilbearing.orbit import OrbitResult
 from foilbearing.orbit.result import synchronous_amplitude
 from foilbearing.output.summary import grid_used
 from foilbearing.signals import (
+    Divergence,
     Onset,
     SubsyncResult,
     Waterfall,
-    divergence_speed,
+    divergence,
     onset,
     subsynchronous_amplitude,
     waterfall,
@@ -54,6 +55,9 @@ class OrbitAnalysis:
     #: window (s) they are read over; None for a speed ramp or a run under two revolutions.
     one_x: tuple[float, float] | None = None
     one_x_window: tuple[float, float] | None = None
+    #: The divergence read in full: by the orbit's radius or by contact, and how long a
+    #: large orbit lasted before a contact (`foilbearing.signals.divergence`).
+    divergence: Divergence | None = None
 
     def headline(self, result: OrbitResult) -> dict[str, Any]:
         """Unit-named keys: onset_speed_rpm, whip_frequency_Hz, divergence_speed_rpm, ...;
@@ -61,7 +65,7 @@ class OrbitAnalysis:
         ``actuator_reading``: the actuator in the film (``"lobe+compliant"``, docs/model.md
         §3.8), None without actuators. A constant-speed run adds its 1X amplitude in X and
         Y, 0-pk and pk-pk (µm), and the window it is read over."""
-        o = self.onset
+        o, d = self.onset, self.divergence
         act = result.case.actuators
         one_x = {}
         if self.one_x is not None and self.one_x_window is not None:
@@ -75,6 +79,9 @@ class OrbitAnalysis:
             "whip_frequency_Hz": None if o is None else o.whirl_frequency_hz,
             "subsync_intervals_rpm_Hz": [] if o is None else [list(iv) for iv in o.intervals],
             "divergence_speed_rpm": self.divergence_speed_rpm,
+            "divergence_by": None if d is None else d.by,
+            "contact_speed_rpm": None if d is None else d.contact_speed_rpm,
+            "contact_after_large_orbit": None if d is None else d.contact_after_large_orbit,
             "max_subsync_amplitude_um": (
                 None if self.max_subsync_amplitude is None else self.max_subsync_amplitude * 1e6
             ),
@@ -121,10 +128,13 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
         if result.status == "contact" and t.size < 2:
             # Contact before a second sample (the first steps closed the film): no time
             # series to read, but the stepper noted the speed at contact.
-            speed = (result.contact or {}).get("speed_rpm")
-            div = None if speed is None else float(speed)
+            contact = result.contact or {}
+            speed = contact.get("speed_rpm")
+            if speed is not None:
+                at = float(contact.get("time_s", t[-1] if t.size else 0.0))
+                div = Divergence(float(speed), at, "contact", float(speed), 0.0)
         elif result.status == "contact":
-            div = divergence_speed(
+            div = divergence(
                 t,
                 result.e_x,
                 result.e_y,
@@ -133,14 +143,16 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
                 stopped_by_contact=True,
                 contact_time=None,
             )
-        return OrbitAnalysis(None, None, None, div, None, **one_x)
+        return OrbitAnalysis(
+            None, None, None, None if div is None else div.speed_rpm, None, **one_x, divergence=div
+        )
     wf = waterfall(
         t, result.e_x, result.speed, fmax_hz=min(2000.0, 0.45 * result.settings.sample_rate)
     )
     sub = subsynchronous_amplitude(t, result.e_x, result.speed, result.phase)
     ons = onset(sub, threshold=threshold)
     contact = result.contact or {}
-    div = divergence_speed(
+    div = divergence(
         t,
         result.e_x,
         result.e_y,
@@ -150,7 +162,8 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
         contact_time=contact.get("time_s"),
     )
     amp = float(np.nanmax(sub.amplitude)) if sub.amplitude.size else None
-    return OrbitAnalysis(wf, sub, ons, div, amp, **one_x)
+    speed_rpm = None if div is None else div.speed_rpm
+    return OrbitAnalysis(wf, sub, ons, speed_rpm, amp, **one_x, divergence=div)
 
 
 def orbit_panel_speeds(speed: np.ndarray) -> list[float]:
