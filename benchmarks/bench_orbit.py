@@ -427,29 +427,28 @@ REFRESH_RUNS = (
 def refresh_policy() -> None:
     """A fresh factor at the start of a step after a step of more than T iterations."""
     from foilbearing.case import Grid
-    from foilbearing.orbit import stepper
+    from foilbearing.integrate import integrator
 
-    kept = stepper._step_newton
+    kept = integrator.solve_step
     rule = {"T": 10**9, "drop": False}
 
-    def policy(problem, newton, y0, inp, c0, hist, weights, lu, lu_c0, work, branches=None):  # type: ignore[no-untyped-def]
+    def policy(factorize, switching, controls, y0, args, c0, hist, weights, lu, *rest):  # type: ignore[no-untyped-def]
         r = kept(
-            problem,
-            newton,
+            factorize,
+            switching,
+            controls,
             y0,
-            inp,
+            args,
             c0,
             hist,
             weights,
             None if rule["drop"] else lu,
-            lu_c0,
-            work,
-            branches,
+            *rest,
         )
         rule["drop"] = bool(r[0]) and r[2] > rule["T"]
         return r
 
-    stepper._step_newton = policy
+    integrator.solve_step = policy
     print(
         "route 4: a fresh factor after a step of more than T iterations (T = none: today's "
         "rule; T = 0: a fresh factor every step), 0.05 s at constant speed"
@@ -472,7 +471,7 @@ def refresh_policy() -> None:
                     f"{res.e_x[-1] * 1e6:.4f} µm",
                     flush=True,
                 )
-    stepper._step_newton = kept
+    integrator.solve_step = kept
 
 
 def _krpm(rpm: float | None) -> str:
@@ -745,7 +744,7 @@ def _kernels_seen_by_cprofile() -> Iterator[None]:
     On Python 3.13 cProfile does not see a call into a numba dispatcher: its time goes to
     the Python caller, and a breakdown by kernel reads nothing. A thin wrapper (well under
     a microsecond a call) is a Python frame cProfile records under the kernel's name."""
-    import foilbearing.orbit.stepper as stepper_module
+    import foilbearing.integrate.integrator as stepper_module
     from foilbearing.reynolds import _kernels
 
     saved: list[tuple[object, str, object]] = []

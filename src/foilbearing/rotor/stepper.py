@@ -20,9 +20,10 @@ A Newton matrix is factorised by block elimination:
 A Newton iteration evaluates each film's BDF residual (the compiled
 ``transient_residual``, with the lift-off branches of the single-bearing stepper), the
 rotor's, and solves: ``δq`` from S, ``δq̇ = c0 δq − g_q``, each film's
-``δy_b = A_b⁻¹ g_b − Y_b T_b δq``. The iteration's convergence test, lift-off branch
-switching and outcomes are those of the single-bearing kernel
-(:func:`~foilbearing.reynolds._kernels.transient_newton_solve`).
+``δy_b = A_b⁻¹ g_b − Y_b T_b δq``. The iteration's convergence test, refreshes and
+outcomes are the integrator's one Newton policy (:mod:`foilbearing.integrate.newton`),
+which the single-bearing kernel
+(:func:`~foilbearing.reynolds._kernels.transient_newton_solve`) calls too.
 """
 
 from __future__ import annotations
@@ -37,6 +38,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.errors import InputError
+from foilbearing.integrate.newton import (
+    NEWTON_CONTINUE,
+    NEWTON_CONVERGED,
+    NEWTON_NOT_FINITE,
+    NEWTON_REFRESH,
+    NEWTON_RETREAT,
+    NEWTON_SWITCHED,
+    newton_progress,
+    newton_verdict,
+    switch_verdict,
+)
 from foilbearing.orbit.problem import RunStats, StepperProblem
 from foilbearing.orbit.result import RunStatus
 from foilbearing.orbit.sampling import Samples
@@ -57,12 +69,11 @@ ROTOR_STEPS_PER_REV = 48
 
 _ROSS = np.array([[0.0, 1.0], [-1.0, 0.0]])  # ROSS (x, y) = (Y, −X) from ours (X, Y)
 
-_CONVERGED, _FILM_CLOSED, _NOT_FINITE = (
-    kern.NEWTON_CONVERGED,
-    kern.NEWTON_FILM_CLOSED,
-    kern.NEWTON_NOT_FINITE,
-)
-_TOO_SLOW, _DIVERGED, _REFRESH = kern.NEWTON_TOO_SLOW, kern.NEWTON_DIVERGED, kern.NEWTON_REFRESH
+#: The integrator's Newton policy, in Python: this iteration is Python (a step couples
+#: several films' compiled kernels), and calls no compiled dispatcher for a verdict.
+_progress = newton_progress.py_func
+_verdict = newton_verdict.py_func
+_switch = switch_verdict.py_func
 
 
 class _RotorInputs:
@@ -242,8 +253,10 @@ class _RotorFactor:
         fresh: bool,
         first_change: float,
     ) -> tuple[int, int, float, float]:
-        """Modified-Newton iterations with this factor (the single-bearing kernel's logic,
-        :func:`~foilbearing.reynolds._kernels.transient_newton_solve`)."""
+        """Modified-Newton iterations with this factor: the single-bearing kernel's loop
+        (:func:`~foilbearing.reynolds._kernels.transient_newton_solve`) on the rotor's
+        block elimination, under the integrator's one Newton policy
+        (:mod:`foilbearing.integrate.newton`)."""
         newton_tol, newton_fraction, max_newton = controls
         g, dy, q_out = work
         st = self.st
@@ -262,7 +275,7 @@ class _RotorFactor:
                 since += 1
                 h_min = self._residual(y, inp, c0, hist, g, steps)
                 if not h_min > 0.0:
-                    return _FILM_CLOSED, k, first_change, math.nan
+                    return kern.NEWTON_FILM_CLOSED, k, first_change, math.nan
                 self._solve(g, dy)
                 # y −= dy, the weighted max-norm of dy and each film's smallest pressure.
                 err, p_min = 0.0, math.inf
@@ -270,41 +283,33 @@ class _RotorFactor:
                     e, p = kern.newton_update(y[lo:hi], dy[lo:hi], weights[lo:hi], n)
                     err, p_min = max(err, e) if e == e else math.nan, min(p_min, p)
                 if not math.isfinite(err) or p_min <= 0.0:
-                    return _NOT_FINITE, k, first_change, math.nan
-                if first_change == math.inf:
-                    first_change = err
-                tol = max(newton_tol, newton_fraction * first_change)
-                conv = err / prev if since > 1 else math.nan
-                if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
+                    return NEWTON_NOT_FINITE, k, first_change, math.nan
+                converged, conv, tol, first_change = _progress(
+                    err, prev, since, first_change, newton_tol, newton_fraction
+                )
+                if converged:
                     flipped = sum(
                         kern.switch_branches(f.lift_state, br.slack, weights[br.lo : br.lo + br.n])
                         for f, br in zip(self.factors, st.bearings, strict=True)
                     )
-                    if flipped == 0:
+                    verdict = _switch(flipped, switches, kern.MAX_SWITCHES, kern.MAX_MOVED_KEPT)
+                    if verdict == NEWTON_CONVERGED:
                         h_new = st.storage_into(y, inp, q_out)
                         if h_new > 0.0:
-                            return _CONVERGED, k, first_change, h_new
-                    elif switches < kern.MAX_SWITCHES and flipped <= kern.MAX_MOVED_KEPT:
+                            return NEWTON_CONVERGED, k, first_change, h_new
+                    elif verdict == NEWTON_SWITCHED:
                         switches += 1
                         since = 0
                         prev = math.inf
                         continue
                     else:
-                        return _REFRESH, k, first_change, math.nan
-                if fresh:
-                    if smoothed and since > 1 and conv >= 1.0:
-                        y += dy  # the smoothed law's kink: back to the better iterate
-                        return _REFRESH, k, first_change, math.nan
-                    if since >= max_newton or conv >= 1.0:
-                        if switches > 0:
-                            return _REFRESH, k, first_change, math.nan
-                        return _TOO_SLOW, k, first_change, math.nan
-                    if conv > 0.5:
-                        return _REFRESH, k, first_change, math.nan
-                elif since >= max_newton or conv >= 1.0:
-                    return _DIVERGED, k, first_change, math.nan
-                elif conv ** (max_newton - since) / (1.0 - conv) * err > tol:
-                    return _REFRESH, k, first_change, math.nan
+                        return NEWTON_REFRESH, k, first_change, math.nan
+                verdict = _verdict(err, conv, tol, since, max_newton, fresh, switches > 0, smoothed)
+                if verdict == NEWTON_RETREAT:
+                    y += dy  # the smoothed law's kink: back to the better iterate
+                    return NEWTON_REFRESH, k, first_change, math.nan
+                if verdict != NEWTON_CONTINUE:
+                    return verdict, k, first_change, math.nan
                 prev = err
         finally:
             self._gather_lift()

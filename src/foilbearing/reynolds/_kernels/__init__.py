@@ -59,10 +59,13 @@ equations of the transient system: residual, Jacobian blocks, solve, step
 set-up) and :mod:`.newton` (the Newton iteration on them, with the lift-off
 branch switching), whose arguments come in the named groups of :mod:`.groups`;
 their names are all here. The laws they inline live in :mod:`foilbearing.laws`
-(:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`); :mod:`._cache` drops the on-disk
+(:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`), and the Newton policy that
+:mod:`.newton` calls is the integrator's (:mod:`foilbearing.integrate.newton`);
+:mod:`._cache` drops the on-disk
 caches when any of these sources changes.
 """
 
+from foilbearing.integrate import newton as _newton_policy
 from foilbearing.laws import lift_off as _lift_off_law
 from foilbearing.reynolds._kernels import _cache
 from foilbearing.reynolds._kernels import bdf as _bdf
@@ -136,7 +139,7 @@ _install_compile_notice()  # a cold cache says so once on stderr (notice.py), be
 # caches whenever any of these sources changed (docs/numerics.md §3).
 _cache.drop_stale_caches(
     (_bdf, _blockcyclic, _flux, _groups, _newton),
-    (_lift_off_law,),
+    (_lift_off_law, _newton_policy),
 )
 
 __all__ = [
