@@ -40,18 +40,9 @@ from foilbearing.reynolds._kernels import (
 )
 from foilbearing.reynolds.transient import Inputs
 
-__all__ = ["LiftOffBranches", "State", "interrupt_at_step_boundary", "run"]
+__all__ = ["LiftOffBranches", "State", "ending", "interrupt_at_step_boundary", "run"]
 
 FloatArray = NDArray[np.float64]
-
-#: The integrator's endings as the orbit's (a stop event is the contact, the only one).
-_STATUS = {
-    Status.COMPLETED: RunStatus.COMPLETED,
-    Status.EVENT: RunStatus.CONTACT,
-    Status.INTERRUPTED: RunStatus.INTERRUPTED,
-    Status.FAILED: RunStatus.FAILED,
-    Status.RUNNING: RunStatus.RUNNING,
-}
 
 
 class LiftOffBranches:
@@ -122,6 +113,25 @@ class LiftOffBranches:
             self.known = 0
 
 
+def ending(
+    sol: Solution, t: float, t_end: float, speed: Callable[[float], float]
+) -> tuple[RunStatus, str]:
+    """The run's status and message for an integration that ended at t without a stop
+    event (the caller words its contact): ``t_end`` is the end of the speed profile (s)
+    and ``speed(t)`` the speed (rad/s)."""
+    if sol.status == Status.INTERRUPTED:
+        return RunStatus.INTERRUPTED, f"interrupted by the user at t = {t:.4f} s"
+    if sol.status == Status.FAILED:
+        exc = sol.error
+        why = f"time step collapsed at t = {exc.t:.6f} s" if isinstance(exc, StepCollapsed) else exc
+        return RunStatus.FAILED, f"the integration failed at t = {t:.4f} s: {why}"
+    if sol.status == Status.RUNNING:
+        return RunStatus.RUNNING, f"checkpoint at t = {t:.4f} s"
+    # At stop_time the profile goes on: the run can be resumed.
+    status = RunStatus.STOPPED if t < t_end - 1e-9 else RunStatus.COMPLETED
+    return status, f"{status} at {t:.4f} s ({speed(t) / RPM:.0f} rpm) after {sol.steps} steps"
+
+
 def run(
     problem: StepperProblem,
     st: State,
@@ -190,9 +200,8 @@ def run(
         return h_min < contact_film
 
     def result(sol: Solution) -> OrbitResult:
-        status = _STATUS[sol.status]
         touched = None
-        if status == RunStatus.CONTACT:
+        if sol.status == Status.EVENT:
             w = speed(st.t)
             k = problem.journal
             touched = {
@@ -201,29 +210,14 @@ def run(
                 "angle_deg": math.degrees(math.atan2(st.y[k + 1], st.y[k])),
                 "min_film_um": sol.monitor * problem.clearance * 1e6,
             }
+            status = RunStatus.CONTACT
             message = (
                 f"contact at t = {st.t:.4f} s, {w / RPM:.0f} rpm: minimum film "
                 f"{sol.monitor:.3f} C < {contact_film} C, journal at "
                 f"{touched['angle_deg']:.1f} deg from +X"
             )
-        elif status == RunStatus.INTERRUPTED:
-            message = f"interrupted by the user at t = {st.t:.4f} s"
-        elif status == RunStatus.FAILED:
-            exc = sol.error
-            why = (
-                f"time step collapsed at t = {exc.t:.6f} s"
-                if isinstance(exc, StepCollapsed)
-                else exc
-            )
-            message = f"the integration failed at t = {st.t:.4f} s: {why}"
-        elif status == RunStatus.RUNNING:
-            message = f"checkpoint at t = {st.t:.4f} s"
         else:
-            if st.t < problem.t_end - 1e-9:
-                status = RunStatus.STOPPED  # at stop_time: the profile goes on, resumable
-            message = (
-                f"{status} at {st.t:.4f} s ({speed(st.t) / RPM:.0f} rpm) after {sol.steps} steps"
-            )
+            status, message = ending(sol, st.t, problem.t_end, speed)
         cp = st.as_checkpoint()
         cp.update(problem.program_checkpoint())
         stats = RunStats(clock, sol.steps, sol.factorizations, sol.newton_iterations, touched, cp)
