@@ -425,30 +425,10 @@ REFRESH_RUNS = (
 
 
 def refresh_policy() -> None:
-    """A fresh factor at the start of a step after a step of more than T iterations."""
+    """A fresh factor at the start of a step after a step of more than T iterations
+    (``OrbitSettings.refresh_after``)."""
     from foilbearing.case import Grid
-    from foilbearing.integrate import integrator
 
-    kept = integrator.solve_step
-    rule = {"T": 10**9, "drop": False}
-
-    def policy(factorize, switching, controls, y0, args, c0, hist, weights, lu, *rest):  # type: ignore[no-untyped-def]
-        r = kept(
-            factorize,
-            switching,
-            controls,
-            y0,
-            args,
-            c0,
-            hist,
-            weights,
-            None if rule["drop"] else lu,
-            *rest,
-        )
-        rule["drop"] = bool(r[0]) and r[2] > rule["T"]
-        return r
-
-    integrator.solve_step = policy
     print(
         "route 4: a fresh factor after a step of more than T iterations (T = none: today's "
         "rule; T = 0: a fresh factor every step), 0.05 s at constant speed"
@@ -461,8 +441,7 @@ def refresh_policy() -> None:
             profile = constant_speed(rpm * RPM, 0.05)
             simulate(case, constant_speed(rpm * RPM, 5e-4))  # compile, warm up
             for threshold in (None, 6, 4, 2, 0):
-                rule["T"], rule["drop"] = (10**9 if threshold is None else threshold), False
-                res = simulate(case, profile)
+                res = simulate(case, profile, settings=OrbitSettings(refresh_after=threshold))
                 print(
                     f"  96 x {n_z:2d}, {label}, T = {threshold}: "
                     f"{res.newton_iterations / res.steps:.2f} iterations and "
@@ -471,7 +450,6 @@ def refresh_policy() -> None:
                     f"{res.e_x[-1] * 1e6:.4f} µm",
                     flush=True,
                 )
-    integrator.solve_step = kept
 
 
 def _krpm(rpm: float | None) -> str:
