@@ -39,7 +39,7 @@ from pathlib import Path
 
 from foilbearing.case import default_case
 from foilbearing.control import constant_speed
-from foilbearing.orbit import simulate
+from foilbearing.orbit import OrbitSettings, simulate
 
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_orbit import (
@@ -145,31 +145,10 @@ REFRESH_RUNS = (
 
 
 def refresh_policy() -> None:
-    """A fresh factor at the start of a step after a step of more than T iterations."""
+    """A fresh factor at the start of a step after a step of more than T iterations
+    (``OrbitSettings.refresh_after``)."""
     from foilbearing.case import Grid
-    from foilbearing.orbit import stepper
 
-    kept = stepper._step_newton
-    rule = {"T": 10**9, "drop": False}
-
-    def policy(problem, newton, y0, inp, c0, hist, weights, lu, lu_c0, work, branches=None):
-        r = kept(
-            problem,
-            newton,
-            y0,
-            inp,
-            c0,
-            hist,
-            weights,
-            None if rule["drop"] else lu,
-            lu_c0,
-            work,
-            branches,
-        )
-        rule["drop"] = bool(r[0]) and r[2] > rule["T"]
-        return r
-
-    stepper._step_newton = policy
     print(
         "route 4: a fresh factor after a step of more than T iterations (T = none: today's "
         "rule; T = 0: a fresh factor every step), 0.05 s at constant speed"
@@ -182,8 +161,7 @@ def refresh_policy() -> None:
             profile = constant_speed(rpm * RPM, 0.05)
             simulate(case, constant_speed(rpm * RPM, 5e-4))  # compile, warm up
             for threshold in (None, 6, 4, 2, 0):
-                rule["T"], rule["drop"] = (10**9 if threshold is None else threshold), False
-                res = simulate(case, profile)
+                res = simulate(case, profile, settings=OrbitSettings(refresh_after=threshold))
                 print(
                     f"  96 x {n_z:2d}, {label}, T = {threshold}: "
                     f"{res.newton_iterations / res.steps:.2f} iterations and "
@@ -192,7 +170,6 @@ def refresh_policy() -> None:
                     f"{res.e_x[-1] * 1e6:.4f} µm",
                     flush=True,
                 )
-    stepper._step_newton = kept
 
 
 #: The compiled kernels --profile times, and the modules that call them by name.
@@ -212,7 +189,7 @@ def _kernels_seen_by_cprofile() -> Iterator[None]:
     On Python 3.13 cProfile does not see a call into a numba dispatcher: its time goes to
     the Python caller, and a breakdown by kernel reads nothing. A thin wrapper (well under
     a microsecond a call) is a Python frame cProfile records under the kernel's name."""
-    import foilbearing.orbit.stepper as stepper_module
+    import foilbearing.integrate.integrator as stepper_module
     from foilbearing.reynolds import _kernels
 
     saved: list[tuple[object, str, object]] = []

@@ -125,6 +125,27 @@ def test_production_never_imports_the_test_oracles() -> None:
     assert not offenders, "; ".join(offenders)
 
 
+#: The generic integrator and what it may import of the package: nothing (numpy and numba
+#: are not the package's). Every other package of foilbearing is a bearing package.
+INTEGRATE = "foilbearing.integrate"
+
+
+def test_the_integrator_imports_nothing_of_the_bearing_packages() -> None:
+    """foilbearing.integrate knows nothing of the problem: none of its modules imports
+    another module of foilbearing outside it, at any level."""
+    modules = source_modules()
+    inside = [name for name in modules if name == INTEGRATE or name.startswith(INTEGRATE + ".")]
+    assert len(inside) >= 4  # the package is there: the check below reads its files
+    offenders = [
+        f"{modules[name].relative_to(SRC)}:{line} imports {target}"
+        for name in inside
+        for target, line in imported_names(modules[name], name)
+        if target.split(".")[0] == "foilbearing"
+        and not (target == INTEGRATE or target.startswith(INTEGRATE + "."))
+    ]
+    assert not offenders, "; ".join(offenders)
+
+
 def test_the_source_modules_import_without_cycles() -> None:
     cycles = import_cycles(import_graph())
     assert not cycles, " | ".join(" <-> ".join(c) for c in cycles)

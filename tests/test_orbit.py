@@ -616,7 +616,7 @@ def test_ctrl_c_at_any_line_of_a_step_resumes_to_the_uninterrupted_run() -> None
     import signal
     import sys
 
-    from foilbearing.orbit.stepper import run as stepper_run
+    from foilbearing.integrate import integrate as stepper_run  # the step loop the orbit runs on
 
     case = coarse(100.0, imbalance=1e-6)
     prof = constant_speed(20e3 * RPM, 0.004)

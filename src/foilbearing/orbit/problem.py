@@ -3,8 +3,8 @@
 :class:`StepperProblem` is the interface between the domain side of a run
 (:class:`~foilbearing.orbit.system.OrbitSimulation`: the case, the speed profile,
 the voltage program, the output) and the numerics of
-:func:`foilbearing.orbit.stepper.run` (the variable-step BDF and its modified
-Newton), as ``diffrax.diffeqsolve`` takes ``f(t, y, args)``: the stepper calls
+:func:`foilbearing.orbit.stepper.run` (the orbit on the generic BDF integrator,
+:mod:`foilbearing.integrate`, and its modified Newton), as ``diffrax.diffeqsolve`` takes ``f(t, y, args)``: the stepper calls
 these and reads nothing else. Its settings come apart from it, by role
 (:mod:`foilbearing.orbit.settings`: ``StepRule``, ``NewtonRule``, ``StopRule``).
 """

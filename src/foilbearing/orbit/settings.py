@@ -6,11 +6,9 @@ import math
 from dataclasses import dataclass
 
 from foilbearing.errors import InputError
+from foilbearing.integrate import MAX_ORDER, NewtonRule
 
 __all__ = ["MAX_ORDER", "NewtonRule", "OrbitSettings", "Sampling", "StepRule", "StopRule"]
-
-#: Highest BDF order of the stepper.
-MAX_ORDER = 4
 
 
 @dataclass(frozen=True)
@@ -30,34 +28,6 @@ class StepRule:
     steps_per_rev: int
     order: int
     max_step: float
-
-
-@dataclass(frozen=True)
-class NewtonRule:
-    """The modified Newton iteration of each step (see :class:`OrbitSettings`).
-
-    Attributes
-    ----------
-    newton_tol
-        Convergence of the Newton update in the weighted max-norm (1 = tolerance met).
-    newton_fraction
-        The iteration also stops at this fraction of its first update.
-    max_newton
-        Iterations per attempt before the Jacobian is refreshed.
-    rtol
-        Relative tolerance of the error weights 1/(atol + rtol |y|) (the absolute
-        tolerances are per state: ``StepperProblem.atol``).
-    refresh_after
-        A step that took more iterations than this leaves no factor to the next one,
-        which takes a fresh factor at its predictor (None: the factor is kept until
-        it fails or asks for a refresh).
-    """
-
-    newton_tol: float
-    newton_fraction: float
-    max_newton: int
-    rtol: float
-    refresh_after: int | None = None
 
 
 @dataclass(frozen=True)

@@ -1,9 +1,10 @@
-"""The nonlinear rotor on the orbit's stepper: every film's compiled kernels, one rotor solve.
+"""The nonlinear rotor on the BDF integrator: every film's compiled kernels, one rotor solve.
 
-:class:`RotorStepper` hands the rotor on its bearings to the orbit's variable-step BDF
-(:func:`foilbearing.orbit.stepper.run`) as a :class:`~foilbearing.orbit.problem.
-StepperProblem`: the same state and equations as :class:`~foilbearing.rotor.nonlinear.
-RotorOrbitSystem` (each bearing's film and foil, then the reduced rotor's q and q̇), in the
+:class:`RotorStepper` hands the rotor on its bearings to the generic variable-order BDF
+(:func:`foilbearing.integrate.integrate`, the orbit's integrator) as a
+:class:`~foilbearing.integrate.Problem`, with the films' lift-off branches
+(:class:`~foilbearing.orbit.stepper.LiftOffBranches`) and the contact as a stop event: the
+same state and equations as :class:`~foilbearing.rotor.nonlinear.RotorOrbitSystem` (each bearing's film and foil, then the reduced rotor's q and q̇), in the
 implicit form ``d Q(y)/dt = f(y, t)`` with ``Q = [P_b H_b, U_b, ..., q, q̇]``.
 
 A Newton matrix is factorised by block elimination:
@@ -20,9 +21,10 @@ A Newton matrix is factorised by block elimination:
 A Newton iteration evaluates each film's BDF residual (the compiled
 ``transient_residual``, with the lift-off branches of the single-bearing stepper), the
 rotor's, and solves: ``δq`` from S, ``δq̇ = c0 δq − g_q``, each film's
-``δy_b = A_b⁻¹ g_b − Y_b T_b δq``. The iteration's convergence test, lift-off branch
-switching and outcomes are those of the single-bearing kernel
-(:func:`~foilbearing.reynolds._kernels.transient_newton_solve`).
+``δy_b = A_b⁻¹ g_b − Y_b T_b δq``. The iteration's convergence test, refreshes and
+outcomes are the integrator's one Newton policy (:mod:`foilbearing.integrate.newton`),
+which the single-bearing kernel
+(:func:`~foilbearing.reynolds._kernels.transient_newton_solve`) calls too.
 """
 
 from __future__ import annotations
@@ -37,11 +39,19 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.errors import InputError
-from foilbearing.orbit.problem import RunStats, StepperProblem
+from foilbearing.integrate import (
+    Problem,
+    Solution,
+    State,
+    Status,
+    integrate,
+    interrupt_at_step_boundary,
+)
+from foilbearing.integrate import newton as policy
 from foilbearing.orbit.result import RunStatus
-from foilbearing.orbit.sampling import Samples
+from foilbearing.orbit.sampling import progress_bar
 from foilbearing.orbit.settings import OrbitSettings
-from foilbearing.orbit.stepper import State, interrupt_at_step_boundary, run
+from foilbearing.orbit.stepper import LiftOffBranches, ending
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds.transient import Inputs
 from foilbearing.reynolds.transient_factor import TransientFactor
@@ -57,12 +67,11 @@ ROTOR_STEPS_PER_REV = 48
 
 _ROSS = np.array([[0.0, 1.0], [-1.0, 0.0]])  # ROSS (x, y) = (Y, −X) from ours (X, Y)
 
-_CONVERGED, _FILM_CLOSED, _NOT_FINITE = (
-    kern.NEWTON_CONVERGED,
-    kern.NEWTON_FILM_CLOSED,
-    kern.NEWTON_NOT_FINITE,
-)
-_TOO_SLOW, _DIVERGED, _REFRESH = kern.NEWTON_TOO_SLOW, kern.NEWTON_DIVERGED, kern.NEWTON_REFRESH
+#: The integrator's Newton policy, in Python: this iteration is Python (a step couples
+#: several films' compiled kernels), and calls no compiled dispatcher for a verdict.
+_progress = policy.newton_progress.py_func
+_verdict = policy.newton_verdict.py_func
+_switch = policy.switch_verdict.py_func
 
 
 class _RotorInputs:
@@ -242,8 +251,10 @@ class _RotorFactor:
         fresh: bool,
         first_change: float,
     ) -> tuple[int, int, float, float]:
-        """Modified-Newton iterations with this factor (the single-bearing kernel's logic,
-        :func:`~foilbearing.reynolds._kernels.transient_newton_solve`)."""
+        """Modified-Newton iterations with this factor: the single-bearing kernel's loop
+        (:func:`~foilbearing.reynolds._kernels.transient_newton_solve`) on the rotor's
+        block elimination, under the integrator's one Newton policy
+        (:mod:`foilbearing.integrate.newton`)."""
         newton_tol, newton_fraction, max_newton = controls
         g, dy, q_out = work
         st = self.st
@@ -262,7 +273,7 @@ class _RotorFactor:
                 since += 1
                 h_min = self._residual(y, inp, c0, hist, g, steps)
                 if not h_min > 0.0:
-                    return _FILM_CLOSED, k, first_change, math.nan
+                    return kern.NEWTON_FILM_CLOSED, k, first_change, math.nan
                 self._solve(g, dy)
                 # y −= dy, the weighted max-norm of dy and each film's smallest pressure.
                 err, p_min = 0.0, math.inf
@@ -270,48 +281,40 @@ class _RotorFactor:
                     e, p = kern.newton_update(y[lo:hi], dy[lo:hi], weights[lo:hi], n)
                     err, p_min = max(err, e) if e == e else math.nan, min(p_min, p)
                 if not math.isfinite(err) or p_min <= 0.0:
-                    return _NOT_FINITE, k, first_change, math.nan
-                if first_change == math.inf:
-                    first_change = err
-                tol = max(newton_tol, newton_fraction * first_change)
-                conv = err / prev if since > 1 else math.nan
-                if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
+                    return policy.NEWTON_NOT_FINITE, k, first_change, math.nan
+                converged, conv, tol, first_change = _progress(
+                    err, prev, since, first_change, newton_tol, newton_fraction
+                )
+                if converged:
                     flipped = sum(
                         kern.switch_branches(f.lift_state, br.slack, weights[br.lo : br.lo + br.n])
                         for f, br in zip(self.factors, st.bearings, strict=True)
                     )
-                    if flipped == 0:
+                    verdict = _switch(flipped, switches, kern.MAX_SWITCHES, kern.MAX_MOVED_KEPT)
+                    if verdict == policy.NEWTON_CONVERGED:
                         h_new = st.storage_into(y, inp, q_out)
                         if h_new > 0.0:
-                            return _CONVERGED, k, first_change, h_new
-                    elif switches < kern.MAX_SWITCHES and flipped <= kern.MAX_MOVED_KEPT:
+                            return policy.NEWTON_CONVERGED, k, first_change, h_new
+                    elif verdict == policy.NEWTON_SWITCHED:
                         switches += 1
                         since = 0
                         prev = math.inf
                         continue
                     else:
-                        return _REFRESH, k, first_change, math.nan
-                if fresh:
-                    if smoothed and since > 1 and conv >= 1.0:
-                        y += dy  # the smoothed law's kink: back to the better iterate
-                        return _REFRESH, k, first_change, math.nan
-                    if since >= max_newton or conv >= 1.0:
-                        if switches > 0:
-                            return _REFRESH, k, first_change, math.nan
-                        return _TOO_SLOW, k, first_change, math.nan
-                    if conv > 0.5:
-                        return _REFRESH, k, first_change, math.nan
-                elif since >= max_newton or conv >= 1.0:
-                    return _DIVERGED, k, first_change, math.nan
-                elif conv ** (max_newton - since) / (1.0 - conv) * err > tol:
-                    return _REFRESH, k, first_change, math.nan
+                        return policy.NEWTON_REFRESH, k, first_change, math.nan
+                verdict = _verdict(err, conv, tol, since, max_newton, fresh, switches > 0, smoothed)
+                if verdict == policy.NEWTON_RETREAT:
+                    y += dy  # the smoothed law's kink: back to the better iterate
+                    return policy.NEWTON_REFRESH, k, first_change, math.nan
+                if verdict != policy.NEWTON_CONTINUE:
+                    return verdict, k, first_change, math.nan
                 prev = err
         finally:
             self._gather_lift()
 
 
 class RotorStepper:
-    """The rotor on its bearings as the orbit stepper's problem (module docstring).
+    """The rotor on its bearings as the integrator's problem (module docstring).
 
     Parameters
     ----------
@@ -397,12 +400,12 @@ class RotorStepper:
 
     def record(
         self,
-        out: Samples,
         t: float,
         y: FloatArray,
+        inp: _RotorInputs,
         volts: FloatArray,
-        inp: Any,
         min_film: float | None,
+        order: int,
     ) -> None:
         """Keep the accepted state; hand each closed-loop program its journal's X (m) at
         the output's sample times since the last state (linear between the two)."""
@@ -422,10 +425,14 @@ class RotorStepper:
         self._q.append(q)
         self._last = y
 
-    def make_result(
-        self, out: Samples, status: RunStatus, message: str, stats: RunStats
-    ) -> RotorOrbit:
-        """The run sampled at the settings' rate (linear between the accepted steps)."""
+    def make_result(self, sol: Solution, state: State, clock: float, t_end: float) -> RotorOrbit:
+        """The run sampled at the settings' rate (linear between the accepted steps), from
+        the integrator's ending ``sol`` at ``state``, with the wall time since ``clock``
+        (``time.perf_counter()``) and ``t_end`` the end of the speed profile (s)."""
+        if sol.status == Status.EVENT and self._last is not None:
+            status, message = RunStatus.CONTACT, self._contact_message(state.t, self._last)
+        else:
+            status, message = ending(sol, state.t, t_end, self.system.speed.omega)
         steps = np.asarray(self._times)
         q = np.asarray(self._q).T  # (m, steps)
         dt = 1.0 / self.settings.sample_rate
@@ -438,15 +445,13 @@ class RotorStepper:
         journals = np.stack([np.stack([-q[2 * b + 1], q[2 * b]]) for b in range(nb)])
         lateral = orbit.reduced.basis @ q
         nodes = np.stack([lateral[0::4], lateral[1::4]], axis=1)
-        wall = time.perf_counter() - stats.clock
-        if stats.contact is not None and self._last is not None:
-            message = self._contact_message(stats.contact["time_s"], self._last)
+        wall = time.perf_counter() - clock
         return RotorOrbit(
             times, journals, nodes, orbit.labels, wall, message,
-            steps=stats.steps, factorizations=stats.factorizations,
-            newton_iterations=stats.newton_iterations, status=str(status),
+            steps=sol.steps, factorizations=sol.factorizations,
+            newton_iterations=sol.newton_iterations, status=str(status),
             speed=orbit.speed.speed_and_phase(times)[0],
-            checkpoint=stats.checkpoint,
+            checkpoint={**state.as_checkpoint(), **self.program_checkpoint()},
         )  # fmt: skip
 
     def program_checkpoint(self) -> dict[str, Any]:
@@ -491,23 +496,24 @@ class RotorStepper:
             f"{films[b] * br.c * 1e6:.2f} µm, journal at {angle:.1f} deg from its +X"
         )
 
-    def problem(self, t_end: float) -> StepperProblem:
-        orbit = self.system
-        return StepperProblem(
-            size=orbit.size,
-            t_end=t_end,
-            speed=orbit.speed.omega,
-            inputs=self.inputs,  # type: ignore[arg-type]
-            storage=self.storage,  # type: ignore[arg-type]
-            factorize=self.factorize,  # type: ignore[arg-type]
-            lift_slack=self.lift_slack,
+    def problem(self) -> Problem:
+        """The rotor as the integrator sees it: its step from the speed, its inputs, storage
+        and factor, and the films' lift-off branches."""
+        omega = self.system.speed.omega
+        rule = self.settings.step_rule
+        steps_per_rev, max_step = rule.steps_per_rev, rule.max_step
+
+        def step_size(t: float) -> float:
+            return min(max_step, 2 * math.pi / (omega(t) * steps_per_rev))
+
+        return Problem(
+            size=self.system.size,
+            step_size=step_size,
+            inputs=self.inputs,
+            storage=self.storage,
+            factorize=self.factorize,
             atol=self._atol,
-            journal=orbit.n_film,
-            clearance=self.bearings[0].c,
-            record=self.record,
-            observe=None,
-            program_checkpoint=self.program_checkpoint,
-            make_result=self.make_result,  # type: ignore[arg-type]
+            switching=LiftOffBranches(self.lift_slack),
         )
 
 
@@ -524,7 +530,7 @@ def run_rotor(
     checkpoint_every: float = 30.0,
 ) -> RotorOrbit:
     """Integrate the rotor on its bearings from t = 0 (the static state, or ``y0``) to
-    ``t_end`` (s) with the orbit's stepper (module docstring).
+    ``t_end`` (s) on the BDF integrator (module docstring).
 
     ``stop_time`` (s) ends the run there, resumable. ``resume``: a stopped or interrupted
     run of the same system, continued from its checkpoint; the result holds both parts.
@@ -549,21 +555,35 @@ def run_rotor(
     def joined(part: RotorOrbit) -> RotorOrbit:
         return part if resume is None else resume.joined(part)
 
-    def save(part: Any) -> None:
-        if checkpoint is not None:
-            checkpoint(joined(part))
+    clock = time.perf_counter()
+    contact_film = s.contact_film
 
-    with interrupt_at_step_boundary() as interrupted:
-        result = run(
-            stepper.problem(t_end),
-            state,
-            Samples(1.0 / s.sample_rate),
-            s.step_rule,
-            s.newton_rule,
-            s.stop_rule(stop_time),
-            progress=progress,
-            checkpoint=save if checkpoint is not None else None,
-            checkpoint_every=checkpoint_every,
-            interrupted=interrupted,
-        )
-    return joined(result)  # type: ignore[arg-type]
+    def contact(t: float, y: FloatArray, min_film: float) -> bool:
+        return min_film < contact_film
+
+    def save(sol: Solution) -> None:
+        if checkpoint is not None:
+            checkpoint(joined(stepper.make_result(sol, state, clock, t_end)))
+
+    t1 = t_end if stop_time is None else min(stop_time, t_end)
+    omega = system.speed.omega
+    bar = progress_bar(progress, t1, state.t)
+    try:
+        with interrupt_at_step_boundary() as interrupted:
+            sol = integrate(
+                stepper.problem(),
+                state,
+                t1,
+                s.order,
+                s.newton_rule,
+                stepper.record,
+                events=(contact,),
+                progress=None if bar is None else lambda t: bar(t, omega(t)),
+                checkpoint=save if checkpoint is not None else None,
+                checkpoint_every=checkpoint_every,
+                interrupted=interrupted,
+            )
+    finally:
+        if bar is not None:
+            bar(None, None)
+    return joined(stepper.make_result(sol, state, clock, t_end))

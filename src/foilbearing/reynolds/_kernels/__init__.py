@@ -55,31 +55,9 @@ twins of the transient Newton iteration take the ``TransientSystem`` or
 
 Modules
 -------
-===============  ===============================================================================
-module           responsibility
-===============  ===============================================================================
-``faces``        the flux through one cell face: Bernoulli function, θ-, Z- and end faces with
-                 their derivatives, the order-4 axial flux
-``patterns``     CSR sparsity patterns of the stencil and of the foil-coupled Jacobian
-``flux``         the steady residual of Eq. (4), dR/dP, dR/dH, the coupled Jacobian and the
-                 lift-off rows
-``blockcyclic``  the block cyclic LU of the coupled Jacobian
-``film_rows``    the film rows of a transient state (mean gauge pressure, H per row)
-``bdf``          the BDF equations of the transient system: residual, storage, set-up
-``bdf_linear``   the linear system of a BDF Newton step: Jacobian blocks, border, solve
-``newton``       the Newton iteration on the BDF equations, with lift-off branch switching
-``groups``       the named argument groups the kernels take
-``notice``       the one-line notice on a cold cache
-``_cache``       drops the on-disk caches when any kernel or inlined law changes
-===============  ===============================================================================
+===============  ========================================================================"""
 
-Each module's names stay importable from the module that held them before
-(``flux`` re-exports ``faces`` and ``patterns``, ``bdf`` re-exports ``film_rows``
-and ``bdf_linear``); all the kernels' names are here. The laws they inline live in
-:mod:`foilbearing.laws` (:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`);
-:mod:`._cache` drops the on-disk caches when any of these sources changes.
-"""
-
+from foilbearing.integrate import newton as _newton_policy
 from foilbearing.laws import lift_off as _lift_off_law
 from foilbearing.reynolds._kernels import _cache
 from foilbearing.reynolds._kernels import bdf as _bdf
@@ -157,7 +135,7 @@ _install_compile_notice()  # a cold cache says so once on stderr (notice.py), be
 # caches whenever any of these sources changed (docs/numerics.md §3).
 _cache.drop_stale_caches(
     (_bdf, _bdf_linear, _blockcyclic, _faces, _film_rows, _flux, _groups, _newton, _patterns),
-    (_lift_off_law,),
+    (_lift_off_law, _newton_policy),
 )
 
 __all__ = [

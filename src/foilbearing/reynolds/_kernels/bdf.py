@@ -1,7 +1,8 @@
-"""The BDF equations of the transient system, compiled: the residual of a step, the storage
-(the quantities the BDF differentiates in time) and the variable-step BDF set-up (twins in
-:mod:`foilbearing.testing.twins`). The linear system of a Newton step on them (Jacobian
-blocks, border, solve) is in :mod:`.bdf_linear`, the film rows they share in
+"""The BDF equations of the transient system, compiled: the residual of a step and the storage
+(the quantities the BDF differentiates in time) (twins in :mod:`foilbearing.testing.twins`).
+The variable-step BDF set-up, ``bdf_setup``, is the integrator's
+(:mod:`foilbearing.integrate.bdf`), re-exported here. The linear system of a Newton step on
+them (Jacobian blocks, border, solve) is in :mod:`.bdf_linear`, the film rows they share in
 :mod:`.film_rows`, both importable from here; the Newton iteration is in :mod:`.newton`."""
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from foilbearing.integrate.bdf import bdf_setup as bdf_setup  # the integrator's, re-exported
 from foilbearing.laws.lift_off import smoothed_edge_kernel
 from foilbearing.reynolds._kernels.bdf_linear import (
     lobe_correct,
@@ -178,62 +180,3 @@ def transient_storage(y: FloatArray, preload: FloatArray, model: Group, out: Flo
     for k in range(n_theta * n_z, y.shape[0]):
         out[k] = y[k]
     return h_min
-
-
-@njit(cache=True, nogil=True)
-def bdf_setup(
-    t_new: float,
-    past: Group,
-    order: int,
-    atol: FloatArray,
-    rtol: float,
-    guess: FloatArray,
-    hist: FloatArray,
-    weights: FloatArray,
-) -> float:
-    """Variable-step BDF coefficient, history, predictor and error weights of one step.
-
-    The last ``count = past.accepted`` accepted states are ``ys[j]`` at
-    ``times[j]`` (newest first) with storages ``qs[j]``. With k = min(order, count), the BDF
-    equation ``c0 Q(y) + hist − f(y) = 0`` states that the derivative at
-    t_new of the polynomial through (t_new, Q(y)) and the last k storages is f:
-    ``c0 = Σ_{i=1..k} 1/(t_new − t_i)`` and ``hist = Σ_j l'_j(t_new) Q_j``.
-    The predictor ``guess`` extrapolates the polynomial through the last
-    min(k + 1, count) states to t_new, and ``weights = 1/(atol + rtol |guess|)``.
-    Order 2 is the variable-step BDF2, ``c0 = (1 + 2ρ)/((1 + ρ) h)``, ρ = h/h1.
-    Twin: :func:`~foilbearing.reynolds.reference.bdf_setup_py`.
-
-    Returns
-    -------
-    float
-        c0, 1/s.
-    """
-    times, ys, qs, count = past
-    n = guess.shape[0]
-    k = min(order, count)
-    c0 = 0.0
-    for i in range(k):
-        c0 += 1.0 / (t_new - times[i])
-    for m in range(n):
-        hist[m] = 0.0
-    for j in range(k):
-        # l'_j(t_new) of the node t_j among t_new, t_0 .. t_{k-1}: t_new is a root of l_j.
-        num = 1.0 / (times[j] - t_new)
-        for i in range(k):
-            if i != j:
-                num *= (t_new - times[i]) / (times[j] - times[i])
-        for m in range(n):
-            hist[m] += num * qs[j, m]
-    p = min(k + 1, count)
-    for m in range(n):
-        guess[m] = 0.0
-    for j in range(p):
-        lj = 1.0
-        for i in range(p):
-            if i != j:
-                lj *= (t_new - times[i]) / (times[j] - times[i])
-        for m in range(n):
-            guess[m] += lj * ys[j, m]
-    for m in range(n):
-        weights[m] = 1.0 / (atol[m] + rtol * abs(guess[m]))
-    return c0

@@ -11,6 +11,24 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from foilbearing.integrate.newton import (
+    NEWTON_CONTINUE,
+    NEWTON_CONVERGED,
+    NEWTON_INFEASIBLE,
+    NEWTON_NOT_FINITE,
+    NEWTON_REFRESH,
+    NEWTON_RETREAT,
+    NEWTON_SWITCHED,
+    newton_progress,
+    newton_verdict,
+    switch_verdict,
+)
+from foilbearing.integrate.newton import (
+    NEWTON_DIVERGED as NEWTON_DIVERGED,  # re-exported
+)
+from foilbearing.integrate.newton import (
+    NEWTON_TOO_SLOW as NEWTON_TOO_SLOW,  # re-exported
+)
 from foilbearing.reynolds._kernels.bdf import (
     transient_residual,
     transient_solve,
@@ -158,9 +176,9 @@ def adopt_branches(lift_state: FloatArray, branches: FloatArray, most: int) -> i
     return moved
 
 
-#: Outcomes of :func:`transient_newton_solve`.
-NEWTON_CONVERGED, NEWTON_FILM_CLOSED, NEWTON_NOT_FINITE, NEWTON_TOO_SLOW = 0, 1, 2, 3
-NEWTON_DIVERGED, NEWTON_REFRESH = 4, 5
+#: Outcomes of :func:`transient_newton_solve`: the integrator's
+#: (:mod:`foilbearing.integrate.newton`); its residual cannot be evaluated on a closed film.
+NEWTON_FILM_CLOSED = NEWTON_INFEASIBLE
 
 
 @njit(cache=True, nogil=True)
@@ -178,7 +196,10 @@ def transient_newton_solve(
 ) -> tuple[int, int, float, float]:
     """Modified-Newton iterations with one factor until they converge or must stop.
 
-    Repeats :func:`transient_newton_step`. Converged when the weighted update
+    Repeats :func:`transient_newton_step` under the integrator's Newton policy
+    (:mod:`foilbearing.integrate.newton`: :func:`~foilbearing.integrate.newton.newton_progress`,
+    :func:`~foilbearing.integrate.newton.newton_verdict`,
+    :func:`~foilbearing.integrate.newton.switch_verdict`). Converged when the weighted update
     ``err <= tol = max(newton_tol, newton_fraction · first update)`` or when the
     error left, ``rate/(1 − rate)·err`` with the measured contraction rate, is
     below tol; the storage ``Q(y)`` then goes to ``buf.q_out``
@@ -240,47 +261,37 @@ def transient_newton_solve(
             return NEWTON_FILM_CLOSED, k, first_change, np.nan
         if not np.isfinite(err) or p_min <= 0.0:
             return NEWTON_NOT_FINITE, k, first_change, np.nan
-        if first_change == np.inf:
-            first_change = err
-        tol = max(newton_tol, newton_fraction * first_change)
-        # Contraction rate of this factor; the error left in y is about rate/(1−rate)·err.
-        conv = err / prev if since > 1 else np.nan
-        if err <= tol or (conv < 1.0 and conv / (1.0 - conv) * err <= tol):
+        converged, conv, tol, first_change = newton_progress(
+            err, prev, since, first_change, newton_tol, newton_fraction
+        )
+        if converged:
             # Converged on the present lift-off branches: cells that violate theirs
             # (a held cell with inflow, a free one below ambient) change branch and
             # the iteration goes on with the same factor.
             flipped = switch_branches(lift_state, slack, weights)
-            if flipped == 0:
+            verdict = switch_verdict(flipped, switches, MAX_SWITCHES, MAX_MOVED_KEPT)
+            if verdict == NEWTON_CONVERGED:
                 h_new = transient_storage(y, preload, model, q_out)
                 if h_new > 0.0:
                     return NEWTON_CONVERGED, k, first_change, h_new
-            elif switches < MAX_SWITCHES and flipped <= MAX_MOVED_KEPT:
+            elif verdict == NEWTON_SWITCHED:
                 switches += 1
                 since = 0
                 prev = np.inf
                 continue
             else:
                 return NEWTON_REFRESH, k, first_change, np.nan
-        if fresh:
-            if smoothed and since > 1 and conv >= 1.0:
-                # Cells crossed the smoothed law's kink at ambient in the factor's own
-                # step: its rows no longer fit them, and its next step undoes the first.
-                # Take that one back and refresh at the better iterate.
-                for m in range(y.shape[0]):
-                    y[m] += dy[m]
-                return NEWTON_REFRESH, k, first_change, np.nan
-            if since >= max_newton or conv >= 1.0:
-                if switches > 0:
-                    # Diverging since cells changed branch: the factor's rows no longer
-                    # fit them (a cell on the lift-off boundary); refresh with them.
-                    return NEWTON_REFRESH, k, first_change, np.nan
-                return NEWTON_TOO_SLOW, k, first_change, np.nan
-            if conv > 0.5:
-                return NEWTON_REFRESH, k, first_change, np.nan
-        elif since >= max_newton or conv >= 1.0:
-            return NEWTON_DIVERGED, k, first_change, np.nan
-        elif conv ** (max_newton - since) / (1.0 - conv) * err > tol:
+        # A fresh factor diverging since cells changed branch: its rows no longer fit
+        # them (a cell on the lift-off boundary); refresh with them. Under the smoothed
+        # law, cells that crossed its kink at ambient in the factor's own step: its next
+        # step undoes the first; take that one back and refresh at the better iterate.
+        verdict = newton_verdict(err, conv, tol, since, max_newton, fresh, switches > 0, smoothed)
+        if verdict == NEWTON_RETREAT:
+            for m in range(y.shape[0]):
+                y[m] += dy[m]
             return NEWTON_REFRESH, k, first_change, np.nan
+        if verdict != NEWTON_CONTINUE:
+            return verdict, k, first_change, np.nan
         prev = err
 
 

@@ -1,0 +1,79 @@
+"""The coefficients of a variable-step BDF step: c0, the history, the predictor and the
+error weights (compiled).
+
+:func:`bdf_setup` builds one step ``c0 Q(y) + hist − f(y) = 0`` of the implicit
+system ``dQ(y)/dt = f(y, t)`` on the last accepted states, newest first, given as the
+plain tuple ``(times, ys, qs, count)``: their times, states, storages Q and how many
+rows hold accepted states.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numba import njit
+from numpy.typing import NDArray
+
+__all__ = ["bdf_setup"]
+
+FloatArray = NDArray[np.float64]
+Group = tuple[Any, ...]
+
+
+@njit(cache=True, nogil=True)
+def bdf_setup(
+    t_new: float,
+    past: Group,
+    order: int,
+    atol: FloatArray,
+    rtol: float,
+    guess: FloatArray,
+    hist: FloatArray,
+    weights: FloatArray,
+) -> float:
+    """Variable-step BDF coefficient, history, predictor and error weights of one step.
+
+    The last ``count = past.accepted`` accepted states are ``ys[j]`` at
+    ``times[j]`` (newest first) with storages ``qs[j]``. With k = min(order, count), the BDF
+    equation ``c0 Q(y) + hist − f(y) = 0`` states that the derivative at
+    t_new of the polynomial through (t_new, Q(y)) and the last k storages is f:
+    ``c0 = Σ_{i=1..k} 1/(t_new − t_i)`` and ``hist = Σ_j l'_j(t_new) Q_j``.
+    The predictor ``guess`` extrapolates the polynomial through the last
+    min(k + 1, count) states to t_new, and ``weights = 1/(atol + rtol |guess|)``.
+    Order 2 is the variable-step BDF2, ``c0 = (1 + 2ρ)/((1 + ρ) h)``, ρ = h/h1.
+
+    Returns
+    -------
+    float
+        c0, 1/s.
+    """
+    times, ys, qs, count = past
+    n = guess.shape[0]
+    k = min(order, count)
+    c0 = 0.0
+    for i in range(k):
+        c0 += 1.0 / (t_new - times[i])
+    for m in range(n):
+        hist[m] = 0.0
+    for j in range(k):
+        # l'_j(t_new) of the node t_j among t_new, t_0 .. t_{k-1}: t_new is a root of l_j.
+        num = 1.0 / (times[j] - t_new)
+        for i in range(k):
+            if i != j:
+                num *= (t_new - times[i]) / (times[j] - times[i])
+        for m in range(n):
+            hist[m] += num * qs[j, m]
+    p = min(k + 1, count)
+    for m in range(n):
+        guess[m] = 0.0
+    for j in range(p):
+        lj = 1.0
+        for i in range(p):
+            if i != j:
+                lj *= (t_new - times[i]) / (times[j] - times[i])
+        for m in range(n):
+            guess[m] += lj * ys[j, m]
+    for m in range(n):
+        weights[m] = 1.0 / (atol[m] + rtol * abs(guess[m]))
+    return c0
