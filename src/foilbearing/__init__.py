@@ -36,6 +36,8 @@ module               responsibility
 ``static``           moved: the same module as ``analysis/equilibrium``, under its old name
 ``coefficients``     moved: the same module as ``analysis/coefficients``, under its old name
 ``stability``        moved: the same module as ``analysis/stability``, under its old name
+``integrate/``       BDF time integration over callables: step loop, stop events, record
+                     callback, the one Newton policy; no bearing words
 ``orbit/``           the nonlinear orbit of the journal during a speed-up (BDF in physical time)
 ``signals``          signal analysis of a speed-up orbit: waterfall, sub-synchronous amplitude,
                      onset, divergence

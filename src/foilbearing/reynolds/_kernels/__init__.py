@@ -55,7 +55,32 @@ twins of the transient Newton iteration take the ``TransientSystem`` or
 
 Modules
 -------
-===============  ========================================================================"""
+===============  ===============================================================================
+module           responsibility
+===============  ===============================================================================
+``faces``        the flux through one cell face: Bernoulli function, θ-, Z- and end faces with
+                 their derivatives, the order-4 axial flux
+``patterns``     CSR sparsity patterns of the stencil and of the foil-coupled Jacobian
+``flux``         the steady residual of Eq. (4), dR/dP, dR/dH, the coupled Jacobian and the
+                 lift-off rows
+``blockcyclic``  the block cyclic LU of the coupled Jacobian
+``film_rows``    the film rows of a transient state (mean gauge pressure, H per row)
+``bdf``          the BDF equations of the transient system: residual, storage, set-up
+``bdf_linear``   the linear system of a BDF Newton step: Jacobian blocks, border, solve
+``newton``       the Newton iteration on the BDF equations, with lift-off branch switching
+``groups``       the named argument groups the kernels take
+``notice``       the one-line notice on a cold cache
+``_cache``       drops the on-disk caches when any kernel or inlined law changes
+===============  ===============================================================================
+
+Each module's names stay importable from the module that held them before
+(``flux`` re-exports ``faces`` and ``patterns``, ``bdf`` re-exports ``film_rows``
+and ``bdf_linear``); all the kernels' names are here. The laws they inline live in
+:mod:`foilbearing.laws` (:data:`foilbearing.laws.lift_off.smoothed_edge_kernel`);
+:mod:`._cache` drops the on-disk caches when any of these sources changes. The Newton
+policy (refresh / too slow / diverged) that :mod:`.newton` calls is the integrator's
+(:mod:`foilbearing.integrate.newton`).
+"""
 
 from foilbearing.integrate import newton as _newton_policy
 from foilbearing.laws import lift_off as _lift_off_law
