@@ -20,8 +20,13 @@ __all__: list[str] = []
 
 
 def _plan(d: dict[str, Any], case: dict[str, Any]) -> str:
-    rows = [[k, _f(v, ".6g") if not isinstance(v, dict) else escape(str(v) or "none")]
-            for k, v in d.items()]  # fmt: skip
+    def shown(v: Any) -> str:
+        if isinstance(v, bool):
+            return "yes" if v else "no"
+        return _f(v, ".6g") if not isinstance(v, dict) else escape(str(v) or "none")
+
+    # what does not apply to this bearing (no actuators, no shims) is left out, not shown empty
+    rows = [[k, shown(v)] for k, v in d.items() if v is not None and v != [] and v != {}]
     note = (
         '<p class="note">Derived from the case; a <code>[study]</code> table in the case file '
         "sets any of it (docs/case-format.md).</p>"

@@ -51,10 +51,16 @@ def _identification(d: dict[str, Any], case: dict[str, Any]) -> str:
 
 
 def _structure(d: dict[str, Any], case: dict[str, Any]) -> str:
+    """The foil's springs and, on a bearing with actuators, their strokes and base preloads
+    (a column only where the summary has it: a passive foil has k_b alone)."""
     springs: list[Column] = [
-        ("k_b (N/m³)", _key("k_b_N_per_m3"), ".4g"),
-        ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
-        ("k_assy (N/m³)", _key("k_assy_N_per_m3"), ".4g"),
+        c
+        for c in (
+            ("k_b (N/m³)", _key("k_b_N_per_m3"), ".4g"),
+            ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
+            ("k_assy (N/m³)", _key("k_assy_N_per_m3"), ".4g"),
+        )
+        if c[1](d) is not None
     ]
     keys = ("voltages_V", "stack_stroke_um", "base_preload_um")
     volts = _transpose(d, keys)

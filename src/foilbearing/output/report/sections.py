@@ -36,7 +36,16 @@ from foilbearing.output.report.tables import (
     _table,
 )
 
-__all__ = ["STAGES", "_FIG14", "_TABLES", "_comparison", "_grid_text", "_intro", "_orbits"]
+__all__ = [
+    "STAGES",
+    "_FIG14",
+    "_TABLES",
+    "_comparison",
+    "_grid_text",
+    "_intro",
+    "_orbits",
+    "stage_title",
+]
 
 
 #: Stage keys of summary.json in the paper's order, with section titles.
@@ -72,8 +81,20 @@ STAGES: tuple[tuple[str, str], ...] = (
 _FIG14 = {50.0: "a", 100.0: "b", 150.0: "c"}
 
 
+def stage_title(key: str, data: Any) -> str:
+    """A stage's section title: a foil without actuators is "Foil structure" alone."""
+    title = dict(STAGES).get(key, key.replace("_", " ").capitalize())
+    if key == "structure" and isinstance(data, dict) and not data.get("voltages_V"):
+        return "Foil structure"
+    return title
+
+
 def _intro(summary: dict[str, Any], case: dict[str, Any]) -> str:
-    ran = [t.split(" (")[0] for k, t in STAGES if isinstance(summary.get(k), dict)]
+    ran = [
+        stage_title(k, summary[k]).split(" (")[0]
+        for k, _ in STAGES
+        if isinstance(summary.get(k), dict) and summary[k]
+    ]
     if isinstance(summary.get("rotor"), dict):
         return (
             "<p>What <code>foilbearing study</code> computed for the rotor "
