@@ -376,7 +376,7 @@ def test_the_study_runs_the_protocol_under_the_papers_reading(tmp_path) -> None:
     from foilbearing.orbit.netcdf import load_orbit
     from foilbearing.output.report.captions import READING_TEXT, _caption
     from foilbearing.output.report.sections import _orbits
-    from foilbearing.paper import orbit_comparison
+    from foilbearing.paper_dynamics import orbit_comparison
     from foilbearing.study.paper import paper_reading_orbits
 
     case = replace(

@@ -439,6 +439,18 @@ def run_in_chromium(page: Path, tmp: Path) -> tuple[dict[str, Any], list[str]]:
     return json.loads(html.unescape(m.group(1))), console
 
 
+def test_the_study_s_own_comparison_table_and_figures(study_out: Path) -> None:
+    """The default case's study: its real rows, Figs. 9-12's trends included, each with a
+    deviation and a reason of its own, shaded by the stated rule; no figure twice."""
+    from test_report_table import check_table, image_hashes
+
+    text = (study_out / "report.html").read_text(encoding="utf-8")
+    rows = check_table(text)
+    assert any(c[0].startswith("Fig. 12") for _, c in rows)
+    hashes = image_hashes(text)
+    assert len(hashes) >= 10 and len(set(hashes)) == len(hashes)
+
+
 def test_page_loads_cleanly_in_headless_chromium(study_out: Path, tmp_path: Path) -> None:
     n_img = len(parse(study_out / "report.html")[1].imgs())
     result, console = run_in_chromium(study_out / "report.html", tmp_path)

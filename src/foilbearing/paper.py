@@ -6,7 +6,7 @@ and tests with stated tolerances, never inside a computation.
 
 from __future__ import annotations
 
-import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -32,17 +32,62 @@ PAPER: dict[str, Any] = {
 
 @dataclass(frozen=True)
 class Row:
-    """One line of a comparison: what, the paper's value, ours, and why they differ."""
+    """One line of a comparison: what, the paper's value, ours, how far apart, and why.
+
+    ``deviation`` is a signed percentage (or several, one per item, `` / ``-joined), or the
+    difference in words: ``agrees ...``, ``contradicts: paper ...; ours ...`` or ``not in
+    the paper ...``. ``note`` says in one sentence why they differ, and ``theory`` is the
+    section of the theory pages that explains it (``docs/model.md#anchor``).
+    """
 
     quantity: str
     paper: str
     ours: str
     deviation: str
     note: str = ""
+    theory: str = ""
+
+
+#: Sections of the theory pages that the rows' reasons point to.
+_MODEL = "docs/model.md#"
+DEFAULT_CASE = _MODEL + "1-the-default-case-paper-tables-1-and-2"
+STACK = _MODEL + "31-stack-actuator-and-bump-eqs-13"
+STIFFNESS = _MODEL + "32-stiffness-around-the-bearing-eqs-78"
+PRELOAD_SHAPE = _MODEL + "33-preload-shape-eq-6"
+ONE_COMPLIANCE = _MODEL + "34-how-the-film-uses-the-structure-one-compliance"
+LIFT_OFF = _MODEL + "36-top-foil-lift-off-sub-ambient-film"
+BUMP = _MODEL + "37-bump-stiffness-from-the-geometry"
+READINGS = _MODEL + "38-the-actuator-in-the-film-four-readings"
+FILM = _MODEL + "4-gas-film-the-reynolds-equation-eq-4"
+PROTOCOL = _MODEL + "5-journal-motion-and-the-orbit-protocol-eq-9"
+REPORTED = _MODEL + "6-what-the-paper-reports"
+SLIPS = _MODEL + "7-slips-in-the-papers-text"
+CONVENTIONS = _MODEL + "2-conventions"
+LIMIT_CYCLES = "docs/bifurcation.md#what-it-finds-on-the-default-case"
+
+
+def _pct(ours: float, paper: float) -> float:
+    return 100.0 * (ours - paper) / abs(paper)
 
 
 def _dev(ours: float, paper: float) -> str:
-    return f"{100.0 * (ours - paper) / abs(paper):+.2f} %"
+    return f"{_pct(ours, paper):+.2f} %"
+
+
+def _devs(ours: Sequence[float], paper: Sequence[float]) -> str:
+    """Item by item: ``+1.0 / -3.4 / +0.5 %``."""
+    return " / ".join(f"{_pct(o, p):+.1f}" for o, p in zip(ours, paper, strict=True)) + " %"
+
+
+def _agrees(flag: bool, paper: str = "yes", ours: str = "no") -> str:
+    return "agrees" if flag else f"contradicts: paper {paper}; ours {ours}"
+
+
+def _points(n: int, total: int) -> str:
+    """A statement the paper makes at every point, which ours holds at ``n`` of ``total``."""
+    return (
+        "agrees at every point" if n == total else f"contradicts at {total - n} of {total} points"
+    )
 
 
 def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -> list[Row]:
@@ -59,21 +104,51 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
     """
     rows: list[Row] = []
     volts = structure.get("voltages_V", [])
-    for key, label in (("stack_stroke_um", "stack stroke"), ("base_preload_um", "base preload")):
-        for v, val in zip(volts, structure.get(key, []), strict=False):
-            ref = PAPER[key].get(int(v))
-            if ref is not None:
-                note = ""
-                if key == "base_preload_um" and int(v) == 100:
-                    note = (
-                        "the paper's 62.36 is 0.16 % below its own k_p/(k_p+4k_sp) × 63.22; "
-                        "50 V and 150 V agree to 0.03 %"
-                    )
-                rows.append(
-                    Row(
-                        f"{label} at {v:g} V (µm)", f"{ref:.2f}", f"{val:.2f}", _dev(val, ref), note
-                    )
+    act = case.actuators
+    for v, val in zip(volts, structure.get("stack_stroke_um", []), strict=False):
+        ref = PAPER["stack_stroke_um"].get(int(v))
+        if ref is not None:
+            d1, d2 = PAPER["d33_1_um_per_V2"], PAPER["d33_2_um_per_V"]
+            why = (
+                f"the stack law with the paper's own fit: {d2:g} × {v:g} {d1:+g} × {v:g}² = "
+                f"{d2 * v + d1 * v * v:.2f} µm; only the fit's rounding is left"
+            )
+            rows.append(
+                Row(
+                    f"stack stroke at {v:g} V (µm)",
+                    f"{ref:.2f}",
+                    f"{val:.2f}",
+                    _dev(val, ref),
+                    why,
+                    STACK,
                 )
+            )
+    stroke = dict(zip(volts, structure.get("stack_stroke_um", []), strict=False))
+    for v, val in zip(volts, structure.get("base_preload_um", []), strict=False):
+        ref = PAPER["base_preload_um"].get(int(v))
+        if ref is None:
+            continue
+        if int(v) == 100:
+            why, where = (
+                "the paper's 62.36 is 0.16 % below its own k_p/(k_p + 4k_sp) × 63.22 (slip S8)",
+                SLIPS,
+            )
+        else:
+            why, where = (
+                f"k_p/(k_p + 4k_sp) × the {stroke.get(v, float('nan')):.2f} µm stroke at {v:g} V, "
+                "the stack sharing it with the four holder springs as the paper computes it",
+                STACK,
+            )
+        rows.append(
+            Row(
+                f"base preload at {v:g} V (µm)",
+                f"{ref:.2f}",
+                f"{val:.2f}",
+                _dev(val, ref),
+                why,
+                where,
+            )
+        )
     if "k_b_N_per_m3" in structure:
         rows.append(
             Row(
@@ -82,16 +157,19 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
                 f"{structure['k_b_N_per_m3']:.3e}",
                 _dev(structure["k_b_N_per_m3"], PAPER["k_b_N_per_m3"]),
                 "Iordanoff's frictionless free-free bump from the foil geometry",
+                BUMP,
             )
         )
-    if structure.get("k_assy_N_per_m3"):
+    if structure.get("k_assy_N_per_m3") and act is not None:
         rows.append(
             Row(
                 "k_assy (N/m³)",
                 "1.14e9",
                 f"{structure['k_assy_N_per_m3']:.3e}",
                 _dev(structure["k_assy_N_per_m3"], PAPER["k_assy_N_per_m3"]),
-                "",
+                "the bump in series with the stack and holder springs: ours carries our "
+                "k_b's deviation and the paper prints three digits",
+                STIFFNESS,
             )
         )
     if sweep is None:
@@ -99,6 +177,7 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
     c90 = sweep.sel(bearing="C-GFB", voltage=150.0).sel(speed=90.0, method="nearest")
     if bool(c90.converged):
         ref = PAPER["preload_150V_90krpm_um"]
+        base = structure["base_preload_um"][-1]
         for angle, ours, paper in zip(sweep.actuator.values, c90.preload.values, ref, strict=True):
             rows.append(
                 Row(
@@ -106,19 +185,25 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
                     f"{paper:.2f}",
                     f"{ours:.2f}",
                     _dev(ours, paper),
-                    "measured: grid-converged (192 × 24 moves them < 0.1 µm); the unknown "
-                    "viscosity spans the gap (1.8 / 2.1e-5 Pa·s: +1.4 to +1.8 / −0.7 to +0.5 %); "
-                    "with the suction retained under the foil they are +6.2 / +4.6 / −2.0 % off",
+                    f"the film at {angle:g}° shortens the stack by {base - ours:.2f} µm "
+                    f"(Eq. 3b; the paper: {base - paper:.2f} µm), a pressure that scales with "
+                    "the viscosity the paper does not give",
+                    DEFAULT_CASE,
                 )
             )
-        red = 100.0 * (1.0 - c90.preload.values / structure["base_preload_um"][-1])
+        red = 100.0 * (1.0 - c90.preload.values / base)
+        paper_red = (10.4, 25.9, 11.4)
+        worst = max(abs(_pct(o, p)) for o, p in zip(c90.preload.values, ref, strict=True))
         rows.append(
             Row(
                 "preload reduction at 60/180/300° (%)",
-                "10.4 / 25.9 / 11.4",
+                " / ".join(f"{x:.1f}" for x in paper_red),
                 " / ".join(f"{x:.1f}" for x in red),
-                "",
-                "the abstract's 'up to 11 %' is the 60°/300° value (slip S4)",
+                _devs(red, paper_red),
+                f"a small difference of two large numbers: preloads at most {worst:.1f} % off "
+                "move it by several times that; the abstract's 'up to 11 %' is the 60°/300° "
+                "value (slip S4)",
+                SLIPS,
             )
         )
     rows.extend(_trend_rows(sweep))
@@ -140,8 +225,9 @@ def _trend_rows(ds: Any) -> list[Row]:
             "Fig. 9-10: pressure at the actuators grows with voltage",
             "yes",
             yes(grows_v),
-            "",
-            "180° actuator, every speed",
+            _agrees(grows_v),
+            "at the 180° actuator, every speed: the higher lobe narrows the film under it",
+            PRELOAD_SHAPE,
         )
     )
     lower = bool(
@@ -156,8 +242,9 @@ def _trend_rows(ds: Any) -> list[Row]:
             "Fig. 9-10: C-GFB peak at 180° below shimmed",
             "yes",
             yes(lower),
-            "",
-            "compliant actuator gives way under the film pressure",
+            _agrees(lower),
+            "the compliant actuator gives way under the film pressure, a rigid shim does not",
+            ONE_COMPLIANCE,
         )
     )
     first = p180.sel(voltage=150.0).values
@@ -168,33 +255,46 @@ def _trend_rows(ds: Any) -> list[Row]:
             "Fig. 10: at 180° pressure first falls, then rises with speed",
             "yes",
             yes(dip),
-            "",
-            f"150 V: minimum at {float(ds.speed[k]):g} krpm",
+            _agrees(dip),
+            f"150 V: least pressure at {float(ds.speed[k]):g} krpm, read on the sweep's speeds",
+            REPORTED,
         )
     )
     ecc_falls = bool(np.all(ds.eccentricity.diff("speed") < 0))
-    rows.append(Row("Fig. 12: eccentricity falls with speed", "yes", yes(ecc_falls), "", ""))
+    rows.append(
+        Row(
+            "Fig. 12: eccentricity falls with speed",
+            "yes",
+            yes(ecc_falls),
+            _agrees(ecc_falls),
+            "both bearings at every voltage: the film's load capacity grows with the speed",
+            FILM,
+        )
+    )
     more = (cg.eccentricity > sh.eccentricity).sel(voltage=ds.voltage[ds.voltage > 0])
     rows.append(
         Row(
             "Fig. 12: C-GFB more eccentric than shimmed",
             "yes",
             f"{int(more.sum())} of {more.size} points",
-            "",
+            _points(int(more.sum()), int(more.size)),
             "all speeds at 150 V; at 50/100 V the two differ by < 2 % and cross",
+            ONE_COMPLIANCE,
         )
     )
     att = cg.attitude
-    falls = bool(np.all(att.isel(speed=-1) < att.isel(speed=0)))
+    falls_at = att.isel(speed=-1) < att.isel(speed=0)
+    rises = [f"{float(v):g}" for v, f in zip(ds.voltage.values, falls_at.values, strict=True)
+             if not f]  # fmt: skip
     rows.append(
         Row(
             "Fig. 12: attitude angle falls with speed",
             "yes",
-            yes(falls),
-            "",
-            "under lift-off it falls at 100-150 V (150 V: 25.4° at 10 krpm to 20.2° at "
-            "90 krpm) and rises at 0-50 V (a light-load gas bearing whose ε falls); with the "
-            "suction retained it rose at every voltage from 10 to 50 krpm",
+            yes(not rises),
+            _agrees(not rises, "falls", f"rises at {'/'.join(rises)} V"),
+            "under lift-off a lightly preloaded gas bearing's attitude rises as ε falls; with "
+            "the suction retained it rose at every voltage from 10 to 50 krpm",
+            LIFT_OFF,
         )
     )
     larger = (cg.attitude > sh.attitude).sel(voltage=ds.voltage[ds.voltage > 0])
@@ -203,176 +303,12 @@ def _trend_rows(ds: Any) -> list[Row]:
             "Fig. 12: C-GFB attitude larger than shimmed (except 50 V)",
             "yes",
             f"{int(larger.sum())} of {larger.size} points",
-            "",
-            "ours: smaller at most points",
+            _points(int(larger.sum()), int(larger.size)),
+            "the two differ by a few degrees and the paper gives no numbers for them; ours is "
+            "the angle of the journal from the load line",
+            CONVENTIONS,
         )
     )
-    return rows
-
-
-def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
-    """Linear onset speeds beside the paper's nonlinear orbit observations (Figs. 13-15)."""
-    paper = {
-        0.0: ("whirl from ~15 krpm (123-147 Hz), whip diverges at ~33 krpm", None),
-        50.0: ("whip ~105 Hz, diverges at 44.4 krpm", 105.0),
-        100.0: ("bounded whip ~127 Hz up to 90 krpm", 127.0),
-        150.0: ("whip onset 79.1 krpm, ~143 Hz", 143.0),
-    }
-    rows = []
-    for volt, res in onsets.get("C-GFB", {}).items():
-        h = res.headline()
-        shim_txt = ""
-        for kind, label in (
-            ("shimmed", "shimmed twin"),
-            ("C-GFB, suction retained", "suction retained"),
-            ("shimmed, suction retained", "shimmed, suction retained"),
-            ("C-GFB, lobe+held", "the paper's reading (lobe + held)"),
-        ):
-            other = onsets.get(kind, {}).get(volt)
-            if other is not None and other.onset_speed is not None:
-                shim_txt += f"; {label} {other.headline()['onset_speed_rpm'] / 1e3:.1f} krpm"
-        ours = (
-            "stable over the scan"
-            if h["onset_speed_rpm"] is None
-            else f"{h['onset_speed_rpm'] / 1e3:.1f} krpm, {h['whirl_frequency_Hz']:.0f} Hz "
-            f"(ratio {h['whirl_ratio']:.2f})"
-        )
-        rows.append(
-            Row(
-                f"onset of instability, C-GFB at {volt:g} V",
-                paper.get(volt, ("", None))[0],
-                ours + shim_txt,
-                "",
-                "linear onset (rigid rotor, coefficients at the whirl frequency, voltage held "
-                "from the start) against the paper's nonlinear speed-up with the voltage ramped "
-                "at 32.6 krpm: a limit cycle can stay bounded past the linear onset"
-                + (
-                    "; the suction-retained film (a foil that holds sub-ambient pressure) goes "
-                    "unstable 2-3.5 times earlier"
-                    if "C-GFB, suction retained" in onsets
-                    else ""
-                )
-                + (
-                    "; the case's reading of the actuator is local + compliant (an elastic "
-                    "stack under open-loop voltage: its compression a pocket under the "
-                    "stinger, its compliance acting at the whirl), the paper's dynamic "
-                    "prediction used base preloads, read as lobe + held (docs/model.md §3.8)"
-                    if "C-GFB, lobe+held" in onsets
-                    else ""
-                ),
-            )
-        )
-    return rows
-
-
-def orbit_comparison(
-    runs: list[dict[str, Any]],
-    linear_onsets_rpm: dict[float, float | None] | None = None,
-    disturbance_rms: float = 0.0,
-    reading: str | None = None,
-) -> list[Row]:
-    """The speed-up runs beside the paper's Figs. 13-15 (docs/model.md §6).
-
-    ``reading`` names the reading of the actuator in the film that made the runs
-    (for example ``"local + compliant"``, docs/model.md §3.8) in each row.
-
-    ``linear_onsets_rpm`` (final voltage → linear onset, rpm) adds each run's lag of
-    its divergence behind the linear onset at its final voltage: an onset read from
-    a ramped nonlinear run is not a linear onset (like with like). ``disturbance_rms``
-    (N) is the case's random force on the rotor, the seed of the whirls (0: none).
-    """
-    paper = {
-        0.0: "whirl from ~15 krpm at 123-147 Hz, gone by ~19 krpm; whip diverges at ~33 krpm",
-        50.0: "whip ~105 Hz, diverges at 44.4 krpm",
-        100.0: "no divergence up to 90 krpm; bounded whip ~127 Hz",
-        150.0: "no divergence up to 90 krpm; whip onset 79.1 krpm, ~143 Hz",
-    }
-    note = (
-        "μ, rotor mass and imbalance are assumed (docs/model.md §1); onset = sustained "
-        "sub-synchronous amplitude > 1 µm (0.25 s windows, 1X removed by order tracking); "
-        + (
-            f"a run ends when a whirl reaches the clearance, grown from the case's random "
-            f"disturbance ({disturbance_rms * 1e3:.3g} mN RMS, docs/model.md §5): such "
-            "divergence speeds are converged to 0.1 % in the time step and the Newton "
-            "tolerance (a contact forced by the imbalance response, as with 8.5 g·mm, to about "
-            "1 %), and depend on the disturbance's size only logarithmically "
-            "(docs/orbit-performance.md)"
-            if disturbance_rms > 0
-            else "divergence speeds are good to about 2-7 %: a run ends when a whirl that grew "
-            "over many revolutions reaches the clearance, from a seed that is numerical (the "
-            "case has no [disturbance]; docs/orbit-performance.md)"
-        )
-    )
-    rows = []
-    for run in runs:
-        v = float(run["voltage_V"])
-        parts = [
-            f"sub-synchronous {a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz"
-            for a, b, f in run.get("subsync_intervals_rpm_Hz", [])
-        ]
-        div = run.get("divergence_speed_rpm")
-        parts.append(
-            f"diverges at {div / 1e3:.1f} krpm"
-            if div
-            else f"no divergence up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
-        )
-        lin = (linear_onsets_rpm or {}).get(v)
-        if lin and div:
-            parts.append(
-                f"{100.0 * (div / lin - 1.0):+.0f} % from the linear onset at {v:g} V "
-                f"({lin / 1e3:.1f} krpm)"
-            )
-        half = run.get("half_order")
-        if v == 0.0:
-            parts.insert(
-                0,
-                "0.5X component below 1 µm throughout"
-                if not half
-                else f"0.5X component > 1 µm from {half['from_rpm'] / 1e3:.1f} to "
-                f"{half['to_rpm'] / 1e3:.1f} krpm, peak {half['peak_um']:.1f} µm at "
-                f"{half['peak_frequency_Hz']:.0f} Hz",
-            )
-        series = run.get("series")
-        ramp = run.get("control_ramp_s")
-        as_published = ramp is None or [round(x, 2) for x in ramp] == [6.0, 6.5]
-        if series == "paper protocol":
-            ref = paper.get(v, "")
-        elif series == "1 g·mm" and as_published:
-            ref = "(protocol as published, with 1 g·mm) " + paper.get(v, "")
-        else:
-            ref = "(variant: not in the paper)"
-        tag = f" ({reading})" if reading else ""
-        rows.append(
-            Row(f"orbit{tag}: {run.get('description', v)}", ref, "; ".join(parts), "", note)
-        )
-    for series in dict.fromkeys(r.get("series") for r in runs):
-        members = [r for r in runs if r.get("series") == series]
-        if series != "1 g·mm":
-            members = [
-                r
-                for r in runs
-                if float(r["voltage_V"]) == 0.0 and r.get("series") == "paper protocol"
-            ] + members
-            members = list({id(m): m for m in members}.values())
-        if len(members) < 2:
-            continue
-        members.sort(key=lambda r: float(r["voltage_V"]))
-        div = [r.get("divergence_speed_rpm") or math.inf for r in members]
-        shown = " / ".join("none" if d == math.inf else f"{d / 1e3:.1f}" for d in div)
-        rows.append(
-            Row(
-                f"orbit trend ({series}{', ' + reading if reading else ''}): divergence "
-                "delayed by the voltage",
-                "yes (33 / 44.4 / none / none krpm)",
-                ("yes: " if div == sorted(div) else "NO: ")
-                + shown
-                + " krpm at "
-                + " / ".join(f"{float(r['voltage_V']):g}" for r in members)
-                + " V",
-                "",
-                "",
-            )
-        )
     return rows
 
 
@@ -380,5 +316,6 @@ def markdown_table(rows: list[Row]) -> str:
     """A Markdown table of comparison rows."""
     lines = ["| quantity | paper | ours | deviation | why |", "|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r.quantity} | {r.paper} | {r.ours} | {r.deviation} | {r.note} |")
+        why = f"{r.note} ({r.theory})" if r.theory else r.note
+        lines.append(f"| {r.quantity} | {r.paper} | {r.ours} | {r.deviation} | {why} |")
     return "\n".join(lines)

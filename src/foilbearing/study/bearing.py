@@ -418,7 +418,11 @@ def bearing_study(
     case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None], *, orbits: bool = True
 ) -> dict[str, Any]:
     """Run the plan's stages on ``case`` (see the module docstring); returns their summaries."""
-    results: dict[str, Any] = {"plan": plan.describe()}
+    # The plan as it ran: the speed-up only where --orbits let it
+    ran = plan.describe() | {"orbit": bool(orbits and plan.orbit)}
+    if not ran["orbit"]:
+        del ran["orbit_acceleration_rad_per_s2"]
+    results: dict[str, Any] = {"plan": ran}
     stage(f"static: {len(plan.speeds)} speeds at {case.operation.load:g} N, and film maps")
     results["bearing_static"], found = _static(case, plan, out, stage)
     stage(f"load capacity at {case.operation.speed / RPM:.0f} rpm")

@@ -184,7 +184,10 @@ def _protocol_summary(
             for k in keys
             if done[k]["analysis"].onset is not None
         }
-        if subs:
+        own = [k for k in keys if k != zero_label or series == "paper protocol"]
+        if any(done[k]["analysis"].subsync is not None for k in own):
+            # A series whose own runs are all too short for a sub-synchronous trace (contact
+            # within the first second) would draw the 0 V run alone again, the same figure.
             suffix = {"paper protocol": "", "1 g·mm": "_1gmm"}.get(series, "_control")
             name = f"{tag}fig15_subsync{suffix}"
             figures.append(str(save_figure(plot_subsync(subs, onsets), out / f"{name}.png")))

@@ -148,8 +148,10 @@ def run_study_result(
         if case.actuators is not None
         else "structure: bump stiffness"
     )
-    results["structure"] = structure_summary(case, list(plan.voltages) or [0.0])
-    results["structure"]["figures"] = [str(p) for p in write_structure_figures(case, out)]
+    structure = structure_summary(case, list(plan.voltages) or [0.0])
+    if structure:  # a rigid gas bearing has no foil: no structure, and no section of it
+        structure["figures"] = [str(p) for p in write_structure_figures(case, out)]
+        results["structure"] = structure
 
     if not paper:  # any other case: its own plan (foilbearing.study.plan); the paper's
         # numbers, its synthetic stack data and the uncertainty file fit its bearing only
@@ -247,12 +249,8 @@ def _paper_comparison(
     progress: bool,
 ) -> None:
     """Our numbers beside the paper's (paper_comparison.md and the summary)."""
-    from foilbearing.paper import (
-        markdown_table,
-        orbit_comparison,
-        stability_comparison,
-        static_comparison,
-    )
+    from foilbearing.paper import markdown_table, static_comparison
+    from foilbearing.paper_dynamics import orbit_comparison, stability_comparison
 
     rows = static_comparison(case, results["structure"], sweep)
     if onsets is not None:

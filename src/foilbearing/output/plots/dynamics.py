@@ -31,9 +31,11 @@ def plot_coefficients(fc: Any) -> Figure:
     ax_k.set_ylabel("stiffness (MN/m)")
     ax_c.set_ylabel("damping (kN·s/m)")
     h = fc.static.headline()
+    volts = ", ".join(f"{v:g}" for v in h["voltages_V"])  # none on a bearing without actuators
     fig.suptitle(
-        f"{h['bearing']} at {h['speed_rpm']:.0f} rpm, "
-        f"{', '.join(f'{v:g}' for v in h['voltages_V']) or '–'} V: ε = {h['eccentricity']:.3f}"
+        f"{h['bearing']} at {h['speed_rpm']:.0f} rpm"
+        + (f", {volts} V" if volts else "")
+        + f": ε = {h['eccentricity']:.3f}"
     )
     return fig
 

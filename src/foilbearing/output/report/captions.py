@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import re
 import struct
 from collections.abc import Mapping, Sequence
 from html import escape
@@ -18,7 +19,10 @@ __all__ = ["png_size"]
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
-_SUBSYNC = "Fig. 15: filtered sub-synchronous amplitude of the vertical journal motion (oil whip)."
+_SUBSYNC = (
+    "Fig. 15: filtered sub-synchronous amplitude of the vertical journal motion (the whirl "
+    "and whip), 1X removed by order tracking, against speed."
+)
 
 
 _CAPTIONS = {
@@ -66,6 +70,46 @@ _CAPTIONS = {
     "fig15_subsync_control.png": _SUBSYNC + " Variant: control before our 0 V run's divergence.",
     "fig15_subsync_1gmm.png": _SUBSYNC + " Variant: the protocol as published, 1 g·mm imbalance.",
     "orbit_subsync.png": _SUBSYNC,
+    "stability_map_shimmed.png": "Linear stability of the shimmed GFB over speed and shim "
+    "voltage, with the onset speeds.",
+    "stack_design.png": "The linear onset at the design voltage against the stack's stiffness "
+    "K_p under each reading of the actuator, beside the shimmed GFB.",
+    "whirl_branches.png": "Limit-cycle branches from each linear onset: whirl amplitude "
+    "against speed, stable and unstable cycles, per reading and voltage.",
+    "static_vs_speed.png": "Eccentricity, attitude angle, minimum film and power loss against "
+    "speed at the case load.",
+    "load_capacity.png": "Eccentricity, attitude angle, minimum film and power loss against "
+    "the load at the case speed, up to the largest load the film carries.",
+    "coefficients_vs_speed.png": "Synchronous stiffness and damping coefficients (excitation "
+    "at the running speed) against speed.",
+    "log_decrement.png": "Log decrement of the least stable whirl mode against speed; the "
+    "linear onset is where it crosses zero.",
+    "onset_vs_shims.png": "Linear onset speed and whirl frequency against the shims' thickness.",
+    "onset_vs_voltage.png": "Linear onset speed and whirl frequency against the actuators' "
+    "voltage.",
+    "campbell.png": "Campbell diagram of the rotor on its foil bearings: whirl frequencies "
+    "and log decrements of the modes against speed, with the onset.",
+    "mode_shapes.png": "Mode shapes of the rotor on its bearings at the onset speed (or the "
+    "top speed where it is stable).",
+    "unbalance_response.png": "Synchronous response of the rotor to its unbalance against "
+    "speed, at the bearings and the disks.",
+    "rotor_orbit.png": "Nonlinear speed-up of the rotor on its foil bearings: the journals' "
+    "motion against speed.",
+}
+
+#: Figures whose names carry a speed (rpm): what each shows at that speed.
+_AT_SPEED = {
+    "film_map_": "Film pressure (next to the mid-plane and its axial mean) and film "
+    "thickness around the bearing at {speed}, case load.",
+    "coefficients_": "Stiffness and damping coefficients against excitation frequency at {speed}.",
+}
+
+#: The speed-up of the study of any bearing (files ``speedup_<kind>.png``).
+_SPEEDUP = {
+    "transient": "Speed-up of the case's imbalance: journal motion e_X, e_Y and speed.",
+    "waterfall": "Speed-up: waterfall of e_X, the whirl's frequency against speed.",
+    "waterfall3d": "Speed-up: waterfall of e_X in 3-D.",
+    "orbits": "Speed-up: journal orbits at selected speeds.",
 }
 
 
@@ -111,6 +155,13 @@ def _caption(name: str, runs: Sequence[Mapping[str, Any]] = ()) -> str:
     """
     if name in _CAPTIONS:
         return _CAPTIONS[name]
+    for head, text in _AT_SPEED.items():
+        m = re.fullmatch(re.escape(head) + r"(\d+)rpm\.png", name)
+        if m:
+            return text.format(speed=f"{int(m.group(1)):,} rpm")
+    kind = name.removeprefix("speedup_").removesuffix(".png")
+    if name.startswith("speedup_") and kind in _SPEEDUP:
+        return _SPEEDUP[kind]
     if name.startswith(READING_TAG):  # a run of the study's paper-reading stage
         return _caption(name.removeprefix(READING_TAG), runs).rstrip(".") + f". {READING_TEXT}"
     found = orbit_figure_run(name, runs)

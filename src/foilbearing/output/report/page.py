@@ -9,7 +9,14 @@ from typing import Any
 
 from foilbearing.io import write_text
 from foilbearing.output.report.captions import _figure
-from foilbearing.output.report.sections import _TABLES, STAGES, _comparison, _generic, _intro
+from foilbearing.output.report.sections import (
+    _TABLES,
+    STAGES,
+    _comparison,
+    _generic,
+    _intro,
+    stage_title,
+)
 from foilbearing.output.result import FIGURE_RECORD_KEY, StudyResult
 
 __all__ = ["render_report", "write_report"]
@@ -31,7 +38,7 @@ th{background:#f0f3f6}td.num{text-align:right;font-variant-numeric:tabular-nums}
 tr.flag td{background:#fff1dc}
 #comparison{border:2px solid #0a58ca;border-radius:6px;padding:0 1rem 1rem;margin-top:1.5rem}
 #comparison h2{border:0;margin-top:1rem}#comparison table{width:100%}
-#comparison td:nth-child(1){width:24%}#comparison td:nth-child(4){white-space:nowrap}
+#comparison td:nth-child(1){width:20%}#comparison td:nth-child(4){width:14%}
 .note{color:#555;font-size:.92rem}code{background:#f3f3f3;padding:0 .2rem;border-radius:3px}
 footer{margin-top:3rem;color:#666;font-size:.85rem}
 """
@@ -104,7 +111,9 @@ def render_report(result: StudyResult) -> str:
         used.update(names)
         figures = "".join(_figure(out_dir, n, runs) for n in names)
         body = _TABLES.get(key, _generic)(data, case) + figures
-        sections.append((_anchor(key), heading, body))
+        sections.append(
+            (_anchor(key), stage_title(key, data) if key in dict(STAGES) else heading, body)
+        )
     rest = sorted(p.name for p in out_dir.glob("*.png") if p.name not in used)
     if rest:
         others = "".join(_figure(out_dir, n, runs) for n in rest)

@@ -1,0 +1,178 @@
+"""Sections beyond the paper: uncertainty envelopes, the voltage schedule, a rotor."""
+
+from __future__ import annotations
+
+from html import escape
+from pathlib import Path
+from typing import Any
+
+from foilbearing.output.report.tables import (
+    Column,
+    _f,
+    _key,
+    _krpm,
+    _records,
+    _table,
+)
+
+__all__: list[str] = []
+
+
+def _uncertainty(d: dict[str, Any], case: dict[str, Any]) -> str:
+    inputs = d.get("inputs") or {}
+    idx = d.get("indices") or {}
+    described = idx.get("description") or f"{d.get('estimator')} estimator"
+    intro = (
+        f'<p class="note">{d.get("n_ok", "?")} of {d.get("n_points", "?")} evaluations ok, '
+        f"on a {escape(str(d.get('sampler')))} sample. Inputs: "
+        + escape("; ".join(f"{k} {v.get('distribution', '')}" for k, v in inputs.items()))
+        + ". Static readouts hold the case's load; onset speeds and whirl frequencies are "
+        "linear (rigid rotor), and orbit_* readouts, where asked for, come from speed-ups.</p>"
+        f'<p class="note">Sensitivity indices: {escape(str(described))}. Every index shown '
+        "lies in [0, 1]: an estimate outside it whose 95 % half-width reaches back into "
+        "[0, 1] is clipped to the nearer end and marked so, one whose interval lies wholly "
+        "outside is shown as not estimable at this sample size (the raw numbers are in the "
+        "results' JSON). The half-widths shrink as 1/√N: rerun with "
+        f"<code>{escape(str(d.get('command', 'foilbearing uncertainty')))}</code> and a larger "
+        "<code>--samples</code>, or <code>foilbearing study --uncertainty full</code> "
+        "(252 evaluations, first-order and total indices), for sharper ones.</p>"
+    )
+    rows = []
+    for name, o in (d.get("outputs") or {}).items():
+        kind = "total_order" if o.get("total_order") else "first_order"
+        values = o.get(kind) or {}
+        ranked = {k: v for k, v in values.items() if v is not None}
+        top = max(ranked, key=lambda k: ranked[k]) if ranked else None
+        if top is None:
+            cell = "not estimable" if values else "—"
+        else:
+            conf = (o.get(f"{kind}_conf") or {}).get(top)
+            mark = (o.get(f"{kind}_status") or {}).get(top)
+            cell = f"{top}: {_f(ranked[top], '.2f')} ± {_f(conf, '.2f')}" + (
+                " (clipped)" if mark == "clipped" else ""
+            )
+            cell += "" if kind == "first_order" else " (total)"
+        rows.append(
+            [name, _f(o.get("p5"), ".4g"), _f(o.get("p50"), ".4g"), _f(o.get("p95"), ".4g"), cell]
+        )
+    heads = ["output (unit in the name)", "p5", "p50", "p95", "largest index ± 95 %"]
+    return intro + _table(heads, rows, num=(1, 2, 3))
+
+
+def _schedule(d: dict[str, Any], case: dict[str, Any]) -> str:
+    sched = d.get("schedule") or {}
+    limit = sched.get("limit_speed_rpm")
+    speeds = sched.get("speeds_rpm") or []
+    top = f"{speeds[-1] / 1e3:.0f} krpm" if speeds else "the top speed"
+    note = (
+        f'<p class="note">At each speed the voltages of least power loss with a log decrement '
+        f"of the least stable whirl mode of at least {_f(sched.get('margin'), 'g')} (linear "
+        "analysis), smoothed for an amplifier slew rate of "
+        f"{_f(sched.get('slew_rate_V_per_s'), 'g')} V/s during a speed-up at "
+        f"{_f(sched.get('acceleration_rad_per_s2'), 'g')} rad/s². "
+        + (
+            f"No voltage keeps the rotor stable above {limit / 1e3:.1f} krpm."
+            if limit is not None
+            else f"The schedule keeps the margin up to {top}."
+        )
+        + f" File: <code>{escape(Path(str(d.get('schedule_file', 'schedule.toml'))).name)}</code> "
+        "(<code>foilbearing orbit --voltage-schedule</code> runs it).</p>"
+    )
+    rows = []
+    for k, w in enumerate(speeds):
+
+        def at(key: str, k: int = k) -> Any:
+            values = sched.get(key) or []
+            return values[k] if k < len(values) else None
+
+        rows.append(
+            [
+                _f(w / 1e3, ".0f"),
+                _f(at("voltages_V"), ".1f"),
+                _f(at("log_decrement"), ".3f"),
+                _f(at("whirl_frequency_Hz"), ".0f"),
+                _f(at("power_loss_W"), ".2f"),
+                _f(at("power_loss_150V_W"), ".2f"),
+            ]
+        )
+    heads = ["speed (krpm)", "voltages (V)", "log dec", "whirl (Hz)", "power (W)", "at 150 V (W)"]
+    body = note + _table(heads, rows, num=(0, 2, 3, 4, 5))
+    ver = d.get("verification")
+    if isinstance(ver, dict):
+        common = (ver.get("common_range_rpm") or [None, None])[1]
+        body += (
+            f'<p class="note">The paper\'s speed-up ({escape(str(ver.get("speed_up")))}) with '
+            f"{_f(ver.get('imbalance_g_mm'), 'g')} g·mm imbalance on four voltage programs. "
+            "Onset: sustained sub-synchronous motion (nonlinear, read from the run; not the "
+            "linear onset). Mean power: over each run, and over the speeds all four reach "
+            f"(3 to {_f(None if common is None else common / 1e3, '.1f')} krpm).</p>"
+        )
+        cols: list[Column] = [
+            ("run", _key("run"), ""),
+            ("sub-sync onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+            ("whip (Hz)", _key("whip_frequency_Hz"), ".0f"),
+            ("divergence (krpm)", _krpm("divergence_speed_rpm"), ".1f"),
+            ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
+            ("mean power, run (W)", _key("mean_power_loss_W"), ".2f"),
+            ("mean power, common speeds (W)", _key("mean_power_loss_common_W"), ".2f"),
+        ]
+        body += _records([r for r in ver.get("runs", []) if isinstance(r, dict)], cols)
+    return body
+
+
+def _rotor(d: dict[str, Any], case: dict[str, Any]) -> str:
+    bearings = [b for b in d.get("bearings", []) if isinstance(b, dict)]
+    cols: list[Column] = [
+        ("bearing", _key("label"), ""),
+        ("node", _key("node"), "d"),
+        ("load (N)", _key("load_N"), ".2f"),
+        ("voltages (V)", lambda r: ", ".join(f"{v:g}" for v in r.get("voltages_V", [])), ""),
+    ]
+    body = _records(bearings, cols)
+    onset = d.get("onset_speed_rpm")
+    speeds = d.get("speeds_rpm") or []
+    span = f"{speeds[0] / 1e3:.0f}-{speeds[-1] / 1e3:.0f} krpm" if speeds else "its speeds"
+    body += (
+        f'<p class="note">Rotor {_f(d.get("mass_kg"), ".3f")} kg. Linear analysis over {span} '
+        "(ROSS, each mode's coefficients at its own whirl frequency): "
+        + (
+            f"onset {_f(onset, ',.0f')} rpm, whirl {_f(d.get('whirl_frequency_Hz'), '.1f')} Hz."
+            if onset is not None
+            else "stable over them."
+        )
+        + "</p>"
+    )
+    resp = d.get("unbalance_response")
+    if isinstance(resp, dict):
+        body += (
+            f'<p class="note">Synchronous response to {_f(resp.get("unbalance_g_mm"), "g")} g·mm '
+            f"at node {resp.get('unbalance_node')} (linear, each bearing's coefficients at "
+            f"frequency = speed): largest {_f(resp.get('peak_amplitude_um'), '.2f')} µm at "
+            f"{escape(str(resp.get('peak_at')))}, {_f(resp.get('peak_speed_rpm'), ',.0f')} rpm."
+            "</p>"
+        )
+    red = [r for r in d.get("reduction", []) if isinstance(r, dict)]
+    if red:
+        body += (
+            '<p class="note">The rotor reduced to its journals and N shaft modes (the '
+            "nonlinear run's rotor), its onset against the full beam model's:</p>"
+        )
+        body += _records(red, [
+            ("shaft modes N", _key("shaft_modes"), "d"),
+            ("onset (rpm)", _key("onset_speed_rpm"), ",.0f"),
+            ("error (%)", _key("error_percent"), "+.3f"),
+        ])  # fmt: skip
+    orb = d.get("orbit")
+    if isinstance(orb, dict):
+        body += (
+            f'<p class="note">Nonlinear speed-up {escape(str(orb.get("speed_up")))}, '
+            f"{_f(orb.get('unbalance_g_mm'), 'g')} g·mm at node {orb.get('unbalance_node')}, "
+            f"{orb.get('shaft_modes')} shaft modes: {escape(str(orb.get('message')))}. "
+            f"The run ends at {_f(orb.get('end_speed_rpm'), ',.0f')} rpm. Sustained "
+            "sub-synchronous motion read from bearing A's X (a ramped run, not the linear "
+            f"onset; none when the whirl lasts under half a second before contact or the end of "
+            "the run): "
+            f"{_f(orb.get('onset_speed_rpm'), ',.0f')} rpm, whirl "
+            f"{_f(orb.get('whirl_frequency_Hz'), '.0f')} Hz.</p>"
+        )
+    return body

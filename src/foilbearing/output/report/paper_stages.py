@@ -1,0 +1,305 @@
+"""Sections of the paper's stages (Figs. 5-15 and the analyses beside them)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from html import escape
+from pathlib import Path
+from typing import Any
+
+from foilbearing.output.report.tables import (
+    Column,
+    _entry,
+    _f,
+    _key,
+    _krpm,
+    _nearest,
+    _records,
+    _transpose,
+)
+
+__all__: list[str] = []
+
+
+def _identification(d: dict[str, Any], case: dict[str, Any]) -> str:
+    def pm(key: str, se: str, spec: str) -> Callable[[dict[str, Any]], str]:
+        return lambda r: f"{_f(r.get(key), spec)} ± {_f(r.get(se), '.2g')}"
+
+    fit: list[Column] = [
+        ("D33,1 (µm/V²)", pm("d33_1_um_per_V2", "d33_1_se_um_per_V2", ".4g"), ""),
+        ("D33,2 (µm/V)", pm("d33_2_um_per_V", "d33_2_se_um_per_V", ".4g"), ""),
+        ("R²", _key("r_squared"), ".4f"),
+        ("linear D33 (µm/V)", _key("d33_linear_um_per_V"), ".4g"),
+        ("R², linear", _key("d33_linear_r_squared"), ".3f"),
+        (
+            "stack stiffness (N/m)",
+            pm("stack_stiffness_N_per_m", "stack_stiffness_se_N_per_m", ".4g"),
+            "",
+        ),
+        ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
+    ]
+    stacks = [{"stack": f"#{k}", **v} for k, v in (d.get("per_stack") or {}).items()]
+    per: list[Column] = [
+        ("stack", _key("stack"), ""),
+        ("D33,1 (µm/V²)", _key("d33_1_um_per_V2"), ".4g"),
+        ("D33,2 (µm/V)", _key("d33_2_um_per_V"), ".4g"),
+        ("R²", _key("r_squared"), ".4f"),
+        ("stroke at 150 V (µm)", _key("stroke_150V_um"), ".2f"),
+        ("stiffness (N/m)", _key("stack_stiffness_N_per_m"), ".4g"),
+    ]
+    return _records([d], fit) + _records(stacks, per)
+
+
+def _structure(d: dict[str, Any], case: dict[str, Any]) -> str:
+    """The foil's springs and, on a bearing with actuators, their strokes and base preloads
+    (a column only where the summary has it: a passive foil has k_b alone)."""
+    springs: list[Column] = [
+        c
+        for c in (
+            ("k_b (N/m³)", _key("k_b_N_per_m3"), ".4g"),
+            ("k_p (N/m³)", _key("k_p_N_per_m3"), ".4g"),
+            ("k_assy (N/m³)", _key("k_assy_N_per_m3"), ".4g"),
+        )
+        if c[1](d) is not None
+    ]
+    keys = ("voltages_V", "stack_stroke_um", "base_preload_um")
+    volts = _transpose(d, keys)
+    cols: list[Column] = [
+        ("driving voltage (V)", _key("voltages_V"), "g"),
+        ("stack stroke (µm)", _key("stack_stroke_um"), ".2f"),
+        ("base preload (µm)", _key("base_preload_um"), ".2f"),
+    ]
+    return _records([d], springs) + _records(volts, cols)
+
+
+def _static(d: dict[str, Any], case: dict[str, Any]) -> str:
+    points = [p for p in d.get("points", []) if isinstance(p, dict) and "speed_rpm" in p]
+    if not points:
+        return ""
+    speeds = sorted({float(p["speed_rpm"]) for p in points})
+    shown = sorted({_nearest(speeds, t) for t in (10e3, 50e3, 90e3)})
+    at = "/".join(_f(a, ".0f") for a in case.get("actuator_angles_deg", [])) or "actuators"
+    cols: list[Column] = [
+        ("bearing", _key("bearing"), ""),
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("speed (krpm)", lambda p: p["speed_rpm"] / 1e3, ".0f"),
+        ("eccentricity ε", _key("eccentricity"), ".3f"),
+        ("attitude (°)", _key("attitude_deg"), ".1f"),
+        ("min film (µm)", _key("min_film_um"), ".1f"),
+        (f"preload at {at}° (µm)", _key("preload_um"), ".1f"),
+        (f"film pressure at {at}° (kPa)", _key("actuator_pressure_kPa"), ".1f"),
+        ("converged", _key("converged"), ""),
+    ]
+    n_ok = sum(bool(p.get("converged")) for p in points)
+    note = (
+        f'<p class="note">{len(points)} equilibria ({n_ok} converged), shown here at '
+        f"{', '.join(_f(s / 1e3, '.0f') for s in shown)} krpm; all of them are in "
+        "<code>static_sweep.nc</code> beside this page.</p>"
+    )
+    return note + _records([p for p in points if float(p["speed_rpm"]) in shown], cols)
+
+
+def _coefficients(d: dict[str, Any], case: dict[str, Any]) -> str:
+    note = (
+        f'<p class="note">Equilibrium at {_f(d.get("speed_rpm"), ".6g")} rpm: ε = '
+        f"{_f(d.get('eccentricity'), '.3f')}, attitude {_f(d.get('attitude_deg'), '.1f')}°.</p>"
+    )
+    keys = ("frequency_Hz", "frequency_ratio", "K_N_per_m", "C_Ns_per_m")
+    rows = _transpose(d, keys)
+    cols: list[Column] = [
+        ("frequency (Hz)", _key("frequency_Hz"), ".1f"),
+        ("ratio to speed", _key("frequency_ratio"), ".2f"),
+    ]
+    for i, ij in enumerate(("xx", "xy", "yx", "yy")):
+        cols.append((f"K{ij} (MN/m)", _entry("K_N_per_m", i, 1e-6), ".4f"))
+    for i, ij in enumerate(("xx", "xy", "yx", "yy")):
+        cols.append((f"C{ij} (N·s/m)", _entry("C_Ns_per_m", i), ".1f"))
+    return note + _records(rows, cols)
+
+
+def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
+    others = {
+        key: {e.get("voltage_V"): e for e in d.get(kind, [])}
+        for key, kind in (
+            ("shim", "shimmed"),
+            ("kept", "C-GFB, suction retained"),
+            ("shim_kept", "shimmed, suction retained"),
+            ("paper_reading", "C-GFB, lobe+held"),
+            ("orbit_grid", "C-GFB, orbit grid"),
+        )
+    }
+    rows = [
+        e | {key: per.get(e.get("voltage_V"), {}) for key, per in others.items()}
+        for e in d.get("C-GFB", [])
+    ]
+
+    def onset_of(key: str) -> Any:
+        return lambda r: _krpm("onset_speed_rpm")(r[key])
+
+    cols: list[Column] = [
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("C-GFB onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whirl frequency (Hz)", _key("whirl_frequency_Hz"), ".0f"),
+        ("whirl ratio", _key("whirl_ratio"), ".2f"),
+        ("shimmed onset (krpm)", onset_of("shim"), ".1f"),
+        ("shimmed whirl (Hz)", lambda r: r["shim"].get("whirl_frequency_Hz"), ".0f"),
+    ]
+    if others["orbit_grid"]:
+        cols.append(("C-GFB on the orbits' grid (krpm)", onset_of("orbit_grid"), ".1f"))
+    if others["paper_reading"]:
+        cols += [
+            ("C-GFB, paper's reading: lobe + held (krpm)", onset_of("paper_reading"), ".1f"),
+            (
+                "its whirl (Hz)",
+                lambda r: r["paper_reading"].get("whirl_frequency_Hz"),
+                ".0f",
+            ),
+        ]
+    if others["kept"]:
+        cols += [
+            ("C-GFB, suction retained (krpm)", onset_of("kept"), ".1f"),
+            ("shimmed, suction retained (krpm)", onset_of("shim_kept"), ".1f"),
+        ]
+    note = (
+        '<p class="note">Linear onset of instability (rigid rotor, voltage held from the '
+        "start); the paper's Figs. 13-15 are nonlinear speed-ups, compared in the orbit "
+        "section."
+        + (
+            " The film under the foil holds no sub-ambient pressure (top-foil lift-off, "
+            "docs/model.md §3); the suction-retained columns keep it, as a rigid surface "
+            "would, and go unstable 2-3.5 times earlier."
+            if others["kept"]
+            else ""
+        )
+        + (
+            " The C-GFB columns read the actuator as the case does (local + compliant: the "
+            "stack's compression a pocket under the stinger, its compliance acting at the "
+            "whirl); the paper's reading lowers the whole lobe and holds the stinger during "
+            "the motion (docs/model.md §3.8)."
+            if others["paper_reading"]
+            else ""
+        )
+        + "</p>"
+    )
+    return note + _records(rows, cols)
+
+
+def _actuator_design(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [
+        ("bearing at the voltage", _key("bearing"), ""),
+        ("stack stiffness K_p (MN/m)", _scaled("stack_stiffness_N_per_m", 1e-6), ".3g"),
+        ("linear onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whirl (Hz)", _key("whirl_frequency_Hz"), ".0f"),
+    ]
+    need = d.get("required_stack_stiffness_N_per_m") or {}
+    target = d.get("target_fraction_of_shimmed_onset", 0.9)
+    items = "".join(
+        f"<li>{escape(k)}: "
+        + ("not reached in the scan" if v is None else f"K_p = {v / 1e6:.3g} MN/m")
+        + "</li>"
+        for k, v in need.items()
+    )
+    note = (
+        f'<p class="note">At {d.get("voltage_V", 150):g} V: the linear onset under the '
+        "case's reading of the actuator (local + compliant) and the paper's (lobe + held), "
+        "beside the shimmed GFB, rigid shims at the base preloads: an ideal positioner "
+        "(docs/model.md §3.8). The stack stiffness each reading needs for "
+        f"{target:.0%} of the shimmed onset:</p><ul>{items}</ul>"
+    )
+    return note + _records(d.get("table", []), cols)
+
+
+def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
+    cols: list[Column] = [
+        ("reading of the actuator", _key("reading"), ""),
+        ("voltage (V)", _key("voltage_V"), "g"),
+        ("Hopf bifurcation", _key("bifurcation_type"), ""),
+        ("linear onset (krpm)", _krpm("hopf_speed_rpm"), ".1f"),
+        ("whirl (Hz)", _key("linear_whirl_frequency_Hz"), ".0f"),
+        ("speed limit (krpm)", _krpm("speed_limit_rpm"), ".1f"),
+        ("largest stable cycle (µm)", _key("largest_stable_cycle_um"), ".1f"),
+        ("cycles", _key("cycles"), "d"),
+        ("status", _key("status"), ""),
+    ]
+    grid = d.get("grid") or ["?", "?"]
+    label = d.get("grid_label") or f"{grid[0]} × {grid[1]}"
+    files = ", ".join(f"<code>{escape(Path(f).name)}</code>" for f in d.get("sweep_files", []))
+    note = (
+        '<p class="note">Past a <b>supercritical</b> Hopf bifurcation the whirl grows into a '
+        "stable, bounded limit cycle as the speed passes the linear onset; past a "
+        "<b>subcritical</b> one the small cycles are unstable and lie below the onset, so a "
+        "large enough disturbance throws the journal into a growing whirl before it "
+        "(docs/bifurcation.md). Each branch is continued from the linear onset by shooting "
+        "on the orbit's own stepper, its stability from Floquet multipliers of the exact "
+        "monodromy. Speed limit: the lowest fold of a subcritical branch, the first fold "
+        "of a supercritical one (past it no bounded cycle is left), or contact. "
+        f"Grid {escape(label)} (the speed-ups'), {d.get('steps', 0) + 2} cycles a "
+        "branch for this stage's time. Under the sharp lift-off law the type near the "
+        "onset is sensitive to the grid (the lift-off boundary moves cell by cell; "
+        "docs/bifurcation.md measures it from 32 × 4 to 128 × 16); with the edge smoothed "
+        "at κ = 0.2 they did not change between 96 × 4 and 96 × 12, and a branch that bends "
+        "back by a few hundredths of a percent of the speed is flat to the grid's resolution. "
+        f"Each reading is a Dask sweep: rerun or extend {files} with "
+        "<code>foilbearing sweep FILE --out RESULT</code>.</p>"
+    )
+    return note + _records(d.get("rows", []), cols)
+
+
+def _scaled(name: str, factor: float) -> Callable[[dict[str, Any]], Any]:
+    return lambda r: None if r.get(name) is None else float(r[name]) * factor
+
+
+def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
+    def intervals(r: dict[str, Any]) -> str:
+        ivs = r.get("subsync_intervals_rpm_Hz") or []
+        return "; ".join(f"{a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz" for a, b, f in ivs)
+
+    def run(r: dict[str, Any]) -> str | None:
+        described = r.get("description")
+        volts = r.get("voltage_V")
+        return str(described) if described else None if volts is None else f"{volts:g} V"
+
+    cols: list[Column] = [
+        ("run", run, ""),
+        ("sub-sync onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("whip (Hz)", _key("whip_frequency_Hz"), ".0f"),
+        ("sub-synchronous intervals", lambda r: intervals(r) or None, ""),
+        ("divergence (krpm)", _krpm("divergence_speed_rpm"), ".1f"),
+        ("max sub-sync amplitude (µm)", _key("max_subsync_amplitude_um"), ".1f"),
+        ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
+        ("wall time (s)", _key("wall_time_s"), ".0f"),
+        ("solver", _key("message"), ""),
+    ]
+    force = case.get("disturbance_N_rms") or 0.0
+    band = case.get("disturbance_band_Hz") or [0.0, 0.0]
+    seed = (
+        f"A divergence above the linear onset comes from a whirl that grows from the case's "
+        f"random disturbance ({force * 1e3:.3g} mN RMS per direction, {band[0]:g}-{band[1]:g} "
+        "Hz): its speed is a property of the bearing and that disturbance, within 0.1 % of "
+        "the solver's settings (a contact forced by the imbalance response, about 1 %); "
+        "without one it would depend on the numerical seed, by several per cent"
+        if force > 0
+        else "A divergence above the linear onset comes from a whirl that grows out of the "
+        "noise floor: the case has no [disturbance], so its speed depends on the numerical "
+        "seed, by up to several per cent"
+    )
+    reading = d.get("reading") or case.get("actuator_reading")
+    named = (
+        f" The actuator in the film is read as <b>{escape(str(reading))}</b> "
+        "(docs/model.md §3.8)"
+        + (
+            ": the paper's reading, with 1 g·mm, since 8.5 g·mm drives this model to contact "
+            "through its low-speed critical."
+            if d.get("reading")
+            else "."
+        )
+        if reading
+        else ""
+    )
+    note = (
+        '<p class="note">Speed-up from 3 to 90 krpm at 500 rad/s²; each run says its voltage '
+        "program and imbalance (the paper's ramps go up from 0 between 6.0 and 6.5 s, about "
+        f"32.6 krpm).{named} {seed} (docs/orbit-performance.md in the repository); the "
+        "linear onsets do not depend on it.</p>"
+    )
+    return note + _records([r for r in d.get("runs", []) if isinstance(r, dict)], cols)
