@@ -34,6 +34,7 @@ __all__ = [
     "parse_list",
     "positive_list",
     "positive_quantity",
+    "refuse_run_options",
     "refuse_without_actuators",
     "strict_json",
     "voltage_list",
@@ -333,6 +334,32 @@ def refuse_without_actuators(case: Case, option: str, text: Any = None) -> None:
         f"drop {option}",
         source=case.source,
     )
+
+
+def refuse_run_options(args: argparse.Namespace, options: Sequence[tuple[str, str]]) -> None:
+    """A one-line error for the first of ``options`` (destination, as written) given with
+    ``--resume``: a resumed run continues the recorded run, so an option that would shape
+    it (its case, speeds, voltages, load, steps) is refused rather than silently ignored.
+
+    An option counts as given when its value is not None and not empty (these options
+    default to None, or to an empty list for a repeated one).
+    """
+    from foilbearing.errors import InputError
+
+    for dest, written in options:
+        value = getattr(args, dest, None)
+        if value is None or value == []:
+            continue
+        shown = " ".join(value) if isinstance(value, list) else value
+        if written.isupper():  # the positional file
+            raise InputError(
+                f"--resume continues the recorded run on the case it recorded; leave out "
+                f"{written} ({shown}), or start a new run to use it"
+            )
+        raise InputError(
+            f"--resume continues the recorded run; start a new run to change {written} "
+            f"(given: {written} {shown})"
+        )
 
 
 def print_fields(obj: dict[str, Any]) -> None:

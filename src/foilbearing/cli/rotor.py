@@ -7,7 +7,13 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import add_overwrite_arg, claim_output, emit, guard_outputs
+from foilbearing.cli.common import (
+    add_overwrite_arg,
+    claim_output,
+    emit,
+    guard_outputs,
+    refuse_run_options,
+)
 
 __all__ = ["cmd_rotor", "register"]
 
@@ -68,7 +74,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
     rot.add_argument(
         "--shaft-modes",
         type=int,
-        default=8,
+        default=None,
         help="shaft modes kept in the --orbit rotor's reduction (default 8; "
         "docs/rotor-format.md shows the convergence)",
     )
@@ -85,9 +91,15 @@ def register(sub: Any) -> argparse.ArgumentParser:
         help="wall time between checkpoints written to --out (default 30s)",
     )
     rot.add_argument(
-        "--resume", type=Path, metavar="FILE.nc", help="continue a stopped --orbit run"
+        "--resume",
+        type=Path,
+        metavar="FILE.nc",
+        help="continue a stopped --orbit run from its file alone: ROTOR and the options that "
+        "shape the run (--orbit, --unbalance, --voltage-ramp, --controller, --shaft-modes, "
+        "--speed-range, --modes) are refused; --stop-time (default: to the end), --out "
+        "(default: FILE.nc itself), --overwrite, --checkpoint-every, --plot and --json apply",
     )
-    rot.add_argument("--modes", type=int, default=4, help="modes kept at each speed (default 4)")
+    rot.add_argument("--modes", type=int, default=None, help="modes kept at each speed (default 4)")
     rot.add_argument("--plot", metavar="DIR", type=Path, help="write campbell.png to DIR")
     rot.add_argument("--json", action="store_true", help="print one JSON object")
     rot.set_defaults(func=cmd_rotor)
@@ -117,6 +129,7 @@ def cmd_rotor(args: argparse.Namespace) -> int:
         raise InputError("--out writes the --orbit run: give --orbit too")
     own_file = args.resume is not None and Path(args.out).resolve() == args.resume.resolve()
     target = claim_output(args, args.out, may_exist=own_file)
+    args.modes = 4 if args.modes is None else args.modes
     if not 1 <= args.modes <= 20:
         raise InputError(f"--modes {args.modes}: allowed 1 to 20")
     text = args.speed_range or (None if args.orbit else "30000rpm:60000rpm:2500rpm")
@@ -279,6 +292,15 @@ def _unbalances(texts: list[str]) -> list[Any]:
 #: The options of an --orbit run kept in its file (attribute ``rotor_run``) for --resume.
 _RUN_OPTIONS = ("orbit", "unbalance", "voltage_ramp", "controller", "shaft_modes")
 
+#: What --resume refuses (destination, as written): the run's own options and the rotor
+#: file are the recorded ones, and the linear part (speed range, modes) is not run.
+_REFUSED_ON_RESUME = (
+    ("rotor", "ROTOR"),
+    *((key, f"--{key.replace('_', '-')}") for key in _RUN_OPTIONS),
+    ("speed_range", "--speed-range"),
+    ("modes", "--modes"),
+)
+
 
 def _resume(args: argparse.Namespace) -> tuple[Any, Any]:
     """``--resume FILE.nc``: the stopped run, and its rotor from the text it started with;
@@ -290,6 +312,7 @@ def _resume(args: argparse.Namespace) -> tuple[Any, Any]:
     from foilbearing.rotor import rotor_from_dict
     from foilbearing.rotor.nonlinear import load_rotor_orbit
 
+    refuse_run_options(args, _REFUSED_ON_RESUME)
     run, attrs = load_rotor_orbit(args.resume)
     if "rotor_run" not in attrs or not run.resumable:
         why = "no checkpoint" if "rotor_run" not in attrs else f"it ended ({run.message})"
@@ -330,6 +353,8 @@ def _orbit(
     every = parse_quantity(args.checkpoint_every, "time", field="--checkpoint-every")
     if not every > 0.0:
         raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
+    if args.shaft_modes is None:
+        args.shaft_modes = 8  # the default, written into the run's record
     source = Path(str(rotor.source)) if rotor.source else None
     spec = {key: getattr(args, key) for key in _RUN_OPTIONS}
     spec["rotor_file"] = str(source)
