@@ -26,6 +26,7 @@ __all__ = [
     "apply_subambient",
     "attach_negative_values",
     "check_dask_args",
+    "check_plot_folder",
     "claim_output",
     "emit",
     "guard_outputs",
@@ -488,6 +489,39 @@ def claim_output(
     output = Output(path, option)
     _outputs(args).append(output)
     return output
+
+
+def check_plot_folder(folder: Path | str) -> None:
+    """A one-line error, before any work, when the figures cannot be written in ``folder``
+    (``--plot DIR``): a file in its place or in its path, or a folder that cannot be
+    written (read-only, no permission). A folder still to be made is not made here: the
+    nearest one that exists is tried, with a probe file created and removed at once.
+
+    Raises
+    ------
+    InputError
+        One line naming ``--plot``, the folder and what is wrong.
+    """
+    import os
+    import tempfile
+
+    from foilbearing.errors import InputError
+
+    folder = Path(folder)
+    existing = folder
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        where = "is a file" if existing == folder else f"is under {existing}, a file"
+        raise InputError(f"--plot {folder} {where}: give a folder for the figures")
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".foilbearing-probe-", dir=existing)
+    except OSError as exc:
+        raise InputError(
+            f"--plot {folder}: cannot write figures in {existing}: {_reason(exc)}"
+        ) from None
+    os.close(fd)
+    os.unlink(probe)
 
 
 def _reservations(args: argparse.Namespace) -> list[Any]:
