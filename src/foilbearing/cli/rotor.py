@@ -303,28 +303,24 @@ _REFUSED_ON_RESUME = (
 
 
 def _resume(args: argparse.Namespace) -> tuple[Any, Any]:
-    """``--resume FILE.nc``: the stopped run, and its rotor from the text it started with;
-    the run's options go back into ``args``."""
-    import json
-    import tomllib
-
+    """``--resume FILE.nc``: the stopped run, and its rotor from the run's record (the
+    rotor and both bearing cases as data; a file of the first form, the rotor file's
+    text); the run's options go back into ``args``."""
     from foilbearing.errors import InputError
-    from foilbearing.rotor import rotor_from_dict
     from foilbearing.rotor.nonlinear import load_rotor_orbit
+    from foilbearing.rotor.record import read_rotor_run
 
     refuse_run_options(args, _REFUSED_ON_RESUME)
     run, attrs = load_rotor_orbit(args.resume)
     if "rotor_run" not in attrs or not run.resumable:
         why = "no checkpoint" if "rotor_run" not in attrs else f"it ended ({run.message})"
         raise InputError(f"nothing to resume: {why}", source=str(args.resume))
-    spec = json.loads(attrs["rotor_run"])
+    spec, rotor = read_rotor_run(attrs["rotor_run"], str(args.resume))
     for key in _RUN_OPTIONS:
         setattr(args, key, spec[key])
-    path = Path(spec["rotor_file"])
-    rotor = rotor_from_dict(tomllib.loads(spec["rotor_text"]), source=str(path), folder=path.parent)
     args.out = args.out or args.resume
     args.speed_range = None
-    args.rotor_text = spec["rotor_text"]  # the text the run started with, kept in its file
+    args.rotor_run = spec  # the record the run started with, written again as it goes
     return run, rotor
 
 
@@ -355,13 +351,14 @@ def _orbit(
         raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
     if args.shaft_modes is None:
         args.shaft_modes = 8  # the default, written into the run's record
-    source = Path(str(rotor.source)) if rotor.source else None
-    spec = {key: getattr(args, key) for key in _RUN_OPTIONS}
-    spec["rotor_file"] = str(source)
-    text = getattr(args, "rotor_text", None)  # set by --resume
-    if text is None:
-        text = source.read_text(encoding="utf-8") if source is not None else ""
-    spec["rotor_text"] = text
+    spec = getattr(args, "rotor_run", None)  # set by --resume
+    if spec is None:  # the run's options, and its rotor and bearing cases as data
+        from foilbearing.rotor.record import RUN_FORMAT, RotorRecord
+
+        spec = {key: getattr(args, key) for key in _RUN_OPTIONS}
+        spec["format"] = RUN_FORMAT
+        spec["rotor_file"] = rotor.source
+        spec["rotor_record"] = RotorRecord.of(rotor, rotor.source).to_dict()
 
     def save(run: Any) -> None:
         if target is not None:
