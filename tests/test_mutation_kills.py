@@ -30,3 +30,23 @@ def test_a_compressed_stack_lowers_its_lobe_and_opens_the_film() -> None:
     assert opened.max() == pytest.approx(0.05 * m.lobe_shapes[0].max(), rel=1e-12)
     far = np.abs(np.angle(np.exp(1j * (m.grid.theta - math.radians(240.0))))) < 0.2
     np.testing.assert_allclose(opened[far], 0.0, atol=1e-12)
+
+
+def test_a_held_run_started_at_its_equilibrium_stays_there() -> None:
+    """Under ``dynamics = "held"`` the orbit's rigid film is the lobes less the stacks'
+    held compression (``preload_at``): without imbalance or disturbance, a run started at
+    the static equilibrium (solved by the static analysis, an independent route) stays
+    at it, to the stepper's Newton tolerance. Killed survivor: the held reading's sign in
+    ``orbit/system.py`` ``preload_at`` (the film closed by the compression instead)."""
+    from foilbearing.constants import RPM
+    from foilbearing.control import constant_speed
+    from foilbearing.orbit import simulate
+
+    case = default_case().with_voltages(150.0).with_actuator_reading("local", "held")
+    grid = Grid(n_theta=32, n_z=4, orbit_n_z=None, orbit_axial_order=None)
+    case = replace(case, grid=grid, disturbance=None)
+    case = replace(case, rotor=replace(case.rotor, imbalance=0.0))
+    run = simulate(case, constant_speed(50e3 * RPM, 0.004))
+    assert run.status == "completed"
+    drift = np.hypot(run.e_x - run.e_x[0], run.e_y - run.e_y[0]).max()
+    assert drift < 1e-3 * case.bearing.clearance, drift / case.bearing.clearance
