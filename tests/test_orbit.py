@@ -379,6 +379,41 @@ def test_a_resumed_run_reports_the_whole_run_s_figures() -> None:
     np.testing.assert_allclose(rest.power_loss, whole.power_loss, rtol=1e-3)
 
 
+def test_a_stop_time_resume_s_power_loss_differs_by_its_sampling_only(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Stopped with ``stop_time`` (the last step lands on the stop, so the resumed run's
+    step grid is shifted) and resumed, the power loss differed by 2.9 % from the run in
+    one go near the resume point. The cause is the series' own sampling, not the resume:
+    the power is evaluated at the first step past each 1 ms (POWER_INTERVAL) and
+    interpolated between, and here it swings by 56 % over a 5 ms revolution, so the
+    series of either run is up to 8.4 % off the curve evaluated every 0.1 ms; moving the
+    evaluations by part of a step (0.1 ms: 15.708 against 15.599 ms) moves it by less
+    than that. The resumed run's differences stay below the sampling error, its series is
+    as close to the finely evaluated curve (9.2 % against 8.4 %), and the mean power loss,
+    which the run reports, agrees to 4.8e-4."""
+    from foilbearing.orbit import sampling
+    from foilbearing.orbit.analysis import mean_power_loss
+
+    case = coarse(100.0, imbalance=3e-6)
+    prof = constant_speed(12e3 * RPM, 0.03)
+    whole = simulate(case, prof)
+    rest = simulate(case, prof, resume=simulate(case, prof, stop_time=0.0155))
+    monkeypatch.setattr(sampling, "POWER_INTERVAL", 1e-4)
+    fine = simulate(case, prof)
+    np.testing.assert_array_equal(fine.e_x, whole.e_x)  # the evaluations change no motion
+    assert whole.power_loss is not None and rest.power_loss is not None
+    assert fine.power_loss is not None
+
+    def off(a: np.ndarray, b: np.ndarray) -> float:
+        return float(np.max(np.abs(a - b) / np.abs(b)))
+
+    sampling_error = off(whole.power_loss, fine.power_loss)
+    assert off(rest.power_loss, whole.power_loss) < sampling_error
+    assert off(rest.power_loss, fine.power_loss) < 1.25 * sampling_error
+    assert mean_power_loss(rest) == pytest.approx(mean_power_loss(whole), rel=1e-3)
+
+
 def test_resume_near_contact_follows_the_run() -> None:
     # 8.5 g·mm at 12 krpm on the coarse grid: an orbit of 1.07 C peak-to-peak that grazes
     # the film, with cells crossing the lift-off boundary at every pass. A BDF3 run resumed

@@ -252,3 +252,62 @@ def test_a_write_the_disk_refuses_inside_a_command_is_one_line(tmp_path: Path, c
 
     with pytest.raises(FileNotFoundError):
         broken(argparse.Namespace())
+
+
+def _commands_with_plot() -> dict[str, list[str]]:
+    """Each subcommand that takes ``--plot``, with a stand-in for each positional it needs
+    (a file that does not exist: the --plot check must come before it is read)."""
+    import argparse
+
+    from foilbearing.cli.main import _parser
+
+    sub = next(a for a in _parser()._actions if isinstance(a, argparse._SubParsersAction))
+    found = {}
+    for name, parser in sub.choices.items():
+        options = {s for a in parser._actions for s in a.option_strings}
+        if "--plot" in options:
+            needed = [a for a in parser._actions if not a.option_strings and a.nargs is None]
+            found[name] = ["missing.toml"] * len(needed)
+    return found
+
+
+PLOT_COMMANDS = _commands_with_plot()
+
+
+def test_every_command_with_plot_is_checked() -> None:
+    assert {"static", "orbit", "rotor", "uncertainty", "bifurcation"} <= set(PLOT_COMMANDS)
+
+
+@pytest.mark.parametrize("command", list(PLOT_COMMANDS))
+def test_a_file_in_place_of_the_plot_folder_is_one_line_before_any_work(
+    command: str, tmp_path: Path, capsys
+) -> None:
+    """``--plot DIR`` with a file at DIR, or DIR under a file: exit 2 and one line naming
+    --plot, before the case (a missing file here) is read; before, the whole analysis ran
+    and then ended in a traceback from the figure's writer."""
+    blocker = tmp_path / "figs"
+    blocker.write_text("not a folder", encoding="utf-8")
+    for plot, words in ((blocker, "is a file"), (blocker / "sub", f"is under {blocker}")):
+        argv = [command, *PLOT_COMMANDS[command], "--plot", str(plot)]
+        assert main(argv) == 2, argv
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and f"--plot {plot} {words}" in err[0], err
+
+
+@pytest.mark.parametrize("command", ["static", "orbit"])
+def test_a_read_only_plot_folder_is_one_line_before_any_work(
+    command: str, coarse_case: Path, tmp_path: Path, monkeypatch, capsys
+) -> None:
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    _no_solve(monkeypatch)
+    _read_only(folder, monkeypatch)
+    argv = [command, str(coarse_case), "--plot", str(folder / "figs")]
+    argv += ["--eccentricity", "0.3,0.2"] if command == "static" else ["--speed", "12000rpm"]
+    try:
+        assert main(argv) == 2  # and no solve was called (_no_solve)
+    finally:
+        folder.chmod(0o755)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"--plot {folder / 'figs'}: cannot write figures in" in err[0], err
+    assert list(folder.iterdir()) == []

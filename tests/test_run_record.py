@@ -283,3 +283,42 @@ def test_simulate_refuses_to_resume_a_run_on_another_case() -> None:
     with pytest.raises(InputError, match=r"actuators\.dynamics: compliant then, held now"):
         simulate(case.with_actuator_reading(dynamics="held"), profile, resume=part)
     assert simulate(case, profile, resume=part).status == "completed"
+
+
+#: Options that shape a run, each as a user would give it with ``--resume``; the value of
+#: --sample-rate is the default's own, which a resume would ignore just as silently.
+REFUSED_ON_RESUME = {
+    "--load": ["--load", "50N"],
+    "--speed-ramp": ["--speed-ramp", "3000rpm:6000rpm:500rad/s**2"],
+    "--voltage-ramp": ["--voltage-ramp", "0s:0.01s:100V"],
+    "--steps-per-rev": ["--steps-per-rev", "48"],
+    "--sample-rate": ["--sample-rate", "10000Hz"],
+    "--actuator-dynamics": ["--actuator-dynamics", "held"],
+    "CASE": ["case.toml"],
+}
+
+
+def test_resume_refuses_the_options_that_would_shape_another_run(
+    stopped: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``--resume`` continues the recorded run: an option that would shape it (case, load,
+    speeds, voltages, steps, reading) is refused in one line naming it, exit 2, before any
+    work, and the file is left as it was (before, the option was silently ignored); the
+    options that apply to a resume (--stop-time, --out, --json) still run."""
+    path = tmp_path / "part.nc"
+    shutil.copy(stopped, path)
+    before = path.read_bytes()
+    for written, extra in REFUSED_ON_RESUME.items():
+        capsys.readouterr()
+        argv = ["orbit", *(extra if written == "CASE" else []), "--resume", str(path)]
+        argv += [] if written == "CASE" else extra
+        assert main(argv) == 2, written
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and "--resume continues the recorded run" in err, err
+        assert (written if written != "CASE" else "case.toml") in err, err
+        assert "Traceback" not in err
+    assert path.read_bytes() == before
+    out = tmp_path / "copy.nc"
+    code = main(["orbit", "--resume", str(path), "--out", str(out), "--stop-time", "0.015s"])
+    assert code == 0 and xr.load_dataset(out).attrs["status"] == "stopped"
+    assert path.read_bytes() == before

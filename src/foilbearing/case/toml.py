@@ -114,7 +114,10 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         ambient_pressure=gas_t.positive("ambient_pressure", "pressure"),
     )
     gas_t.done()
+    _check_proportions(bearing_t, gas_t, bearing, gas)
     foil = _read_foil(root.table("foil")) if "foil" in data else None
+    if foil is not None:
+        _check_compliance(root.table("foil"), foil, bearing, gas)
     actuators = _read_actuators(root.table("actuators"), bearing) if "actuators" in data else None
     shims = _read_shims(root.table("shims"), bearing) if "shims" in data else None
     if actuators is not None and shims is not None:
@@ -148,6 +151,15 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         max_speed=op_t.positive("max_speed", "speed", default=MAX_SPEED_DEFAULT),
     )
     op_t.done()
+    top = 6.0 * gas.viscosity * operation.max_speed * bearing.radius**2
+    bearing_number = top / (gas.ambient_pressure * bearing.clearance**2)
+    if not bearing_number <= MAX_BEARING_NUMBER:
+        raise gas_t.error(
+            "viscosity",
+            gas_t.data.get("viscosity"),
+            f"a bearing number 6 mu omega R^2/(p_a c^2) up to {MAX_BEARING_NUMBER:g} at "
+            f"operation.max_speed, here {bearing_number:.3g}",
+        )
     if operation.speed > operation.max_speed:
         raise InputError(
             f"operation.speed = {operation.speed / RPM:.0f} rpm is above operation.max_speed = "
@@ -199,6 +211,57 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         study_table=None if study is None else json.dumps(study, default=str),
         disturbance=disturbance,
     )
+
+
+#: The film's proportions the model holds for (each a ratio of two fields, SI) and the
+#: ambient pressures of a continuum gas film whose force double precision resolves.
+CLEARANCE_RATIO = (1e-6, 0.1)  # c/R: Reynolds' thin film needs c << R
+LENGTH_RATIO = (1e-2, 1e2)  # L/R: from a ring to a long bearing
+AMBIENT_PRESSURE = (1e3, 1e9)  # Pa: 1 kPa (rarefied below) to 1 GPa
+
+
+def _check_proportions(
+    bearing_t: TableReader, gas_t: TableReader, bearing: Bearing, gas: Gas
+) -> None:
+    """One-line errors for a film outside the ranges the model and its numbers hold for:
+    a clearance or length out of proportion with the radius (a clearance of 1e-300 m gave
+    a ZeroDivisionError, a radius of 1e300 m an OverflowError), or an ambient pressure
+    against which no load can be resolved (1e300 Pa "converged" with zero force)."""
+    checks = (
+        (bearing_t, "clearance", bearing.clearance / bearing.radius, CLEARANCE_RATIO,
+         "of bearing.radius (a thin film)"),
+        (bearing_t, "length", bearing.length / bearing.radius, LENGTH_RATIO,
+         "times bearing.radius"),
+        (gas_t, "ambient_pressure", gas.ambient_pressure, AMBIENT_PRESSURE, "Pa"),
+    )  # fmt: skip
+    for table, key, value, (lo, hi), what in checks:
+        if not lo <= value <= hi:
+            raw = table.data.get(key, value)
+            raise table.error(key, raw, f"{lo:g} to {hi:g} {what}, here {value:.3g}")
+
+
+#: The foil's compliance p_a/(k_b c) the film's numbers hold for: the foil deflecting by
+#: up to a thousand clearances under the ambient pressure (the paper's: 0.116).
+MAX_COMPLIANCE = 1e3
+
+
+def _check_compliance(foil_t: TableReader, foil: Foil, bearing: Bearing, gas: Gas) -> None:
+    """A one-line error for a foil so soft that the film's Newton matrix is singular (a
+    bump 1e300 m high gave a LinAlgError)."""
+    alpha = gas.ambient_pressure / (foil.bump_stiffness * bearing.clearance)
+    if not alpha <= MAX_COMPLIANCE:
+        key = "bump_stiffness" if "bump_stiffness" in foil_t.data else "bump"
+        raise InputError(
+            f"foil.{key}: the foil's compliance p_a/(k_b c) = {alpha:.3g} is above "
+            f"{MAX_COMPLIANCE:g} (k_b = {foil.bump_stiffness:.3g} N/m**3): a stiffer foil, "
+            "or check the [foil.bump] geometry",
+            source=foil_t.source,
+        )
+
+
+#: The largest bearing number 6 mu omega R^2/(p_a c^2) at operation.max_speed the film's
+#: numbers hold for (the paper's bearing: 0.69 at 150 krpm).
+MAX_BEARING_NUMBER = 1e4
 
 
 def _optional_integer(
@@ -264,7 +327,16 @@ def _read_foil(t: TableReader) -> Foil:
     if "bump_stiffness" in t.data:
         k_b = t.positive("bump_stiffness", "stiffness_per_area")
     elif bump is not None:
-        k_b = bump.stiffness()
+        try:
+            k_b = bump.stiffness()
+        except (ZeroDivisionError, OverflowError, ValueError):
+            k_b = math.nan
+        if not (math.isfinite(k_b) and k_b > 0.0):
+            raise InputError(
+                f"[foil.bump]: its thickness, height, half_length and pitch give no finite "
+                f"bump stiffness (k_b = {k_b:g} N/m**3): check them",
+                source=t.source,
+            )
     else:
         raise t.error(
             "bump_stiffness",

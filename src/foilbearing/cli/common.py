@@ -26,6 +26,7 @@ __all__ = [
     "apply_subambient",
     "attach_negative_values",
     "check_dask_args",
+    "check_plot_folder",
     "claim_output",
     "emit",
     "guard_outputs",
@@ -34,6 +35,7 @@ __all__ = [
     "parse_list",
     "positive_list",
     "positive_quantity",
+    "refuse_run_options",
     "refuse_without_actuators",
     "strict_json",
     "voltage_list",
@@ -335,6 +337,32 @@ def refuse_without_actuators(case: Case, option: str, text: Any = None) -> None:
     )
 
 
+def refuse_run_options(args: argparse.Namespace, options: Sequence[tuple[str, str]]) -> None:
+    """A one-line error for the first of ``options`` (destination, as written) given with
+    ``--resume``: a resumed run continues the recorded run, so an option that would shape
+    it (its case, speeds, voltages, load, steps) is refused rather than silently ignored.
+
+    An option counts as given when its value is not None and not empty (these options
+    default to None, or to an empty list for a repeated one).
+    """
+    from foilbearing.errors import InputError
+
+    for dest, written in options:
+        value = getattr(args, dest, None)
+        if value is None or value == []:
+            continue
+        shown = " ".join(value) if isinstance(value, list) else value
+        if written.isupper():  # the positional file
+            raise InputError(
+                f"--resume continues the recorded run on the case it recorded; leave out "
+                f"{written} ({shown}), or start a new run to use it"
+            )
+        raise InputError(
+            f"--resume continues the recorded run; start a new run to change {written} "
+            f"(given: {written} {shown})"
+        )
+
+
 def print_fields(obj: dict[str, Any]) -> None:
     """Print ``obj`` as aligned ``key  value`` lines on stdout (the commands' text output)."""
     for key, value in obj.items():
@@ -461,6 +489,39 @@ def claim_output(
     output = Output(path, option)
     _outputs(args).append(output)
     return output
+
+
+def check_plot_folder(folder: Path | str) -> None:
+    """A one-line error, before any work, when the figures cannot be written in ``folder``
+    (``--plot DIR``): a file in its place or in its path, or a folder that cannot be
+    written (read-only, no permission). A folder still to be made is not made here: the
+    nearest one that exists is tried, with a probe file created and removed at once.
+
+    Raises
+    ------
+    InputError
+        One line naming ``--plot``, the folder and what is wrong.
+    """
+    import os
+    import tempfile
+
+    from foilbearing.errors import InputError
+
+    folder = Path(folder)
+    existing = folder
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        where = "is a file" if existing == folder else f"is under {existing}, a file"
+        raise InputError(f"--plot {folder} {where}: give a folder for the figures")
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".foilbearing-probe-", dir=existing)
+    except OSError as exc:
+        raise InputError(
+            f"--plot {folder}: cannot write figures in {existing}: {_reason(exc)}"
+        ) from None
+    os.close(fd)
+    os.unlink(probe)
 
 
 def _reservations(args: argparse.Namespace) -> list[Any]:

@@ -36,7 +36,7 @@ from foilbearing.cli import (
     sweep,
     uncertainty,
 )
-from foilbearing.cli.common import attach_negative_values, parse_list
+from foilbearing.cli.common import attach_negative_values, check_plot_folder, parse_list
 from foilbearing.errors import InputError, SolverError
 
 __all__ = ["main", "parse_list"]
@@ -77,6 +77,8 @@ def _run(argv: Sequence[str] | None) -> int:
         parser.print_help()
         return 0
     try:
+        if getattr(args, "plot", None) is not None:  # before any work: figures come last
+            check_plot_folder(args.plot)
         return int(args.func(args) or 0)
     except InputError as exc:
         print(f"foilbearing: error: {exc}", file=sys.stderr)
@@ -93,6 +95,10 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="foilbearing",
         description="Gas foil bearings with piezoelectric preload control (C-GFB).",
+        epilog="Outputs are checked before any work starts: --out must be writable and new "
+        "(--overwrite replaces it; another run's output is refused), and --plot DIR must be "
+        "a folder that can be written (made if missing). Exit codes: 0 done, 2 bad input "
+        "(one line naming it), 3 a solve or a write that failed.",
     )
     sub = p.add_subparsers(title="subcommands", metavar="COMMAND")
     # In the order of ``foilbearing --help``.

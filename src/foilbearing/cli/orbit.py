@@ -24,6 +24,7 @@ from foilbearing.cli.common import (
     load_list,
     positive_quantity,
     print_fields,
+    refuse_run_options,
 )
 from foilbearing.cli.reading import add_reading_args
 from foilbearing.errors import InputError
@@ -40,7 +41,7 @@ def register(sub: Any) -> None:
     add_case_arg(p)
     p.add_argument(
         "--speed-ramp",
-        default="3000rpm:90000rpm:500rad/s**2",
+        default=None,
         help="START:STOP:ACCELERATION (default the paper's 3000rpm:90000rpm:500rad/s**2)",
     )
     p.add_argument(
@@ -48,7 +49,7 @@ def register(sub: Any) -> None:
         default=None,
         help="constant speed instead of a ramp, e.g. 20000rpm (with --duration)",
     )
-    p.add_argument("--duration", default="1 s", help="duration at constant --speed (default 1 s)")
+    p.add_argument("--duration", default=None, help="duration at constant --speed (default 1 s)")
     p.add_argument(
         "--voltage-ramp",
         default=None,
@@ -83,7 +84,7 @@ def register(sub: Any) -> None:
         choices=(1, 2, 3, 4),
         help="order of the BDF stepper (default 3)",
     )
-    p.add_argument("--sample-rate", default="10000Hz", help="output sampling rate (default 10 kHz)")
+    p.add_argument("--sample-rate", default=None, help="output sampling rate (default 10 kHz)")
     add_load_arg(p, several=False)
     add_subambient_arg(p)
     add_reading_args(p)
@@ -95,14 +96,45 @@ def register(sub: Any) -> None:
         metavar="TIME",
         help="wall time between checkpoints written to --out (default 30s)",
     )
-    p.add_argument("--resume", type=Path, metavar="FILE.nc", help="continue a stopped run")
+    p.add_argument(
+        "--resume",
+        type=Path,
+        metavar="FILE.nc",
+        help="continue a stopped run from its file alone: the case and the run's options are "
+        "the recorded ones, so CASE and the options that shape the run (--speed-ramp, "
+        "--speed, --duration, the voltage programs, --steps-per-rev, --order, --sample-rate, "
+        "--load, --subambient and the actuator reading) are refused; --stop-time (default: "
+        "to the end), --out (default: FILE.nc itself), --overwrite, --checkpoint-every, "
+        "--plot and --json apply",
+    )
     p.add_argument("--plot", metavar="DIR", type=Path, help="write the figures (PNG) to DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_cmd_orbit)
 
 
+#: The options that shape a run (destination, as written): its file records them, so
+#: ``--resume``, which continues the recorded run, refuses them rather than ignore them.
+RUN_OPTIONS = (
+    ("case", "CASE"),
+    ("speed_ramp", "--speed-ramp"),
+    ("speed", "--speed"),
+    ("duration", "--duration"),
+    ("voltage_ramp", "--voltage-ramp"),
+    ("controller", "--controller"),
+    ("voltage_schedule", "--voltage-schedule"),
+    ("steps_per_rev", "--steps-per-rev"),
+    ("order", "--order"),
+    ("sample_rate", "--sample-rate"),
+    ("load", "--load"),
+    ("subambient", "--subambient"),
+    ("preload_response", "--preload-response"),
+    ("actuator_dynamics", "--actuator-dynamics"),
+)
+
+
 def run_spec_from_args(args: argparse.Namespace) -> RunSpec:
-    """The run's specification from the options (stored with the results for --resume).
+    """The run's specification from the options (stored with the results for --resume);
+    an option left out (None) takes the command's default.
 
     Raises
     ------
@@ -112,27 +144,27 @@ def run_spec_from_args(args: argparse.Namespace) -> RunSpec:
     from foilbearing.orbit.settings import OrbitSettings
     from foilbearing.orbit.spec import RunSpec
 
-    return RunSpec.from_cli_strings(
-        {
-            "case": None if args.case is None else str(args.case),
-            "speed_ramp": args.speed_ramp,
-            "speed": args.speed,
-            "duration": args.duration,
-            "voltage_ramp": args.voltage_ramp,
-            "controller": args.controller,
-            "voltage_schedule": _schedule_spec(args.voltage_schedule),
-            "stop_time": args.stop_time,
-            "steps_per_rev": (
-                OrbitSettings.steps_per_rev if args.steps_per_rev is None else args.steps_per_rev
-            ),
-            "order": OrbitSettings.order if args.order is None else args.order,
-            "sample_rate": args.sample_rate,
-            "subambient": args.subambient,
-            "preload_response": args.preload_response,
-            "actuator_dynamics": args.actuator_dynamics,
-            "load": args.load,
-        }
-    )
+    strings = {
+        "case": None if args.case is None else str(args.case),
+        "speed_ramp": args.speed_ramp,
+        "speed": args.speed,
+        "duration": args.duration,
+        "voltage_ramp": args.voltage_ramp,
+        "controller": args.controller,
+        "voltage_schedule": _schedule_spec(args.voltage_schedule),
+        "stop_time": args.stop_time,
+        "steps_per_rev": (
+            OrbitSettings.steps_per_rev if args.steps_per_rev is None else args.steps_per_rev
+        ),
+        "order": OrbitSettings.order if args.order is None else args.order,
+        "sample_rate": args.sample_rate,
+        "subambient": args.subambient,
+        "preload_response": args.preload_response,
+        "actuator_dynamics": args.actuator_dynamics,
+        "load": args.load,
+    }
+    # None is "not given": from_cli_strings fills the command's defaults for what is left out
+    return RunSpec.from_cli_strings({k: v for k, v in strings.items() if v is not None})
 
 
 def _schedule_spec(path: str | None) -> dict[str, str] | None:
@@ -173,6 +205,7 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
 
     resume = None
     if args.resume is not None:
+        refuse_run_options(args, RUN_OPTIONS)
         resume, spec = load_orbit(args.resume)
         stop_time = None  # a resumed run goes on to the end unless told
         if args.stop_time is not None:

@@ -7,7 +7,13 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from foilbearing.cli.common import add_overwrite_arg, claim_output, emit, guard_outputs
+from foilbearing.cli.common import (
+    add_overwrite_arg,
+    claim_output,
+    emit,
+    guard_outputs,
+    refuse_run_options,
+)
 
 __all__ = ["cmd_rotor", "register"]
 
@@ -68,7 +74,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
     rot.add_argument(
         "--shaft-modes",
         type=int,
-        default=8,
+        default=None,
         help="shaft modes kept in the --orbit rotor's reduction (default 8; "
         "docs/rotor-format.md shows the convergence)",
     )
@@ -85,9 +91,15 @@ def register(sub: Any) -> argparse.ArgumentParser:
         help="wall time between checkpoints written to --out (default 30s)",
     )
     rot.add_argument(
-        "--resume", type=Path, metavar="FILE.nc", help="continue a stopped --orbit run"
+        "--resume",
+        type=Path,
+        metavar="FILE.nc",
+        help="continue a stopped --orbit run from its file alone: ROTOR and the options that "
+        "shape the run (--orbit, --unbalance, --voltage-ramp, --controller, --shaft-modes, "
+        "--speed-range, --modes) are refused; --stop-time (default: to the end), --out "
+        "(default: FILE.nc itself), --overwrite, --checkpoint-every, --plot and --json apply",
     )
-    rot.add_argument("--modes", type=int, default=4, help="modes kept at each speed (default 4)")
+    rot.add_argument("--modes", type=int, default=None, help="modes kept at each speed (default 4)")
     rot.add_argument("--plot", metavar="DIR", type=Path, help="write campbell.png to DIR")
     rot.add_argument("--json", action="store_true", help="print one JSON object")
     rot.set_defaults(func=cmd_rotor)
@@ -117,6 +129,7 @@ def cmd_rotor(args: argparse.Namespace) -> int:
         raise InputError("--out writes the --orbit run: give --orbit too")
     own_file = args.resume is not None and Path(args.out).resolve() == args.resume.resolve()
     target = claim_output(args, args.out, may_exist=own_file)
+    args.modes = 4 if args.modes is None else args.modes
     if not 1 <= args.modes <= 20:
         raise InputError(f"--modes {args.modes}: allowed 1 to 20")
     text = args.speed_range or (None if args.orbit else "30000rpm:60000rpm:2500rpm")
@@ -279,29 +292,35 @@ def _unbalances(texts: list[str]) -> list[Any]:
 #: The options of an --orbit run kept in its file (attribute ``rotor_run``) for --resume.
 _RUN_OPTIONS = ("orbit", "unbalance", "voltage_ramp", "controller", "shaft_modes")
 
+#: What --resume refuses (destination, as written): the run's own options and the rotor
+#: file are the recorded ones, and the linear part (speed range, modes) is not run.
+_REFUSED_ON_RESUME = (
+    ("rotor", "ROTOR"),
+    *((key, f"--{key.replace('_', '-')}") for key in _RUN_OPTIONS),
+    ("speed_range", "--speed-range"),
+    ("modes", "--modes"),
+)
+
 
 def _resume(args: argparse.Namespace) -> tuple[Any, Any]:
-    """``--resume FILE.nc``: the stopped run, and its rotor from the text it started with;
-    the run's options go back into ``args``."""
-    import json
-    import tomllib
-
+    """``--resume FILE.nc``: the stopped run, and its rotor from the run's record (the
+    rotor and both bearing cases as data; a file of the first form, the rotor file's
+    text); the run's options go back into ``args``."""
     from foilbearing.errors import InputError
-    from foilbearing.rotor import rotor_from_dict
     from foilbearing.rotor.nonlinear import load_rotor_orbit
+    from foilbearing.rotor.record import read_rotor_run
 
+    refuse_run_options(args, _REFUSED_ON_RESUME)
     run, attrs = load_rotor_orbit(args.resume)
     if "rotor_run" not in attrs or not run.resumable:
         why = "no checkpoint" if "rotor_run" not in attrs else f"it ended ({run.message})"
         raise InputError(f"nothing to resume: {why}", source=str(args.resume))
-    spec = json.loads(attrs["rotor_run"])
+    spec, rotor = read_rotor_run(attrs["rotor_run"], str(args.resume))
     for key in _RUN_OPTIONS:
         setattr(args, key, spec[key])
-    path = Path(spec["rotor_file"])
-    rotor = rotor_from_dict(tomllib.loads(spec["rotor_text"]), source=str(path), folder=path.parent)
     args.out = args.out or args.resume
     args.speed_range = None
-    args.rotor_text = spec["rotor_text"]  # the text the run started with, kept in its file
+    args.rotor_run = spec  # the record the run started with, written again as it goes
     return run, rotor
 
 
@@ -330,13 +349,16 @@ def _orbit(
     every = parse_quantity(args.checkpoint_every, "time", field="--checkpoint-every")
     if not every > 0.0:
         raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
-    source = Path(str(rotor.source)) if rotor.source else None
-    spec = {key: getattr(args, key) for key in _RUN_OPTIONS}
-    spec["rotor_file"] = str(source)
-    text = getattr(args, "rotor_text", None)  # set by --resume
-    if text is None:
-        text = source.read_text(encoding="utf-8") if source is not None else ""
-    spec["rotor_text"] = text
+    if args.shaft_modes is None:
+        args.shaft_modes = 8  # the default, written into the run's record
+    spec = getattr(args, "rotor_run", None)  # set by --resume
+    if spec is None:  # the run's options, and its rotor and bearing cases as data
+        from foilbearing.rotor.record import RUN_FORMAT, RotorRecord
+
+        spec = {key: getattr(args, key) for key in _RUN_OPTIONS}
+        spec["format"] = RUN_FORMAT
+        spec["rotor_file"] = rotor.source
+        spec["rotor_record"] = RotorRecord.of(rotor, rotor.source).to_dict()
 
     def save(run: Any) -> None:
         if target is not None:

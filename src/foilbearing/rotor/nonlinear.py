@@ -316,6 +316,36 @@ class RotorOrbitSystem:
             raise AttributeError(f"'RotorOrbitSystem' object has no attribute '{name}'")
 
 
+def _check_run(ds: Any, checkpoint: dict[str, Any], source: str) -> None:
+    """One-line errors for a rotor run whose status, series or checkpoint is damaged:
+    what a resume would read, checked before it integrates from it."""
+    from foilbearing.orbit.result import RunStatus
+
+    status = ds.attrs.get("status", "completed")
+    if status not in {s.value for s in RunStatus}:
+        raise InputError(f"status = {status!r}: not a run's status (damaged)", source=source)
+    for name in ("time", "journal", "node_displacement"):
+        if not np.all(np.isfinite(ds[name].values)):
+            raise InputError(f"{name} holds values that are not finite (damaged)", source=source)
+    if np.any(np.diff(ds["time"].values) <= 0.0):
+        raise InputError("time is not increasing (damaged)", source=source)
+    for key, value in checkpoint.items():
+        if not np.all(np.isfinite(np.asarray(value, float))):
+            raise InputError(
+                f"checkpoint_{key} holds values that are not finite (damaged)", source=source
+            )
+    if not checkpoint:
+        return
+    t, time = float(np.ravel(checkpoint.get("t", [np.nan]))[0]), ds["time"].values
+    spacing = float(time[1] - time[0]) if time.size > 1 else np.inf
+    if not time[-1] - 1e-12 <= t < time[-1] + spacing + 1e-12:
+        raise InputError(
+            f"checkpoint_t = {t!r} s: expected the last step's time, from the last sample "
+            f"({time[-1]!r} s) to one sample after it (damaged)",
+            source=source,
+        )
+
+
 def load_rotor_orbit(path: Any) -> tuple[RotorOrbit, dict[str, Any]]:
     """Read a rotor run written by :meth:`RotorOrbit.to_dataset`: the run (with its
     checkpoint) and the dataset's attributes.
@@ -341,6 +371,7 @@ def load_rotor_orbit(path: Any) -> tuple[RotorOrbit, dict[str, Any]]:
         if str(k).startswith("checkpoint_")
     }
     a = ds.attrs
+    _check_run(ds, checkpoint, str(path))
     run = RotorOrbit(
         np.asarray(ds["time"].values, float),
         np.asarray(ds["journal"].values, float),
