@@ -356,7 +356,7 @@ class CoefficientSweep(Summarised):
         )
         title = (
             f"Force coefficients of the {first.static.case.kind} at {len(self.points)} speeds, "
-            f"{first.static.case.operation.load:.4g} N, at {at} (K_XX, K_XY, K_YX, K_YY; C likewise)"
+            f"{first.static.case.operation.load:.4g} N, at {at}"
         )
         speeds = [fc.static.speed * 30 / math.pi for fc in self.points]
         rows: dict[str, Any] = {"speed_rpm": speeds}
