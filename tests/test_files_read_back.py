@@ -267,7 +267,8 @@ def test_the_study_of_a_passive_bearing_writes_the_summary_it_prints(
     folder, and the onset it reports is the one ``stability`` prints (the same scan)."""
     path = str(coarse["bump_foil_bearing"])
     out = tmp_path / "study"
-    printed = _run(["study", path, "--out", str(out), "--orbits", "none"], capsys)
+    argv = ["study", path, "--out", str(out), "--orbits", "none", "--bifurcation", "none"]
+    printed = _run(argv, capsys)
     assert json.loads((out / "summary.json").read_text(encoding="utf-8")) == printed
     assert (out / "report.html").stat().st_size > 1000
     names = [name for stage in printed["figures"].values() for name in stage]
@@ -276,3 +277,33 @@ def test_the_study_of_a_passive_bearing_writes_the_summary_it_prints(
     study = printed["bearing_stability"]["onset"]
     for key in ("onset_speed_rpm", "whirl_frequency_Hz"):
         assert study[key] == linear[key], key
+    assert "bifurcation" not in printed  # --bifurcation none
+
+
+@pytest.mark.slow  # 15 s of CPU: a study and a bifurcation on 32 x 4
+def test_the_study_of_a_passive_bearing_runs_the_bifurcation_command_s_branch(
+    coarse: dict[str, Path], tmp_path: Path, capsys
+) -> None:
+    """``study RIGID.toml`` (a bearing without actuators) has a bifurcation stage: the Hopf
+    point and first cycles that ``bifurcation`` prints for the same scan (the Hopf speed
+    to 1e-9, the first cycles to the shooting's 1e-4), and its figure."""
+    path = str(coarse["rigid_gas_bearing"])
+    out = tmp_path / "study"
+    printed = _run(["study", path, "--out", str(out), "--orbits", "none"], capsys)
+    names = [name for stage in printed["figures"].values() for name in stage]
+    # the branch 'bifurcation' prints for the study's own scan
+    # (on the orbit grid, ±10 % around the linear stage's onset)
+    branch = printed["bifurcation"]
+    assert branch["bifurcation_type"] in TYPES, branch["message"]
+    low, _, high = branch["scan_rpm"]
+    assert low < branch["hopf_speed_rpm"] < high
+    assert "whirl_branch.png" in names
+    scan = f"{low!r}rpm:{high!r}rpm:{(high - low) / 2!r}rpm"
+    direct = _run(["bifurcation", path, "--speed-range", scan, "--steps", "3"], capsys)
+    assert direct["hopf_speed_rpm"] == pytest.approx(branch["hopf_speed_rpm"], rel=1e-9)
+    assert len(direct["amplitude_um"]) == len(branch["amplitude_um"])
+    # the two first cycles to 1e-4, as the read-back above; not the type's word, which on a
+    # nearly degenerate branch flips on the scan's round-off (the scan here
+    # is text, in the study floats; seen on the bump case), nor the later cycles (7e-4
+    # apart on the bump case, 32 x 4)
+    np.testing.assert_allclose(direct["amplitude_um"][:2], branch["amplitude_um"][:2], rtol=1e-4)

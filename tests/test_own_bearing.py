@@ -24,7 +24,7 @@ import xarray as xr
 
 from foilbearing.case import load_case
 from foilbearing.cli.main import main
-from foilbearing.coefficients import force_coefficients
+from foilbearing.coefficients import coefficients_over_speeds, force_coefficients
 from foilbearing.constants import RPM
 from foilbearing.static import film_at_position, solve_equilibrium
 
@@ -95,14 +95,58 @@ def test_static_over_speeds_balances_the_load_and_its_file_reads_back(
     assert single["eccentricity"] == pytest.approx(ecc[1], rel=1e-6)
 
 
-def test_coefficients_at_a_list_of_speeds_is_one_line_saying_where_to_go(
-    coarse: dict[str, Path], capsys
+@pytest.mark.parametrize("name", list(KINDS))
+def test_coefficients_over_a_speed_list_are_the_single_runs_and_read_back(
+    name: str, coarse: dict[str, Path], tmp_path: Path, capsys
 ) -> None:
-    """Read as one quantity, "10000,30000rpm" was 1.00003e9 rpm ("above max_speed")."""
-    argv = ["coefficients", str(coarse["bump_foil_bearing"]), "--speed", "10000,30000rpm"]
-    assert main(argv) == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "takes one speed" in err and "sweep file" in err
+    """``coefficients --speed 20000,40000rpm`` gives at each speed what a single run at that
+    speed gives (the same equilibrium and the same perturbation solve: to round-off, 1e-12),
+    and the Python API the same; the NetCDF file holds them along ``speed`` x the
+    frequency ratios, each ratio ω_e/ω as given, with each speed's own equilibrium (the
+    journal rising towards the centre as the speed grows)."""
+    path = coarse[name]
+    nc = tmp_path / "coef.nc"
+    swept = _run(["coefficients", str(path), "--speed", "20000,40000rpm", "--out", str(nc)], capsys)
+    assert swept["bearing"] == KINDS[name]
+    assert [e["speed_rpm"] for e in swept["speeds"]] == pytest.approx([20000, 40000])
+    api = coefficients_over_speeds(load_case(path), ["20 krpm", "40 krpm"])
+    ds = xr.load_dataset(nc)
+    assert ds["stiffness"].dims == ("speed", "frequency_ratio", "i", "j")
+    np.testing.assert_array_equal(ds["frequency_ratio"].values, np.linspace(0.1, 2.0, 20))
+    for k, (entry, rpm) in enumerate(zip(swept["speeds"], ("20000rpm", "40000rpm"), strict=True)):
+        single = _run(["coefficients", str(path), "--speed", rpm], capsys)
+        for key in ("K_N_per_m", "C_Ns_per_m", "frequency_Hz"):
+            np.testing.assert_allclose(entry[key], single[key], rtol=1e-12)
+        np.testing.assert_allclose(api.points[k].K, single["K_N_per_m"], rtol=1e-12)
+        np.testing.assert_allclose(ds["stiffness"].values[k], single["K_N_per_m"], rtol=1e-12)
+        np.testing.assert_allclose(ds["damping"].values[k], single["C_Ns_per_m"], rtol=1e-12)
+    # each point about its own equilibrium: the journal rises as the film stiffens with speed
+    assert ds["eccentricity"].values[1] < ds["eccentricity"].values[0]
+
+
+def test_coefficients_over_loads_and_speeds_stack_along_both(
+    coarse: dict[str, Path], tmp_path: Path, capsys
+) -> None:
+    """A load list around a speed list: one file along (load, speed, frequency), each point
+    the single run at that load and speed (1e-12); a heavier load (a larger eccentricity)
+    stiffens the bump bearing's film along the load."""
+    path = str(coarse["bump_foil_bearing"])
+    nc = tmp_path / "both.nc"
+    argv = ["coefficients", path, "--speed", "20000,40000rpm", "--frequency", "400Hz"]
+    swept = _run([*argv, "--load", "50,100N", "--out", str(nc)], capsys)
+    assert [e["load_N"] for e in swept["loads"]] == [50.0, 100.0]
+    ds = xr.load_dataset(nc)
+    assert ds["stiffness"].dims == ("load", "speed", "frequency", "i", "j")
+    single = _run(
+        ["coefficients", path, "--speed", "40000rpm", "--frequency", "400Hz", "--load", "100N"],
+        capsys,
+    )
+    np.testing.assert_allclose(
+        swept["loads"][1]["speeds"][1]["K_N_per_m"], single["K_N_per_m"], rtol=1e-12
+    )
+    np.testing.assert_allclose(ds["stiffness"].values[1, 1], single["K_N_per_m"], rtol=1e-12)
+    k_xx = ds["stiffness"].sel(i="X", j="X").values[:, :, 0]
+    assert np.all(k_xx[1] > k_xx[0])
 
 
 @pytest.mark.parametrize(

@@ -209,3 +209,40 @@ def test_the_python_api_takes_quantities_and_floats_stay_si(write_case) -> None:
         with pytest.raises(InputError, match=message) as info:
             call()
         assert "\n" not in str(info.value)
+
+
+def test_voltages_mass_and_map_speeds_take_quantities_too(write_case) -> None:
+    """The rest of the API's audit: ``Case.with_voltages``, ``whirl_mode``'s mass and
+    ``stability_map``'s speeds and voltages give, for quantities, what the SI floats
+    give (the same floats, so the same numbers); a wrong dimension is one line."""
+    import numpy as np
+    import pint
+
+    from foilbearing.constants import RPM
+    from foilbearing.stability import stability_map, whirl_mode
+    from foilbearing.static import solve_equilibrium
+
+    user = pint.UnitRegistry()
+    case = load_case(write_case("api_units_more", n_theta=32, n_z=4))
+    assert case.with_voltages("150 V") == case.with_voltages(150.0)
+    assert case.with_voltages(user.Quantity(0.15, "kV")) == case.with_voltages(150.0)
+    n_act = len(case.actuators.angles)
+    volts = [f"{50 * k} V" for k in range(n_act)]
+    assert case.with_voltages(volts) == case.with_voltages(tuple(50.0 * k for k in range(n_act)))
+    static = solve_equilibrium(case, speed=40_000 * RPM)
+    mass = case.rotor.mass
+    by_float = whirl_mode(static, mass)
+    assert whirl_mode(static, f"{mass * 1000!r} g").eigenvalue == pytest.approx(
+        by_float.eigenvalue, rel=1e-12
+    )
+    by_text = stability_map(case, ["30 krpm", "40 krpm"], ["0 V", "150 V"])
+    by_si = stability_map(case, [30_000 * RPM, 40_000 * RPM], [0.0, 150.0])
+    np.testing.assert_allclose(by_text.log_decrement, by_si.log_decrement, rtol=1e-12)
+    for call, message in (
+        (lambda: case.with_voltages("150 N"), r"actuators\.voltages = '150 N': wrong dim"),
+        (lambda: whirl_mode(static, "3 N"), r"mass = '3 N': wrong dim"),
+        (lambda: stability_map(case, ["30 kHz"], [0.0]), r"speeds.*not Hz"),
+    ):
+        with pytest.raises(InputError, match=message) as info:
+            call()
+        assert "\n" not in str(info.value)

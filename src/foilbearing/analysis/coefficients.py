@@ -36,6 +36,7 @@ The actuator's share follows the case's reading (docs/model.md §3.8):
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -50,9 +51,15 @@ from foilbearing.laws.foil_damping import ViscousBump
 from foilbearing.output.display import Summarised
 from foilbearing.reynolds import Workspace
 from foilbearing.reynolds.perturbed import pressure_response
-from foilbearing.units import as_si_array
+from foilbearing.units import QuantityLike, as_si_array
 
-__all__ = ["ForceCoefficients", "dynamic_compliance", "force_coefficients"]
+__all__ = [
+    "CoefficientSweep",
+    "ForceCoefficients",
+    "coefficients_over_speeds",
+    "dynamic_compliance",
+    "force_coefficients",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -276,3 +283,153 @@ def _journal_columns(model: FilmModel) -> FloatArray:
     cos_t = np.repeat(np.cos(g.theta)[:, None], g.n_z, axis=1).ravel()
     sin_t = np.repeat(np.sin(g.theta)[:, None], g.n_z, axis=1).ravel()
     return np.column_stack([cos_t, sin_t])
+
+
+@dataclass(frozen=True, repr=False)
+class CoefficientSweep(Summarised):
+    """Force coefficients at a list of rotor speeds, each about its own equilibrium.
+
+    Printed, it shows K and C at the first excitation frequency against speed;
+    :meth:`plot` draws them; :meth:`to_dataset` stacks the points along ``speed``.
+
+    Attributes
+    ----------
+    points
+        One :class:`ForceCoefficients` per speed, in the order given.
+    frequency_ratios
+        ω_e/ω of every point when the frequencies scale with the speed (the same
+        ratios at each speed), else None: the same frequencies (rad/s) at each.
+    """
+
+    points: tuple[ForceCoefficients, ...]
+    frequency_ratios: FloatArray | None = None
+
+    @property
+    def speeds(self) -> FloatArray:
+        """The rotor speeds ω, rad/s, shape (n_speed,)."""
+        return np.array([fc.static.speed for fc in self.points])
+
+    def to_dataset(self) -> Any:
+        """xarray Dataset in SI with dims (speed, frequency, i, j).
+
+        The frequency dimension is ``frequency_ratio`` (ω_e/ω) when the frequencies
+        scale with the speed, with ``frequency`` (Hz) a variable over (speed,
+        frequency_ratio); else ``frequency`` (Hz), the same at every speed.
+        """
+        import xarray as xr
+
+        parts = []
+        for fc in self.points:
+            ds = fc.to_dataset()
+            if self.frequency_ratios is not None:
+                # the ratios as given, not ω_e/ω recomputed (which differs in round-off)
+                ds = ds.swap_dims(frequency="frequency_ratio").assign_coords(
+                    frequency_ratio=(
+                        "frequency_ratio",
+                        self.frequency_ratios,
+                        {"units": "1", "long_name": "ω_e/ω"},
+                    )
+                )
+                ds = ds.reset_coords("frequency")
+            parts.append(ds.set_coords("speed"))
+        combined = xr.concat(parts, dim="speed", combine_attrs="drop_conflicts")
+        combined["speed"].attrs.update(units="rad/s", long_name="rotor speed ω")
+        return combined
+
+    def headline(self) -> dict[str, Any]:
+        """Unit-named keys for ``--json``: the bearing, load, grid and one
+        :meth:`ForceCoefficients.headline` per speed under ``speeds``."""
+        first = self.points[0].static
+        return {
+            "bearing": first.case.kind,
+            "load_N": first.case.operation.load,
+            "speeds": [fc.headline() for fc in self.points],
+        }
+
+    def _summary(self) -> tuple[str, dict[str, Any], None]:
+        first = self.points[0]
+        f0 = first.frequencies[0]
+        at = (
+            f"ω_e/ω = {self.frequency_ratios[0]:.3g}"
+            if self.frequency_ratios is not None
+            else f"{f0 / (2 * math.pi):.4g} Hz"
+        )
+        title = (
+            f"Force coefficients of the {first.static.case.kind} at {len(self.points)} speeds, "
+            f"{first.static.case.operation.load:.4g} N, at {at}"
+        )
+        speeds = [fc.static.speed * 30 / math.pi for fc in self.points]
+        rows: dict[str, Any] = {"speed_rpm": speeds}
+        rows["eccentricity"] = [fc.static.eccentricity for fc in self.points]
+        for name, i, j in (("XX", 0, 0), ("XY", 0, 1), ("YX", 1, 0), ("YY", 1, 1)):
+            rows[f"K_{name}_MN_per_m"] = [fc.K[0, i, j] / 1e6 for fc in self.points]
+        for name, i, j in (("XX", 0, 0), ("XY", 0, 1), ("YX", 1, 0), ("YY", 1, 1)):
+            rows[f"C_{name}_kNs_per_m"] = [fc.C[0, i, j] / 1e3 for fc in self.points]
+        return title, rows, None
+
+    def plot(self) -> Any:
+        """K_ij (MN/m) and C_ij (kN·s/m) against rotor speed at the first excitation
+        frequency (:func:`~foilbearing.output.plots.dynamics.plot_coefficients_over_speed`);
+        returns the matplotlib Figure."""
+        from foilbearing.output.plots.dynamics import plot_coefficients_over_speed
+
+        return plot_coefficients_over_speed(self)
+
+
+def coefficients_over_speeds(
+    case: Any,
+    speeds: Sequence[QuantityLike],
+    frequencies: Any = None,
+    *,
+    frequency_ratios: Any = None,
+) -> CoefficientSweep:
+    """Force coefficients at each rotor speed of ``speeds``, about its own equilibrium.
+
+    Each speed is solved on its own, as a single run at that speed (the same
+    equilibrium and coefficients to round-off).
+
+    Parameters
+    ----------
+    case
+        The bearing (:class:`~foilbearing.case.Case`), any kind.
+    speeds
+        Rotor speeds: rad/s as floats, or quantities (``"30 krpm"``).
+    frequencies
+        Excitation frequencies, the same at every speed: rad/s as floats, or
+        quantities (``"100 Hz"``). Give this or ``frequency_ratios``.
+    frequency_ratios
+        Excitation frequencies as ratios ω_e/ω of each speed (> 0); default, when
+        neither is given, 20 ratios 0.1-2.0.
+
+    Raises
+    ------
+    InputError
+        An empty list, a speed not > 0, or both ``frequencies`` and ``frequency_ratios``.
+    SolverError
+        The equilibrium at a speed did not converge (the message names the speed).
+    """
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+
+    omegas = as_si_array(speeds, "speed", field="speeds")
+    if omegas.size == 0:
+        raise InputError("speeds = []: give at least one rotor speed")
+    if frequencies is not None and frequency_ratios is not None:
+        raise InputError("give frequencies or frequency_ratios, not both")
+    ratios = None
+    if frequencies is None:
+        default = np.linspace(0.1, 2.0, 20)
+        ratios = default if frequency_ratios is None else np.atleast_1d(frequency_ratios)
+        ratios = np.asarray(ratios, dtype=float)
+        if ratios.size == 0 or not np.all(np.isfinite(ratios) & (ratios > 0)):
+            raise InputError(f"frequency_ratios = {ratios.tolist()!r}: every ratio must be > 0")
+    points = []
+    for omega in omegas:
+        static = solve_equilibrium(case.with_speed(float(omega)))
+        if not static.converged:
+            raise SolverError(
+                f"at {omega * 30 / math.pi:.0f} rpm the equilibrium did not converge "
+                f"({static.message})"
+            )
+        freqs = frequencies if ratios is None else ratios * static.speed
+        points.append(force_coefficients(static, freqs))
+    return CoefficientSweep(tuple(points), ratios)

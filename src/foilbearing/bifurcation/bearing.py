@@ -37,6 +37,7 @@ from foilbearing.bifurcation.shooting import FlowMap, PeriodicOrbit
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
+from foilbearing.output.display import Summarised
 
 __all__ = [
     "SHOOTING_SETTINGS",
@@ -238,9 +239,12 @@ def _hopf_eigenvector(parts: BearingFlow, speed: float, whirl: float) -> tuple[c
     return complex(sigma + 1.0 / nu[0]), vectors[:, 0] / parts.scale
 
 
-@dataclass(frozen=True)
-class WhirlBranch:
+@dataclass(frozen=True, repr=False)
+class WhirlBranch(Summarised):
     """The branch of whirl limit cycles from the linear onset, with its readouts.
+
+    Printed, it shows the Hopf type and speed, the speed limit and the first
+    cycles in a few lines (a table in a notebook); :meth:`plot` draws the branch.
 
     Attributes
     ----------
@@ -285,6 +289,21 @@ class WhirlBranch:
         if "contact" in self.branch.message and self.branch.orbits:
             return float(self.branch.orbits[-1].parameter)
         return None
+
+    def _summary(self) -> tuple[str, dict[str, Any], None]:
+        head = self.headline()
+        head.pop("largest_multiplier")
+        n = len(self.branch.orbits)
+        title = f"Whirl branch of the {self.case.kind}: {n} limit cycles from the Hopf point"
+        return title, head, None
+
+    def plot(self) -> Any:
+        """Limit-cycle amplitude (µm) and whirl frequency (Hz) against speed, stable
+        cycles solid (:func:`~foilbearing.output.plots.bifurcation.plot_whirl_branch`);
+        returns the matplotlib Figure."""
+        from foilbearing.output.plots.bifurcation import plot_whirl_branch
+
+        return plot_whirl_branch(self.headline(), self.case.title)
 
     def headline(self) -> dict[str, Any]:
         """Unit-named keys (``--json``)."""

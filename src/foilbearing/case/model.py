@@ -24,7 +24,7 @@ from foilbearing.structure import (
     stack_displacement,
     walowit_anno_bump_stiffness,
 )
-from foilbearing.units import QuantityLike, as_si
+from foilbearing.units import QuantityLike, as_si, as_si_array
 
 __all__ = [
     "ACTUATOR_DYNAMICS",
@@ -369,12 +369,21 @@ class Case:
             self.foil.bump_stiffness, self.actuators.k_p, self.actuators.holder_spring_stiffness
         )
 
-    def with_voltages(self, voltages: float | tuple[float, ...]) -> Case:
-        """The same case with new actuator voltages (one for all, or one per actuator), validated."""
+    def with_voltages(self, voltages: Any) -> Case:
+        """The same case with new actuator voltages (one for all, or one per actuator), validated.
+
+        Volts as floats, or quantities: ``"150 V"``, ``["0 V", "150 V", ...]``, a pint
+        ``Quantity``."""
         if self.actuators is None:
             raise InputError(
                 "this case has no [actuators]: a voltage cannot be set", source=self.source
             )
+        magnitude = getattr(voltages, "magnitude", None)
+        if isinstance(voltages, str) or (magnitude is not None and np.ndim(magnitude) == 0):
+            voltages = as_si(voltages, "voltage", field="actuators.voltages")
+        elif not isinstance(voltages, int | float):
+            field_name = "actuators.voltages"
+            voltages = tuple(float(v) for v in as_si_array(voltages, "voltage", field=field_name))
         volts = per_item(voltages, len(self.actuators.angles), "actuators.voltages", self.source)
         act = replace(self.actuators, voltages=volts)
         check_actuators(act, self.bearing, self.source)

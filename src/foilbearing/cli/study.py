@@ -47,7 +47,8 @@ def register(sub: Any) -> argparse.ArgumentParser:
         default="full",
         help="is the whirl past the onset bounded? The Hopf type and limit-cycle branch at "
         "each voltage, the case's reading and the paper's, on Dask (paper's case; under a "
-        "minute on 2 cores; default full)",
+        "minute on 2 cores); a bearing without actuators: the branch at its onset, as "
+        "'foilbearing bifurcation CASE' gives it (default full)",
     )
     study.add_argument(
         "--paper-reading",

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from foilbearing.errors import InputError
+from foilbearing.output.display import Summarised, format_value, split_unit
 
 __all__ = [
     "FIGURE_RECORD_KEY",
@@ -90,9 +91,12 @@ def orbit_figure_order(runs: Sequence[Mapping[str, Any]]) -> Callable[[Path], tu
     return key
 
 
-@dataclass(frozen=True)
-class StudyResult:
+@dataclass(frozen=True, repr=False)
+class StudyResult(Summarised):
     """A finished (or interrupted) study: its numbers, its folder, its figures.
+
+    Printed, it shows one line per stage of ``summary`` (its first few numbers)
+    and the folder, an HTML table in a notebook; :meth:`plot` opens a figure.
 
     Attributes
     ----------
@@ -108,6 +112,43 @@ class StudyResult:
     summary: dict[str, Any]
     out_dir: Path
     figures: Mapping[str, tuple[Path, ...]] = field(default_factory=dict)
+
+    def _summary(self) -> tuple[str, dict[str, Any], None]:
+        rows: dict[str, Any] = {}
+        for stage, value in self.summary.items():
+            if isinstance(value, Mapping):
+                numbers = {k: v for k, v in value.items() if isinstance(v, int | float | str)}
+                shown = [(*split_unit(k), format_value(v)) for k, v in list(numbers.items())[:3]]
+                rows[stage] = ", ".join(f"{q} {v} {u}".rstrip() for q, u, v in shown)
+            else:
+                rows[stage] = value
+        n_fig = sum(len(p) for p in self.figures.values())
+        return f"Study in {self.out_dir} ({n_fig} figures)", dict(list(rows.items())[:16]), None
+
+    def plot(self, name: str | None = None) -> Any:
+        """One of the study's figures as a matplotlib Figure (the PNG it wrote, shown
+        without axes): ``name`` is its file name, default the first figure.
+
+        Raises
+        ------
+        InputError
+            No figure of that name (the message lists those there are).
+        """
+        import matplotlib.image as mpimg
+        from matplotlib.figure import Figure
+
+        paths = [p for group in self.figures.values() for p in group]
+        chosen = [p for p in paths if name is None or p.name == name]
+        if not chosen:
+            names = ", ".join(p.name for p in paths) or "none"
+            raise InputError(f"figure {name!r}: not among this study's figures ({names})")
+        image = mpimg.imread(chosen[0])
+        height, width = image.shape[:2]
+        fig = Figure(figsize=(width / 100, height / 100))
+        ax = fig.add_axes((0, 0, 1, 1))
+        ax.imshow(image)
+        ax.set_axis_off()
+        return fig
 
     def figure_record(self) -> dict[str, list[str]]:
         """The figure record as ``summary.json`` keeps it: file names by section.

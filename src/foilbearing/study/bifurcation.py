@@ -20,7 +20,7 @@ from typing import Any
 
 from foilbearing.case import Case, Grid
 
-__all__ = ["BIFURCATION_STEPS", "READINGS", "bifurcation_stage"]
+__all__ = ["BIFURCATION_STEPS", "READINGS", "bifurcation_stage", "passive_bifurcation_stage"]
 
 #: Cycles of each branch after the two first ones (which decide the type).
 BIFURCATION_STEPS = 3
@@ -166,3 +166,54 @@ def _row(reading: str, volts: float, rec: dict[str, Any], head: dict[str, Any]) 
         "status": rec.get("status"),
         "message": rec.get("error") or head.get("message", ""),
     }
+
+
+#: The passive stage's onset scan on the orbit grid: this fraction either side of the
+#: onset the linear stage found on the static grid (the two grids' onsets differ by a
+#: few percent at most, docs/numerics.md).
+PASSIVE_BRACKET = 0.1
+
+
+def passive_bifurcation_stage(
+    case: Case, out: Path, stage: Callable[[str], None], onset_rpm: float | None
+) -> dict[str, Any]:
+    """A bearing without actuators: the Hopf type and the first limit cycles at its onset.
+
+    The branch of :func:`~foilbearing.bifurcation.bearing.whirl_branch_headline` (what
+    ``foilbearing bifurcation CASE`` prints), on the case's orbit grid, from the onset
+    found in a scan of ±:data:`PASSIVE_BRACKET` around ``onset_rpm`` (the linear
+    stage's onset, rpm), with :data:`BIFURCATION_STEPS` cycles after the first two. Run
+    in this process (one branch: no Dask). Without an onset, says so and runs nothing.
+
+    Returns
+    -------
+    dict
+        The branch's headline, with ``figures`` (``whirl_branch.png``), or a ``message``.
+    """
+    from foilbearing.bifurcation.bearing import whirl_branch_headline
+    from foilbearing.bifurcation.shooting import ShootingError
+    from foilbearing.constants import RPM
+    from foilbearing.errors import InputError, SolverError
+    from foilbearing.io import save_figure
+    from foilbearing.output.plots.bifurcation import plot_whirl_branch
+
+    if onset_rpm is None:
+        stage("bifurcation: no linear onset in the plan's scan, so no Hopf point to start from")
+        return {"bifurcation_type": None, "message": "no linear onset: no branch"}
+    stage(f"bifurcation: Hopf type and the first limit cycles near {onset_rpm:.0f} rpm")
+    low, high = (1 - PASSIVE_BRACKET) * onset_rpm, (1 + PASSIVE_BRACKET) * onset_rpm
+    scan = [float(w) * RPM for w in (low, 0.5 * (low + high), high)]
+    try:
+        head, branch = whirl_branch_headline(case, scan, BIFURCATION_STEPS)
+    except (ShootingError, SolverError, InputError) as exc:  # the study goes on without it
+        stage(f"  bifurcation: {exc}")
+        return {"bifurcation_type": None, "message": str(exc)}
+    if branch is not None:
+        fig = plot_whirl_branch(head, case.title)
+        head["figures"] = [str(save_figure(fig, out / "whirl_branch.png"))]
+        kind = head["bifurcation_type"]
+        stage(f"  bifurcation: {kind} at {head['hopf_speed_rpm']:.0f} rpm ({head['message']})")
+    else:
+        stage(f"  bifurcation: {head['message']}")
+    head["scan_rpm"] = [w / RPM for w in scan]
+    return head

@@ -170,6 +170,13 @@ def run_study_result(
             }
 
         results |= bearing_study(case, plan, out, stage, orbits=orbits)
+        if bifurcation and case.actuators is None:
+            from foilbearing.study.bifurcation import passive_bifurcation_stage
+
+            onset = (results.get("bearing_stability") or {}).get("onset") or {}
+            results["bifurcation"] = passive_bifurcation_stage(
+                case, out, stage, onset.get("onset_speed_rpm")
+            )
         if schedule and case.actuators is not None:
             from foilbearing.study.schedule import schedule_stage
 

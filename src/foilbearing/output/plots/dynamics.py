@@ -8,7 +8,12 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["plot_coefficients", "plot_stability_map", "plot_stack_design"]
+__all__ = [
+    "plot_coefficients",
+    "plot_coefficients_over_speed",
+    "plot_stability_map",
+    "plot_stack_design",
+]
 
 LABELS = (("XX", 0, 0), ("XY", 0, 1), ("YX", 1, 0), ("YY", 1, 1))
 
@@ -37,6 +42,35 @@ def plot_coefficients(fc: Any) -> Figure:
         + (f", {volts} V" if volts else "")
         + f": ε = {h['eccentricity']:.3f}"
     )
+    return fig
+
+
+def plot_coefficients_over_speed(sweep: Any) -> Figure:
+    """Stiffness K_ij (MN/m) and damping C_ij (kN·s/m) against rotor speed, at the
+    sweep's first excitation frequency (or ratio ω_e/ω)."""
+    rpm = sweep.speeds * 30 / np.pi
+    K = np.array([fc.K[0] for fc in sweep.points])
+    C = np.array([fc.C[0] for fc in sweep.points])
+    fig = Figure(figsize=(11, 4.2), layout="constrained")
+    ax_k, ax_c = fig.subplots(1, 2, sharex=True)
+    for name, i, j in LABELS:
+        style = "-" if i == j else "--"
+        ax_k.plot(rpm, K[:, i, j] / 1e6, style, marker="o", ms=3, label=f"K_{name}")
+        ax_c.plot(rpm, C[:, i, j] / 1e3, style, marker="o", ms=3, label=f"C_{name}")
+    for ax in (ax_k, ax_c):
+        ax.set_xlabel("rotor speed (rpm)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    ax_k.set_ylabel("stiffness (MN/m)")
+    ax_c.set_ylabel("damping (kN·s/m)")
+    first = sweep.points[0]
+    at = (
+        f"ω_e/ω = {sweep.frequency_ratios[0]:.3g}"
+        if sweep.frequency_ratios is not None
+        else f"{first.frequencies[0] / (2 * np.pi):.4g} Hz"
+    )
+    case = first.static.case
+    fig.suptitle(f"{case.kind}, {case.operation.load:.4g} N, at {at}")
     return fig
 
 
