@@ -59,6 +59,7 @@ module               responsibility
 ``sweep/``           parameter sweeps on Dask, from a laptop to a cluster
 ``uncertainty/``     uncertainty envelopes and sensitivity indices of a case's readouts
 ``paper``            the paper's reported numbers and ours beside them
+``paper_dynamics``   the paper's onset and orbit rows, ours beside them, with the reasons
 ``headline``         headlines: the unit-named numbers of a result, read off its Dataset
 ``output/``          what the user reads: summaries, figures and the HTML report
 ``export/``          export to other rotordynamics tools (ROSS)

@@ -144,7 +144,7 @@ def _print_table(fc: Any) -> None:
 def _over_speeds(case: Any, speeds: list[float], freqs: Any, args: argparse.Namespace) -> int:
     """The coefficients at each speed of a ``--speed`` list (:func:`~foilbearing.coefficients.
     coefficients_over_speeds`): one dataset along ``speed``, one JSON object per speed."""
-    from foilbearing.coefficients import coefficients_over_speeds
+    from foilbearing.analysis.coefficients import coefficients_over_speeds
     from foilbearing.io import save_figure
 
     target = claim_output(args, args.out)

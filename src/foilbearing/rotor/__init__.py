@@ -24,6 +24,8 @@ module         responsibility
                rotor
 ``stepper``    the nonlinear rotor on the orbit's stepper: every film's compiled kernels, one
                rotor solve
+``record``     the rotor orbit's run record: the rotor and its bearing cases as data, with a
+               sha256
 =============  =================================================================================
 """
 
