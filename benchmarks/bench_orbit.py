@@ -57,7 +57,7 @@ Run: .venv/bin/python benchmarks/bench_orbit.py [--readouts] [--full] [--grid] [
   fresh/kept factor and outcome, mean iterations, and the cost per step (about 10 s).
 
 The cost model behind these figures and every route tried towards the 60 s target:
-docs/orbit-performance.md.
+docs/development/orbit-performance.md.
 """
 
 from __future__ import annotations

@@ -296,11 +296,11 @@ def orbit_comparison(
             "divergence speeds are converged to 0.1 % in the time step and the Newton "
             "tolerance (a contact forced by the imbalance response, as with 8.5 g·mm, to about "
             "1 %), and depend on the disturbance's size only logarithmically "
-            "(docs/orbit-performance.md)"
+            "(docs/development/orbit-performance.md)"
             if disturbance_rms > 0
             else "divergence speeds are good to about 2-7 %: a run ends when a whirl that grew "
             "over many revolutions reaches the clearance, from a seed that is numerical (the "
-            "case has no [disturbance]; docs/orbit-performance.md)"
+            "case has no [disturbance]; docs/development/orbit-performance.md)"
         )
     )
     rows = []
