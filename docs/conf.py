@@ -15,6 +15,7 @@ from pathlib import Path
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
 sys.path.insert(0, str(ROOT / "src"))
+sys.path.insert(0, str(DOCS))  # figure_scraper
 # The gallery's scripts run in this process: no display, and no progress bars.
 os.environ.setdefault("MPLBACKEND", "Agg")
 os.environ.setdefault("FOILBEARING_COMPILE_NOTICE", "0")
@@ -35,7 +36,7 @@ extensions = [
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
-exclude_patterns = ["_build", "**/README.md", "tutorials/*.py", "gallery/*.py"]
+exclude_patterns = ["_build", "**/README.md", "tutorials/*.py", "gallery/*.py", "figure_scraper.py"]
 
 # MyST: anchors for headings down to level 4 (the pages link to their sections by them),
 # $...$ maths, and the GitHub-style tables the pages use.
@@ -50,17 +51,20 @@ numpydoc_xref_param_type = False
 autosummary_generate = True
 autodoc_default_options = {"members": True, "undoc-members": False}
 autodoc_typehints = "none"
+# ROSS (the `ross` extra) takes most of a minute to import on a loaded machine; the
+# reference needs only the names of what foilbearing.rotor imports from it.
+autodoc_mock_imports = ["ross", "ccp"]
 
 sphinx_gallery_conf = {
     "examples_dirs": ["tutorials", "gallery"],
     "gallery_dirs": ["generated/tutorials", "generated/gallery"],
-    "filename_pattern": r"/",  # run every script
+    "filename_pattern": r"/plot_",  # run these; the others are shown, not run
     "download_all_examples": False,
     "remove_config_comments": True,
     "within_subsection_order": "FileNameSortKey",
     "matplotlib_animations": False,
     "show_memory": False,
-    "image_scrapers": ("matplotlib",),
+    "image_scrapers": ("figure_scraper.result_figures", "matplotlib"),
     "abort_on_example_error": True,
 }
 

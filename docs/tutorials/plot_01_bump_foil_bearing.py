@@ -59,7 +59,7 @@ for k, st in zip(speeds_krpm, points, strict=True):
         f"h_min = {st.min_film * 1e6:5.2f} µm, loss {st.power_loss:5.1f} W"
     )
 
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(8, 3.2), layout="constrained")
+fig_map, (ax1, ax2) = plt.subplots(1, 2, figsize=(8, 3.2), layout="constrained")
 ax1.plot(speeds_krpm, [st.min_film * 1e6 for st in points], "o-")
 ax1.set(xlabel="speed (krpm)", ylabel="minimum film (µm)")
 ax2.plot(speeds_krpm, [st.power_loss for st in points], "o-")
@@ -70,7 +70,7 @@ ax2.set(xlabel="speed (krpm)", ylabel="power loss (W)")
 
 st30 = points[2]
 print(st30)
-st30.plot()
+fig = st30.plot()
 
 # %%
 # Stiffness and damping
@@ -80,7 +80,7 @@ st30.plot()
 
 frequencies = [f"{f} Hz" for f in (100, 250, 500, 1000)]
 fc = fb.force_coefficients(st30, frequencies)
-fc.plot()
+fig = fc.plot()
 
 # %%
 # Onset of whirl
@@ -90,7 +90,7 @@ fc.plot()
 
 onset = fb.onset_speed(case)
 print(onset)
-onset.plot()
+fig = onset.plot()
 
 # %%
 # The orbit at 30 krpm
@@ -104,4 +104,4 @@ print(run)
 assert run.status.value == "completed"
 amplitude = np.asarray(run.summary()["one_x_amplitude_0pk_um"])
 print(f"1X amplitude, X and Y: {amplitude.round(2)} µm")
-run.plot()
+fig = run.plot()
