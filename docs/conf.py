@@ -66,6 +66,9 @@ sphinx_gallery_conf = {
     "show_memory": False,
     "image_scrapers": ("figure_scraper.result_figures", "matplotlib"),
     "abort_on_example_error": True,
+    # No page that loads scripts from a CDN (the timing tables), no link off the site.
+    "write_computation_times": False,
+    "show_signature": False,
 }
 
 
@@ -97,6 +100,7 @@ html_theme_options = {
     "footer_start": ["copyright"],
     "footer_end": [],
 }
+html_context = {"default_mode": "light"}
 html_static_path: list[str] = []
 html_show_sourcelink = False
 html_copy_source = False
