@@ -38,6 +38,7 @@ EXECUTED = (
     "generated/gallery/plot_coefficients.html",
     "generated/gallery/plot_onset_map.html",
     "generated/gallery/plot_waterfall.html",
+    "generated/gallery/plot_limit_cycles.html",
 )
 
 
@@ -151,7 +152,7 @@ function search() {
       var d = f.contentDocument, items = d.querySelectorAll('#search-results li');
       var status = d.querySelector('#search-results .search-summary, #search-progress');
       var done = status && /finished|found/i.test(status.textContent);
-      if (done || tries++ > 400) {
+      if (done || tries++ > 6000) {  // 300 s of virtual time
         out({pages: results, search: Array.prototype.map.call(items, function (li) {
           var a = li.querySelector('a'); return a ? a.getAttribute('href') : '';
         })});
@@ -206,7 +207,7 @@ def run_site_in_chromium(
 def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """``make docs``'s build, into a temporary folder, the tutorials and gallery run afresh.
     Longer than a test's 120 s budget under load (about 50 s quiet, 2 minutes with the
-    2 cores shared): it runs seven scripts and reads 100 pages, once for this module."""
+    2 cores shared): it runs eight scripts and reads 100 pages, once for this module."""
     try:
         import sphinx_gallery  # noqa: F401  (the docs extra)
     except ImportError:
@@ -251,6 +252,12 @@ def test_every_section_is_built(site: Path) -> None:
     assert "solve_equilibrium" in static and "Parameters" in static
 
 
+def script_output(page: str) -> str:
+    """What a gallery page's scripts printed, its output blocks' text joined."""
+    blocks = re.findall(r'class="sphx-glr-script-out[^"]*".*?<pre>(.*?)</pre>', page, re.S)
+    return html.unescape(re.sub(r"<[^>]+>", "", "".join(blocks))).strip()
+
+
 def test_the_tutorials_and_gallery_ran(site: Path) -> None:
     """Each executed script's page shows its printed output and at least one figure of its
     own; the numbers they print say what the pages claim."""
@@ -263,6 +270,10 @@ def test_the_tutorials_and_gallery_ran(site: Path) -> None:
     gain = re.search(r"150 V raises the onset by (-?\d+) %", voltage)
     assert gain and 15 <= int(gain.group(1)) <= 40, gain
     assert "8 of 8 points, 0 failed" in (site / EXECUTED[2]).read_text(encoding="utf-8")
+    # The paper's bounded whip at 150 V: a supercritical Hopf bifurcation, every cycle stable
+    cycles = script_output((site / EXECUTED[7]).read_text(encoding="utf-8"))
+    assert cycles.startswith("supercritical Hopf bifurcation"), cycles
+    assert cycles.count(", stable") >= 3 and "unstable" not in cycles, cycles
 
 
 def test_every_link_and_anchor_resolves_inside_the_site(site: Path) -> None:
