@@ -1,13 +1,13 @@
 # Two commands for a fresh clone (README): `make run` and `make test`.
 # Each creates the virtual environment and installs what it needs: one venv on Python >= 3.13
-# with foilbearing[dev,ross] (scripts/setup_venv.sh finds the interpreter; PYTHON=... names one).
+# with foilbearing[dev,ross,docs] (scripts/setup_venv.sh finds the interpreter; PYTHON=... names one).
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 # The versions CI passed: every install takes its packages from this lock file (`make lock`).
 LOCK := constraints.txt
 
-.PHONY: run test lint api bench mutation lock clean
+.PHONY: run test lint api docs bench mutation lock clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	bash scripts/setup_venv.sh
@@ -23,8 +23,8 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -q -n auto --dist loadfile --durations=15 --cov --cov-report=term
 
 lint: $(STAMP)
-	$(BIN)/ruff check src tests benchmarks scripts examples
-	$(BIN)/ruff format --check src tests benchmarks scripts examples
+	$(BIN)/ruff check src tests benchmarks scripts examples docs
+	$(BIN)/ruff format --check src tests benchmarks scripts examples docs
 	$(BIN)/mypy
 
 # The HTML API reference, generated from the docstrings (numpydoc) by pdoc, into build/api.
@@ -34,6 +34,13 @@ api: $(STAMP)
 		$$(cd src && ls -d foilbearing/*/ foilbearing/*.py | grep -v '__\|cases\|data' \
 		| sed 's#/$$##; s#\.py$$##; s#/#.#g')
 	@echo "API reference: build/api/index.html"
+
+# The documentation site (docs/, Sphinx + MyST + sphinx-gallery) into build/docs, warnings as
+# errors; the tutorials and the gallery run during the build (coarse grids: about a minute).
+docs: $(STAMP)
+	rm -rf build/docs build/docs-doctrees docs/generated docs/api/generated
+	$(BIN)/sphinx-build -b html -W --keep-going -q -d build/docs-doctrees docs build/docs
+	@echo "Documentation: build/docs/index.html"
 
 bench: $(STAMP)
 	for f in benchmarks/bench_*.py; do $(BIN)/python $$f || exit 1; done
@@ -52,4 +59,4 @@ lock:
 	bash scripts/setup_venv.sh --lock
 
 clean:
-	rm -rf $(VENV) out build mutants .pytest_cache .mypy_cache
+	rm -rf $(VENV) out build mutants .pytest_cache .mypy_cache docs/generated docs/api/generated

@@ -27,7 +27,7 @@ printed. The load is integrated in Z through a cubic spline of each θ-row (four
 mirror image and the edge value included); in θ by the periodic midpoint rule. Each result
 is compared with the Richardson extrapolation of the fourth-order runs on 48 and 96 cells.
 
-The answer is in docs/orbit-performance.md ("Route 2 measured").
+The answer is in docs/development/orbit-performance.md ("Route 2 measured").
 """
 
 from __future__ import annotations

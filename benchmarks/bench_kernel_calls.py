@@ -7,7 +7,7 @@ On an 8 × 2 grid the work inside a kernel is tiny, so the time of a call is mos
 dispatch: typing the arguments (the kernels take grouped plain tuples,
 ``reynolds/_kernels/groups.py``) and unpacking the result. It prints the median and the
 minimum over 7 repeats of 20,000 calls of the compiled Newton step, the Newton solve with one
-factor and the BDF set-up. docs/orbit-performance.md ("Grouped kernel arguments") compares
+factor and the BDF set-up. docs/development/orbit-performance.md ("Grouped kernel arguments") compares
 these with the kernels' earlier separate arguments.
 """
 

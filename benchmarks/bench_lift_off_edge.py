@@ -21,7 +21,7 @@ The law: each cell obeys (P − 1)·y/Λ = δ², δ = κΔθ² (``[grid] lift_of
   grid (96 x 12, κ = 0.1), the new orbit grid (96 x 4 order 4, κ = 0.1), that orbit grid
   at κ = 0.2, 192 x 24 and 384 x 24 of the sharp law and 384 x 24 and 768 x 24 at κ = 0.2
   (the reference: the sharp law finds no equilibrium on 768 θ cells), each with its
-  largest gap to the reference (docs/orbit-performance.md, "The smoothing's own error:
+  largest gap to the reference (docs/development/orbit-performance.md, "The smoothing's own error:
   κ = 0.1").
 
 Without an option ``--onsets`` and ``--steps`` run. The figures and what they mean: docs/lift-off.md, "The

@@ -24,7 +24,7 @@ the convergence of its divergence speed (``bench_orbit_divergence.py``: ``--dive
 script says where it moved.
 
 The cost model behind these figures and every route tried towards the 60 s target:
-docs/orbit-performance.md.
+docs/development/orbit-performance.md.
 """
 
 from __future__ import annotations

@@ -12,7 +12,7 @@ Run: .venv/bin/python benchmarks/bench_orbit_divergence.py --divergence | --dist
   converged to 0.2 % (eight runs, two at a time; about 8 minutes).
 
 The cost model behind these figures and every route tried towards the 60 s target:
-docs/orbit-performance.md.
+docs/development/orbit-performance.md.
 """
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ Run: .venv/bin/python benchmarks/bench_orbit_grids.py [--grid] [--axial-order]
   3 minutes).
 
 The cost model behind these figures and every route tried towards the 60 s target:
-docs/orbit-performance.md.
+docs/development/orbit-performance.md.
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ Run: .venv/bin/python benchmarks/bench_orbit_steps.py [--steps] [--newton] [--re
   fresh/kept factor and outcome, mean iterations, and the cost per step (about 10 s).
 
 The cost model behind these figures and every route tried towards the 60 s target:
-docs/orbit-performance.md.
+docs/development/orbit-performance.md.
 - ``--refresh``: route 4 of issue 30, a fresh factor at the start of a step after a step
   that took more than T iterations (T = 0: a fresh factor every step), on three orbits of
   0.05 s and on 96 x 12 and 96 x 6: iterations and factorisations per step, the cost by
@@ -26,7 +26,7 @@ docs/orbit-performance.md.
   0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
 
 The cost model behind these figures and every route tried towards the 60 s target:
-docs/orbit-performance.md.
+docs/development/orbit-performance.md.
 """
 
 from __future__ import annotations

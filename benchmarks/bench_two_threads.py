@@ -13,7 +13,7 @@ Run: .venv/bin/python benchmarks/bench_two_threads.py [--orbit]
   alternated, three runs each (about 2 minutes).
 
 The ``prange`` version is compiled here (not cached); it is not used by the package:
-docs/orbit-performance.md, "The second core", says why.
+docs/development/orbit-performance.md, "The second core", says why.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Create .venv (Python >= 3.13) with foilbearing[dev,ross] installed: the one environment of
+# Create .venv (Python >= 3.13) with foilbearing[dev,ross,docs] installed: the one environment of
 # `make run`, `make test` and the ROSS export.
 #
 # ROSS >= 3.0 (ross-rotordynamics, an ordinary extra) needs Python >= 3.13, and so does the
@@ -87,15 +87,15 @@ if ! is_py313 "$VENV/bin/python"; then
     "$PY" -m venv "$VENV"
 fi
 
-say "installing -e '.[dev,ross]' into $VENV (first time: a few minutes)"
+say "installing -e '.[dev,ross,docs]' into $VENV (first time: a few minutes)"
 "$VENV/bin/python" -m pip install --quiet --upgrade pip
 if [ "$relock" = 1 ]; then
-    "$VENV/bin/python" -m pip install --quiet -e '.[dev,ross]'
+    "$VENV/bin/python" -m pip install --quiet -e '.[dev,ross,docs]'
     { echo "# The versions CI passed, for $("$VENV/bin/python" -V). Refresh: make lock, then .ci/run."
       "$VENV/bin/python" -m pip freeze --exclude-editable; } > "$LOCK"
     say "wrote $LOCK"
 else
-    "$VENV/bin/python" -m pip install --quiet -c "$LOCK" -e '.[dev,ross]'
+    "$VENV/bin/python" -m pip install --quiet -c "$LOCK" -e '.[dev,ross,docs]'
 fi
 touch "$STAMP"
 # numba compiles the film kernels on first use and caches them beside the sources: compile them

@@ -3,7 +3,7 @@
 without cycles. Every import counts: at module level, inside functions, and under
 ``TYPE_CHECKING`` (a type-only import back is still a loop a reader must untangle). No module
 of ``src/`` or ``benchmarks/`` exceeds 600 lines, and each package's docstring carries its
-module → responsibility table, the same as docs/architecture.md's."""
+module → responsibility table, the same as docs/development/architecture.md's."""
 
 from __future__ import annotations
 
@@ -240,7 +240,7 @@ def docstring_table(docstring: str) -> dict[str, str]:
 
 
 def markdown_tables(text: str) -> dict[str, dict[str, str]]:
-    """The tables of docs/architecture.md's "Packages" section: package → module → responsibility."""
+    """The tables of docs/development/architecture.md's "Packages" section: package → module → responsibility."""
     section = text.split("## Packages", 1)[1].split("\n## ", 1)[0]
     tables: dict[str, dict[str, str]] = {}
     for block in section.split("\n### ")[1:]:
@@ -272,7 +272,7 @@ def test_a_package_docstring_tables_its_modules_as_the_architecture_does(package
         f"not a module {sorted(set(table) - entries)}"
     )
     docs = markdown_tables((ROOT / "docs" / "architecture.md").read_text(encoding="utf-8"))
-    assert docs.get(package) == table, f"docs/architecture.md's table of {package} differs"
+    assert docs.get(package) == table, f"docs/development/architecture.md's table of {package} differs"
 
 
 def test_the_table_readers_see_a_missing_module_and_a_changed_row(tmp_path: Path) -> None:

@@ -167,7 +167,7 @@ def test_a_cell_on_its_factor_s_scale_obeys_the_same_law() -> None:
     # (TransientSystem.smoothed_scales): (s_k/2)(x + g/s_k − √((x − g/s_k)² + 4δ²Λ s/s_k))
     # vanishes on the same curve x g = s δ²Λ. So at any state each cell's row has the sign
     # of the law's row, and the two vanish together. The scales differ from s by orders of
-    # magnitude (that is their point: docs/orbit-performance.md, "One scale a cell").
+    # magnitude (that is their point: docs/development/orbit-performance.md, "One scale a cell").
     case = _case(100.0, 0.2, 32, 4, 2)
     sim = OrbitSimulation(case, constant_speed(20e3 * RPM, 0.01))
     sys_, n = sim.system, sim.system.n

@@ -234,7 +234,7 @@ class Disturbance:
     from the generator seeded by ``seed`` (:mod:`foilbearing.orbit.disturbance`). It
     seeds the growth of a whirl past its onset: without it the seed is whatever the
     numerics leave, and a speed-up's divergence speed depends on the solver's
-    tolerances (docs/orbit-performance.md).
+    tolerances (docs/development/orbit-performance.md).
     """
 
     force_rms: float  # N, RMS of the force along each of X and Y
@@ -255,7 +255,7 @@ class Operation:
 
 #: Fewest θ cells across a stinger arc (or a shim) on an orbit's grid: the stinger's
 #: compliance and its mean pressure are taken over the cells of its arc, and a coarser
-#: grid sees the actuator in one cell or none (docs/orbit-performance.md, "The orbit's grid").
+#: grid sees the actuator in one cell or none (docs/development/orbit-performance.md, "The orbit's grid").
 MIN_CELLS_PER_STINGER = 2
 
 

@@ -27,7 +27,7 @@ for a law's compiled form (``lift_off.smoothed_edge_kernel``), so that reading a
 does not load the compiler. A new law is a new
 module here (or a new peer class in the module of its kind) with the same forms; a
 law with a compiled form is listed in ``reynolds/_kernels/__init__.py`` so that a change
-of it drops the kernels' on-disk caches (docs/architecture.md, "Laws").
+of it drops the kernels' on-disk caches (docs/development/architecture.md, "Laws").
 """
 
 from foilbearing.laws.actuator import READINGS, ActuatorReading

@@ -16,7 +16,7 @@ disturbance the seed is what the numerics leave (the unconverged Newton residual
 and a speed-up's divergence speed then depends on the solver's tolerance, by
 several per cent (a slow passage through the Hopf bifurcation is delayed by how
 small the seed is). A defined disturbance larger than the numerical seed makes it
-a property of the bearing again (docs/orbit-performance.md).
+a property of the bearing again (docs/development/orbit-performance.md).
 """
 
 from __future__ import annotations

@@ -70,7 +70,7 @@ class OrbitSettings:
     order
         Order of the variable-step BDF (1-4). The default, 3 at 24 steps per
         revolution, keeps the orbit within 1 % of a converged run (0.8 % of the
-        orbit's extent on the benchmark segment, see ``docs/orbit-performance.md``);
+        orbit's extent on the benchmark segment, see ``docs/development/orbit-performance.md``);
         BDF2 needs about 40 steps per revolution for the same. BDF3 is not
         A-stable (A(86°)), but its stability wedge holds the film's decaying
         modes, and the 1X and whirl motions (ωΔt <= 0.26) lie where it is
@@ -98,7 +98,7 @@ class OrbitSettings:
         times cheaper on a 6-cell axial grid; on 96 × 12 it gains a few per cent on large
         orbits and nothing on a whole 1 g·mm speed-up; the solution is the same to the
         Newton tolerance (``benchmarks/bench_orbit_steps.py --refresh``;
-        docs/orbit-performance.md, "Route 4").
+        docs/development/orbit-performance.md, "Route 4").
 
     The Newton defaults (``newton_tol = 0.3``, ``newton_fraction = 0.001``,
     ``max_newton = 10``) converge the iteration far below the step's truncation
@@ -128,7 +128,7 @@ class OrbitSettings:
     (``tests/test_orbit.py::test_newton_tolerance_does_not_move_the_divergence``).
     A case's ``[disturbance]`` (the default case has one) is a defined seed: with
     it the 0 V, 1 g·mm speed-up diverges at 52.7 krpm within 0.15 % of the step
-    and the tolerance (docs/orbit-performance.md).
+    and the tolerance (docs/development/orbit-performance.md).
     The orbit error left at constant speed is below 1 % of the time-step error
     (``test_newton_error_is_well_below_the_time_step_error``).
     """

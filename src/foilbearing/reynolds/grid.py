@@ -21,7 +21,7 @@ is the 5-point fourth-order second derivative at the centres, with mirrored ghos
 mid-plane and, beyond the end, the cubic through the last three centres and ``ψ = 1`` on
 the end face). The axial means and the force quadrature follow the order: the plain mean
 at second order, a cubic-spline quadrature (the mirror image and ``P = 1`` at the end
-included) at fourth order (docs/orbit-performance.md, "Route 2 built").
+included) at fourth order (docs/development/orbit-performance.md, "Route 2 built").
 """
 
 from __future__ import annotations

@@ -507,7 +507,7 @@ class TransientSystem:
         4δ²Λ s/s_k))`` vanishes on the same curve ``x g = s δ²Λ`` whatever s_k, so the
         law and its solutions do not depend on it; the rows' sizes do, and a factor
         whose rows keep their size when a cell crosses the kink stays good
-        (docs/orbit-performance.md, "One scale a cell").
+        (docs/development/orbit-performance.md, "One scale a cell").
         """
         s = np.full(self.n, self.smooth_scale)
         if lift_state is not None:

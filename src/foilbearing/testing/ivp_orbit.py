@@ -20,7 +20,7 @@ whose pressure would fall is held there, and one below it returns. The law is
 continuous in P (it has no threshold at P = 1), so which cells are held does
 not jump with the round-off of a state; a law that held a cell only once it
 was at or below ambient did, and solve_ivp's cost swung with it, from 14 s to
-over 15 minutes on the lift-off test (docs/orbit-performance.md, "The
+over 15 minutes on the lift-off test (docs/development/orbit-performance.md, "The
 lift-off reference"). The rows' rank-one systems are solved with the held
 cells' rates given. The reference converges to the fast stepper as τ → 0
 (measured on the test segment, max |Δe| over the orbit's extent: 0.02 % at

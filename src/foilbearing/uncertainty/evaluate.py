@@ -30,7 +30,7 @@ STATIC_QUANTITIES = (
 STABILITY_QUANTITIES = ("onset_speed_krpm", "whirl_frequency_Hz")
 #: Brent's tolerance on each sample's onset, relative to the speed (0.1 %). The
 #: spread over the samples is tens of per cent and the grid's own error about 1.7 %
-#: (docs/orbit-performance.md), so a finer root buys nothing; it saves 3 of the 43
+#: (docs/development/orbit-performance.md), so a finer root buys nothing; it saves 3 of the 43
 #: equilibria of the default case's four onsets.
 ONSET_REL_TOL = 1e-3
 #: Readouts of a speed-up (the orbit's signal analysis, :mod:`foilbearing.orbit.analysis`).

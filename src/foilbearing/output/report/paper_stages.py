@@ -299,7 +299,7 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
     note = (
         '<p class="note">Speed-up from 3 to 90 krpm at 500 rad/s²; each run says its voltage '
         "program and imbalance (the paper's ramps go up from 0 between 6.0 and 6.5 s, about "
-        f"32.6 krpm).{named} {seed} (docs/orbit-performance.md in the repository); the "
+        f"32.6 krpm).{named} {seed} (docs/development/orbit-performance.md in the repository); the "
         "linear onsets do not depend on it.</p>"
     )
     return note + _records([r for r in d.get("runs", []) if isinstance(r, dict)], cols)

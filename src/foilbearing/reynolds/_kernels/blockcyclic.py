@@ -26,7 +26,7 @@ DataArray = NDArray[Any]  # float64, or complex128 (the perturbation at a freque
 # 2 n_z × 2 n_z Schur complement S. (The chains could go to two threads: with
 # numba's OpenMP layer that halves the factorisation in isolation, 0.22 against
 # 0.47 ms on 96 × 12, but it gained nothing measurable inside the orbit
-# (benchmarks/bench_two_threads.py; docs/orbit-performance.md, "The second
+# (benchmarks/bench_two_threads.py; docs/development/orbit-performance.md, "The second
 # core"). GNU OpenMP is also not fork-safe for the study's process pool, and
 # the study's runs already fill both cores, so it is not done.)
 #

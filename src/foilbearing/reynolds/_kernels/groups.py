@@ -18,7 +18,7 @@ Why plain tuples: numba types a plain tuple of arrays in its C dispatcher, and
 a named tuple field by field in Python. Measured on one Newton step of an
 8 × 2 grid (dispatch dominates), the old call with 35 separate arguments took
 6.3 µs, the grouped call 8.8 µs with plain tuples and 13 µs with named tuples
-(docs/orbit-performance.md, "Grouped kernel arguments").
+(docs/development/orbit-performance.md, "Grouped kernel arguments").
 """
 
 from __future__ import annotations

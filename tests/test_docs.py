@@ -1,0 +1,320 @@
+"""The documentation site (``make docs``): it builds with warnings as errors, its tutorials
+and gallery run during the build, and every page works in headless Chromium: it loads
+without a console error, its images decode, its links and anchors resolve, and the search
+page finds what the site says.
+
+The build runs the executed tutorials and gallery afresh (``run_stale_examples``) on their
+coarse grids: about 50 s on a quiet 2-core machine, 2 minutes under load; the Chromium pass
+over every page takes about 10 s.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from html.parser import HTMLParser
+from pathlib import Path
+from typing import Any
+from urllib.parse import unquote, urlsplit
+
+import pytest
+
+from test_report import chromium
+
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = ROOT / "docs"
+
+#: The executed tutorials and gallery examples: each page must show its output and a figure.
+EXECUTED = (
+    "generated/tutorials/plot_01_bump_foil_bearing.html",
+    "generated/tutorials/plot_02_cgfb_voltage.html",
+    "generated/tutorials/plot_03_sweep_dask.html",
+    "generated/gallery/plot_static_map.html",
+    "generated/gallery/plot_coefficients.html",
+    "generated/gallery/plot_onset_map.html",
+    "generated/gallery/plot_waterfall.html",
+    "generated/gallery/plot_limit_cycles.html",
+)
+
+
+# --- the site's HTML, parsed -------------------------------------------------------
+
+
+class _Links(HTMLParser):
+    """The ids of a page and every URL it refers to (href of a, link; src of img, script)."""
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.ids: set[str] = set()
+        self.urls: list[str] = []
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        a = {k: v or "" for k, v in attrs}
+        if "id" in a:
+            self.ids.add(a["id"])
+        if tag == "a" and "name" in a:
+            self.ids.add(a["name"])
+        key = {"a": "href", "link": "href", "img": "src", "script": "src"}.get(tag)
+        if key and a.get(key):
+            self.urls.append(a[key])
+
+
+def site_pages(site: Path) -> list[Path]:
+    """The pages of the site: its HTML files but the theme's templates in ``_static``."""
+    return [p for p in sorted(site.rglob("*.html")) if "_static" not in p.relative_to(site).parts]
+
+
+def parse_site(site: Path) -> dict[Path, _Links]:
+    """Every HTML page of ``site``, parsed."""
+    pages = {}
+    for page in site_pages(site):
+        parser = _Links()
+        parser.feed(page.read_text(encoding="utf-8"))
+        pages[page] = parser
+    return pages
+
+
+def broken_links(site: Path) -> list[str]:
+    """Each URL of the site that leaves it or does not resolve: a missing file, or an anchor
+    that its page does not have. One line each, naming the page and the URL."""
+    pages = parse_site(site)
+    bad = []
+    for page, links in pages.items():
+        where = page.relative_to(site)
+        for url in links.urls:
+            parts = urlsplit(url)
+            if parts.scheme in ("http", "https") or url.startswith("//"):
+                bad.append(f"{where}: {url} leaves the site")
+                continue
+            if parts.scheme or not (parts.path or parts.fragment):
+                continue  # mailto:, javascript:, data: and a bare "#"
+            target = (page.parent / unquote(parts.path)).resolve() if parts.path else page
+            if target.is_dir():
+                target = target / "index.html"
+            if not target.is_file():
+                bad.append(f"{where}: {url} has no file")
+            elif parts.fragment and target.suffix == ".html":
+                ids = pages[target].ids if target in pages else set()
+                if unquote(parts.fragment) not in ids:
+                    bad.append(f"{where}: {url} has no anchor #{parts.fragment}")
+    return bad
+
+
+# --- the site in Chromium --------------------------------------------------------
+
+#: Put first in each page's <head>: records what goes wrong as the page loads (a resource
+#: that fails, in the capture phase; an uncaught error; console.error and console.warn) in
+#: ``window.fbErrors``. The theme's console.log/info/debug notes are not errors.
+PROBE = """<script>(function(){var e=window.fbErrors=[];
+window.addEventListener('error',function(v){var t=v.target;
+e.push(t&&t!==window&&t.tagName?'failed to load <'+t.tagName+'> '+String(t.src||t.href)
+:'uncaught: '+v.message);},true);
+window.addEventListener('unhandledrejection',function(v){e.push('unhandled: '+v.reason);});
+['error','warn'].forEach(function(k){var o=console[k];console[k]=function(){
+e.push('console.'+k+': '+Array.prototype.join.call(arguments,' '));o.apply(console,arguments);};});
+})();</script>"""
+
+#: Loads each page in turn in an iframe (same origin: --allow-file-access-from-files),
+#: makes its lazy images load and waits for every image to decode, reads the probe's
+#: errors, then opens the search page with a query and waits for its results.
+DRIVER = """<!DOCTYPE html><html><head><meta charset="utf-8"><title>check</title></head>
+<body><iframe id="f" style="width:1280px;height:900px"></iframe><pre id="fb-out"></pre>
+<script>
+var pages = %(pages)s, query = %(query)s, results = [];
+var f = document.getElementById('f');
+function out(r) { document.getElementById('fb-out').textContent = JSON.stringify(r); }
+function check(i) {
+  if (i >= pages.length) { return search(); }
+  f.onload = function () {
+    var imgs = Array.prototype.slice.call(f.contentDocument.images);
+    imgs.forEach(function (im) { im.loading = 'eager'; });
+    Promise.all(imgs.map(function (im) {
+      return im.decode().then(function () { return im.naturalWidth > 0 ? null : im.src; },
+                              function () { return im.getAttribute('src'); });
+    })).then(function (broken) {
+      results.push({page: pages[i], images: imgs.length,
+                    broken: broken.filter(function (b) { return b !== null; }),
+                    errors: f.contentWindow.fbErrors || ['no probe']});
+      check(i + 1);
+    });
+  };
+  f.src = pages[i];
+}
+function search() {
+  f.onload = function () {
+    var tries = 0;
+    (function poll() {
+      var d = f.contentDocument, items = d.querySelectorAll('#search-results li');
+      var status = d.querySelector('#search-results .search-summary, #search-progress');
+      var done = status && /finished|found/i.test(status.textContent);
+      if (done || tries++ > 6000) {  // 300 s of virtual time
+        out({pages: results, search: Array.prototype.map.call(items, function (li) {
+          var a = li.querySelector('a'); return a ? a.getAttribute('href') : '';
+        })});
+      } else { setTimeout(poll, 50); }
+    })();
+  };
+  f.src = 'search.html?q=' + encodeURIComponent(query);
+}
+check(0);
+</script></body></html>"""
+
+
+def run_site_in_chromium(
+    site: Path, pages: list[str], query: str, tmp: Path
+) -> tuple[dict[str, Any], list[str]]:
+    """Each of ``pages`` (relative to ``site``) in Chromium, then the search for ``query``:
+    the driver's result and chromium's console lines. Runs on a copy of ``site`` in
+    ``tmp`` whose pages carry the probe."""
+    site = Path(shutil.copytree(site, tmp / "probed"))
+    for page in pages:
+        path = site / page
+        text = path.read_text(encoding="utf-8")
+        head = re.search(r"<head[^>]*>", text)
+        assert head, f"{page}: no <head>"
+        path.write_text(text[: head.end()] + PROBE + text[head.end() :], encoding="utf-8")
+    driver = site / "_browser_check.html"
+    driver.write_text(
+        DRIVER % {"pages": json.dumps(pages), "query": json.dumps(query)}, encoding="utf-8"
+    )
+    cmd = [
+        chromium(),
+        "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync",
+        "--disable-extensions", "--host-resolver-rules=MAP * ~NOTFOUND",
+        "--allow-file-access-from-files",
+        f"--user-data-dir={tmp / 'chromium-profile'}", "--enable-logging=stderr", "--v=0",
+        "--virtual-time-budget=600000", "--dump-dom", driver.as_uri(),
+    ]  # fmt: skip
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300, check=False)
+    m = re.search(r'<pre id="fb-out">(.*?)</pre>', proc.stdout, re.S)
+    assert proc.returncode == 0 and m and m.group(1), (
+        f"chromium failed (rc {proc.returncode}):\n{proc.stderr[-3000:]}"
+    )
+    console = [line for line in proc.stderr.splitlines() if ":CONSOLE" in line]
+    return json.loads(html.unescape(m.group(1))), console
+
+
+# --- the build -----------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """``make docs``'s build, into a temporary folder, the tutorials and gallery run afresh.
+    Longer than a test's 120 s budget under load (about 50 s quiet, 2 minutes with the
+    2 cores shared): it runs eight scripts and reads 100 pages, once for this module."""
+    try:
+        import sphinx_gallery  # noqa: F401  (the docs extra)
+    except ImportError:
+        message = "the docs extra is not installed: pip install -c constraints.txt '.[docs]'"
+        if os.environ.get("CI"):
+            pytest.fail(message)
+        pytest.skip(message)
+    out = tmp_path_factory.mktemp("docs")
+    env = {**os.environ, "MPLBACKEND": "Agg", "FOILBEARING_COMPILE_NOTICE": "0"}
+    cmd = [
+        sys.executable, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q",
+        "-d", str(out / "doctrees"), "-D", "sphinx_gallery_conf.run_stale_examples=1",
+        str(DOCS), str(out / "html"),
+    ]  # fmt: skip
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900, check=False)
+    assert proc.returncode == 0, f"sphinx-build failed:\n{proc.stdout[-3000:]}{proc.stderr[-5000:]}"
+    assert "WARNING" not in proc.stderr, proc.stderr[-5000:]
+    return out / "html"
+
+
+def test_every_section_is_built(site: Path) -> None:
+    """The sections of the site, each with its pages; the API reference from the docstrings."""
+    for page in (
+        "index.html",
+        "getting-started.html",
+        "generated/tutorials/index.html",
+        "generated/gallery/index.html",
+        "guide/index.html",
+        "guide/commands.html",
+        "case-format.html",
+        "rotor-format.html",
+        "theory.html",
+        "lift-off.html",
+        "api/index.html",
+        "api/generated/foilbearing.static.html",
+        "development/index.html",
+        "development/orbit-performance.html",
+        "search.html",
+    ):
+        assert (site / page).is_file(), page
+    static = (site / "api/generated/foilbearing.static.html").read_text(encoding="utf-8")
+    assert "solve_equilibrium" in static and "Parameters" in static
+
+
+def script_output(page: str) -> str:
+    """What a gallery page's scripts printed, its output blocks' text joined."""
+    blocks = re.findall(r'class="sphx-glr-script-out[^"]*".*?<pre>(.*?)</pre>', page, re.S)
+    return html.unescape(re.sub(r"<[^>]+>", "", "".join(blocks))).strip()
+
+
+def test_the_tutorials_and_gallery_ran(site: Path) -> None:
+    """Each executed script's page shows its printed output and at least one figure of its
+    own; the numbers they print say what the pages claim."""
+    for name in EXECUTED:
+        text = (site / name).read_text(encoding="utf-8")
+        assert "sphx-glr-script-out" in text, f"{name}: no output"
+        assert re.search(r'<img[^>]+src="[^"]*sphx_glr_plot_\w+_\d{3}\.png"', text), name
+    voltage = (site / EXECUTED[1]).read_text(encoding="utf-8")
+    # What a voltage buys: 150 V lifts the C-GFB's onset (43.9 to 55.2 krpm on the default grid)
+    gain = re.search(r"150 V raises the onset by (-?\d+) %", voltage)
+    assert gain and 15 <= int(gain.group(1)) <= 40, gain
+    assert "8 of 8 points, 0 failed" in (site / EXECUTED[2]).read_text(encoding="utf-8")
+    # The paper's bounded whip at 150 V: a supercritical Hopf bifurcation, every cycle stable
+    cycles = script_output((site / EXECUTED[7]).read_text(encoding="utf-8"))
+    assert cycles.startswith("supercritical Hopf bifurcation"), cycles
+    assert cycles.count(", stable") >= 3 and "unstable" not in cycles, cycles
+
+
+def test_every_link_and_anchor_resolves_inside_the_site(site: Path) -> None:
+    assert broken_links(site) == []
+
+
+def test_every_page_loads_cleanly_in_headless_chromium(site: Path, tmp_path: Path) -> None:
+    """Every page without a console message, every image decoded; the search page finds the
+    case format for a word of it."""
+    pages = [str(p.relative_to(site)) for p in site_pages(site)]
+    result, console = run_site_in_chromium(site, pages, "eccentricity", tmp_path)
+    assert [r["page"] for r in result["pages"]] == pages
+    assert [r for r in result["pages"] if r["broken"] or r["errors"]] == []
+    assert [line for line in console if "Uncaught" in line] == []
+    assert sum(r["images"] for r in result["pages"]) >= 2 * len(EXECUTED)
+    assert any(href.startswith("case-format.html") for href in result["search"]), result["search"]
+
+
+def test_the_checks_catch_a_broken_site(tmp_path: Path) -> None:
+    """A negative control: a missing page, a missing anchor, a link off the site, an image
+    that does not decode and a script error are each seen."""
+    site = tmp_path / "site"
+    site.mkdir()
+    (site / "search.html").write_text("<html><body><ul id='search-results'></ul></body></html>")
+    (site / "bad.png").write_bytes(b"not a png")
+    (site / "index.html").write_text(
+        "<!DOCTYPE html><html><head><title>x</title></head><body id='top'>"
+        '<a href="#top">ok</a><a href="missing.html">gone</a><a href="search.html#nowhere">x</a>'
+        '<a href="https://example.invalid/">out</a><img alt="bad" src="bad.png">'
+        "<script>console.log('a note is fine'); undefinedFunction();</script></body></html>",
+        encoding="utf-8",
+    )
+    assert broken_links(site) == [
+        "index.html: missing.html has no file",
+        "index.html: search.html#nowhere has no anchor #nowhere",
+        "index.html: https://example.invalid/ leaves the site",
+    ]
+    result, console = run_site_in_chromium(site, ["index.html"], "x", tmp_path)
+    [page] = result["pages"]
+    assert page["page"] == "index.html" and page["images"] == 1 and page["broken"] == ["bad.png"]
+    assert any("undefinedFunction" in e for e in page["errors"])
+    assert any("failed to load <IMG>" in e for e in page["errors"])
+    assert any("undefinedFunction" in line for line in console)
+    assert result["search"] == []
