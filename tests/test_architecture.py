@@ -271,8 +271,12 @@ def test_a_package_docstring_tables_its_modules_as_the_architecture_does(package
         f"{package}'s docstring table: missing {sorted(entries - set(table))}, "
         f"not a module {sorted(set(table) - entries)}"
     )
-    docs = markdown_tables((ROOT / "docs" / "architecture.md").read_text(encoding="utf-8"))
-    assert docs.get(package) == table, f"docs/development/architecture.md's table of {package} differs"
+    docs = markdown_tables(
+        (ROOT / "docs" / "development" / "architecture.md").read_text(encoding="utf-8")
+    )
+    assert docs.get(package) == table, (
+        f"docs/development/architecture.md's table of {package} differs"
+    )
 
 
 def test_the_table_readers_see_a_missing_module_and_a_changed_row(tmp_path: Path) -> None:

@@ -76,6 +76,8 @@ _CAPTIONS = {
     "K_p under each reading of the actuator, beside the shimmed GFB.",
     "whirl_branches.png": "Limit-cycle branches from each linear onset: whirl amplitude "
     "against speed, stable and unstable cycles, per reading and voltage.",
+    "whirl_branch.png": "The limit-cycle branch from the linear onset: whirl amplitude and "
+    "frequency against speed, stable and unstable cycles (the Hopf bifurcation's type).",
     "static_vs_speed.png": "Eccentricity, attitude angle, minimum film and power loss against "
     "speed at the case load.",
     "load_capacity.png": "Eccentricity, attitude angle, minimum film and power loss against "
