@@ -7,7 +7,7 @@ STAMP := $(VENV)/.installed
 # The versions CI passed: every install takes its packages from this lock file (`make lock`).
 LOCK := constraints.txt
 
-.PHONY: run test lint api docs bench mutation lock clean
+.PHONY: run test docs-check lint api docs bench mutation lock clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	bash scripts/setup_venv.sh
@@ -20,7 +20,13 @@ run: $(STAMP)
 # measured and printed ([tool.coverage] in pyproject.toml); under 90 % the target fails.
 test: $(STAMP)
 	bash scripts/setup_chromium.sh
-	$(BIN)/python -m pytest -q -n auto --dist loadfile --durations=15 --cov --cov-report=term
+	$(BIN)/python -m pytest -q -n auto --dist loadfile --durations=15 --cov --cov-report=term -m "not browser"
+
+# The docs site loaded page by page in headless Chromium (tests/test_docs.py, marker
+# browser), alone on the machine: CI runs it after `make test`.
+docs-check: $(STAMP)
+	bash scripts/setup_chromium.sh
+	$(BIN)/python -m pytest -q -p no:cacheprovider -m browser tests/test_docs.py
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks scripts examples docs

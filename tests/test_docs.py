@@ -280,6 +280,9 @@ def test_every_link_and_anchor_resolves_inside_the_site(site: Path) -> None:
     assert broken_links(site) == []
 
 
+# Run alone (`make docs-check`, a phase of .ci/run), not beside the suite's other workers:
+# one run of ~100 pages under load returned an empty page once (the cause is not yet known).
+@pytest.mark.browser
 def test_every_page_loads_cleanly_in_headless_chromium(site: Path, tmp_path: Path) -> None:
     """Every page without a console message, every image decoded; the search page finds the
     case format for a word of it."""

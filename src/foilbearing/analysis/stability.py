@@ -27,7 +27,7 @@ from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel, film_model
 from foilbearing.output.display import Summarised
 from foilbearing.reynolds import Workspace
-from foilbearing.units import as_si_array
+from foilbearing.units import as_si, as_si_array
 
 __all__ = [
     "OnsetResult",
@@ -105,7 +105,7 @@ def _track(
 
 def whirl_mode(
     static: StaticResult,
-    mass: float,
+    mass: Any,
     *,
     workspace: Workspace | None = None,
     tol: float = 1e-6,
@@ -115,8 +115,10 @@ def whirl_mode(
 
     The eigenvalues at half-frequency whirl seed each mode; each is followed to
     consistency (coefficients at its own whirl frequency) and the one with the
-    smallest logarithmic decrement is returned.
+    smallest logarithmic decrement is returned. ``mass``: the rotor mass on the
+    bearing, kg as a float, or a quantity (``"0.9 kg"``).
     """
+    mass = as_si(mass, "mass", field="mass")
     omega = static.speed
     ws = workspace or Workspace(static.model.grid)
     fc0 = force_coefficients(static, 0.5 * omega, workspace=ws)
@@ -343,19 +345,23 @@ def onsets_per_voltage(
 
 def stability_map(
     case: Case,
-    speeds: Sequence[float],
-    voltages: Sequence[float],
+    speeds: Any,
+    voltages: Any,
     *,
     shimmed: bool = False,
     progress: Callable[[str], None] | None = None,
 ) -> Any:
-    """Log decrement and whirl ratio over speed × voltage (xarray Dataset)."""
+    """Log decrement and whirl ratio over speed × voltage (xarray Dataset).
+
+    ``speeds`` in rad/s and ``voltages`` in V as floats, or quantities
+    (``["30 krpm", "50 krpm"]``, ``"150 V"``, pint quantities)."""
     import xarray as xr
 
     if case.actuators is None:
         raise InputError("a stability map over voltages needs a case with [actuators]")
+    speeds = sorted(float(w) for w in as_si_array(speeds, "speed", field="speeds"))
+    voltages = [float(v) for v in as_si_array(voltages, "voltage", field="voltages")]
     case.check_speeds(speeds, "stability map speeds")
-    speeds = sorted(speeds)
     dec = np.full((len(voltages), len(speeds)), np.nan)
     ratio = np.full_like(dec, np.nan)
     for v, volt in enumerate(voltages):
