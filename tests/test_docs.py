@@ -134,15 +134,24 @@ function check(i) {
     var imgs = Array.prototype.slice.call(f.contentDocument.images);
     imgs.forEach(function (im) { im.loading = 'eager'; });
     Promise.all(imgs.map(function (im) {
-      return im.decode().then(function () { return im.naturalWidth > 0 ? null : im.src; },
-                              function () { return im.getAttribute('src'); });
+      // decode() can stay pending in headless Chromium for an image of a frame it does not
+      // paint (2 runs of 4 stalled on one tutorial page): after 10 s of virtual time an
+      // image that has loaded with a size counts as decoded, any other as broken.
+      var late = new Promise(function (done) { setTimeout(function () {
+        done(im.complete && im.naturalWidth > 0 ? null : im.getAttribute('src'));
+      }, 10000); });
+      return Promise.race([late, im.decode().then(
+        function () { return im.naturalWidth > 0 ? null : im.src; },
+        function () { return im.getAttribute('src'); })]);
     })).then(function (broken) {
       results.push({page: pages[i], images: imgs.length,
                     broken: broken.filter(function (b) { return b !== null; }),
                     errors: f.contentWindow.fbErrors || ['no probe']});
+      out({stalled: true, pages: results});
       check(i + 1);
     });
   };
+  out({stalled: pages[i], pages: results});
   f.src = pages[i];
 }
 function search() {
@@ -197,7 +206,9 @@ def run_site_in_chromium(
         f"chromium failed (rc {proc.returncode}):\n{proc.stderr[-3000:]}"
     )
     console = [line for line in proc.stderr.splitlines() if ":CONSOLE" in line]
-    return json.loads(html.unescape(m.group(1))), console
+    result = json.loads(html.unescape(m.group(1)))
+    assert "stalled" not in result, f"the check stalled at {result['stalled']}"
+    return result, console
 
 
 # --- the build -----------------------------------------------------------------------
@@ -280,8 +291,9 @@ def test_every_link_and_anchor_resolves_inside_the_site(site: Path) -> None:
     assert broken_links(site) == []
 
 
-# Run alone (`make docs-check`, a phase of .ci/run), not beside the suite's other workers:
-# one run of ~100 pages under load returned an empty page once (the cause is not yet known).
+# Run alone (`make docs-check`, a phase of .ci/run): a Chromium run over ~100 pages is the
+# suite's one browser session of this size. Its stalls (an image's decode() left pending on
+# one tutorial page, 2 runs of 4) are bounded in the driver above; a stall left is named.
 @pytest.mark.browser
 def test_every_page_loads_cleanly_in_headless_chromium(site: Path, tmp_path: Path) -> None:
     """Every page without a console message, every image decoded; the search page finds the
