@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.signal import ShortTimeFFT
@@ -569,23 +570,9 @@ def divergence_speed(
     e_y: np.ndarray,
     speed: np.ndarray,
     clearance: float,
-    *,
-    stopped_by_contact: bool,
-    contact_time: float | None = None,
-    fraction: float = 0.9,
-    window_s: float = WINDOW_S,
+    **options: Any,
 ) -> float | None:
     """Speed (rpm) at which the journal motion diverges (`divergence`); None if it does
-    not. Parameters as for `divergence`."""
-    d = divergence(
-        t,
-        e_x,
-        e_y,
-        speed,
-        clearance,
-        stopped_by_contact=stopped_by_contact,
-        contact_time=contact_time,
-        fraction=fraction,
-        window_s=window_s,
-    )
+    not. Parameters and keyword options as for `divergence`."""
+    d = divergence(t, e_x, e_y, speed, clearance, **options)
     return None if d is None else d.speed_rpm

@@ -18,6 +18,7 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.integrate.newton import Factor as IntegratorFactor
 from foilbearing.orbit.result import OrbitResult, RunStatus
 from foilbearing.orbit.sampling import Samples
 from foilbearing.reynolds.transient import Inputs
@@ -27,8 +28,10 @@ __all__ = ["Factor", "RunStats", "StepperProblem"]
 FloatArray = NDArray[np.float64]
 
 
-class Factor(Protocol):
-    """A factorised Newton matrix of one step and its compiled modified-Newton iteration.
+class Factor(IntegratorFactor, Protocol):
+    """The integrator's factor (:class:`foilbearing.integrate.newton.Factor`: a factorised
+    Newton matrix of one step and its compiled modified-Newton iteration, whose monitor is
+    here the minimum film h/C) that also holds the lift-off branches.
 
     :class:`~foilbearing.reynolds.transient_factor.TransientFactor` is one.
     """
@@ -37,26 +40,6 @@ class Factor(Protocol):
     def lift_state(self) -> FloatArray:
         """Lift-off branch of each pressure cell held by the factor: > 0 held, < 0 free, 0
         none (an array the stepper may change in place)."""
-
-    def newton_solve(
-        self,
-        y: FloatArray,
-        inputs: Inputs,
-        c0: float,
-        hist: FloatArray,
-        weights: FloatArray,
-        work: tuple[FloatArray, FloatArray, FloatArray],
-        controls: tuple[float, float, int],
-        fresh: bool,
-        first_change: float,
-    ) -> tuple[int, int, float, float]:
-        """Iterate on c0·Q(y) + hist − f(y) = 0 in place of y.
-
-        Returns ``(outcome, iterations, first change, minimum film h/C)``; the outcomes
-        are those of :mod:`foilbearing.reynolds.transient` (``NEWTON_CONVERGED``,
-        ``NEWTON_REFRESH``, ...).
-        """
-        ...
 
 
 @dataclass(frozen=True)
