@@ -23,8 +23,9 @@ Two forms, one law:
   smoothed row inlines (the steady rows of ``reynolds/_kernels/flux.py``, the BDF
   rows of ``reynolds/_kernels/bdf.py`` and ``bdf_linear.py``).
 
-The NumPy twin of the row (``reynolds/reference.py``, ``smoothed_lift_off_py``) is an
-independent test oracle and does not import this module.
+The NumPy twin of the row (``foilbearing.testing.twins.smoothed_lift_off_py``) is an
+independent test oracle and does not import this module; the SciPy fallback of the
+transient Newton (``reynolds/fallback.py``) calls :func:`smoothed_edge`.
 """
 
 from __future__ import annotations

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.laws.lift_off import smoothed_edge
 from foilbearing.reynolds import _kernels as kern
 from foilbearing.reynolds._kernels.newton import FREE_SLACK
 from foilbearing.reynolds.transient_protocol import FactorLike, InputsLike, SystemLike
@@ -51,8 +52,8 @@ def smoothed_lift_off(
     ``α = −(∂G/∂y)/d_ref`` is the weight of the Reynolds row in the cell's row
     (docs/lift-off.md, "The smoothed edge").
     """
-    root = np.sqrt((x - y) ** 2 + 4.0 * delta**2)
-    return 0.5 * (1.0 + (x - y) / root), -0.5 * d_ref * (x + y - root)
+    half_phi, alpha = smoothed_edge(x, y, np.square(delta))
+    return alpha, -d_ref * half_phi
 
 
 def newton_residual(

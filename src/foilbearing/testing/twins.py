@@ -55,7 +55,6 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 
 # The production fallback, under the names of the kernels' twins.
-smoothed_lift_off_py = fallback.smoothed_lift_off
 newton_residual_py = fallback.newton_residual
 lobe_correct_py = fallback.lobe_correct
 border_py = fallback.border
@@ -64,6 +63,17 @@ newton_solve_py = fallback.newton_solve
 newton_step_py = fallback.newton_step
 switch_branches_py = fallback.switch_branches
 newton_update_py = fallback.newton_update
+
+
+def smoothed_lift_off_py(
+    x: FloatArray, y: FloatArray, delta: float | FloatArray, d_ref: float | FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Twin of the smoothed lift-off law (:func:`foilbearing.laws.lift_off.smoothed_edge`,
+    as :func:`foilbearing.reynolds.fallback.smoothed_lift_off` calls it), written apart
+    from it: the weight α and the residual ``G = −(d_ref/2)(x + y − √((x − y)² + 4δ²))``.
+    """
+    root = np.sqrt((x - y) ** 2 + 4.0 * np.square(delta))
+    return 0.5 * (1.0 + (x - y) / root), -0.5 * d_ref * (x + y - root)
 
 
 def bernoulli_py(x: FloatArray | float) -> FloatArray:
