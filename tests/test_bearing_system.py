@@ -86,6 +86,14 @@ def test_a_bad_scale_is_refused_in_one_line() -> None:
         Scales.from_parts(replace(case.bearing, clearance=-1e-4), case.gas)
     with pytest.raises(InputError, match=r"^Scales.mass = nan"):
         Scales.from_parts(case.bearing, case.gas, mass=math.nan)
+    massless = BearingSystem.from_case(coarse())
+    massless = replace(massless, scales=Scales.from_parts(case.bearing, case.gas))
+    with pytest.raises(InputError, match=r"^transient: no rotor mass; give mass \(kg\) > 0$"):
+        massless.transient()
+    with pytest.raises(InputError, match=r"^Scales.mass = -1.0"):
+        massless.transient(mass=-1.0)
+    with pytest.raises(InputError, match="static point on a"):
+        massless.linearise(BearingSystem.from_case(coarse(), n_theta=16).equilibrium(), 1.0)
 
 
 def test_no_module_writes_a_scale_by_hand() -> None:

@@ -199,7 +199,8 @@ class BearingSystem:
         (``"lobe"`` and ``"compliant"``) carry their compression D_n(P) in the film.
         """
         scales = self.scales if mass is None else replace(self.scales, mass=mass)
-        assert scales.film_force_per_mass is not None  # from_case gives the case's mass
+        if scales.film_force_per_mass is None:
+            raise InputError("transient: no rotor mass; give mass (kg) > 0")
         model = self.film
         lobes_move = model.lobe and model.actuator.lobes_move
         return TransientSystem(
