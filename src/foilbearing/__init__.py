@@ -29,6 +29,8 @@ module               responsibility
 ``laws/``            the modelling laws, one a module, each in every form the analyses use
 ``film``             the film model of a case: journal position, preload shape and foil
                      compliance on the grid
+``bearing_system/``  one bearing built once from a case: its scales, its film model and the
+                     three verbs equilibrium, coefficients and transient
 ``reynolds/``        finite-volume solvers of the Reynolds equation: steady, perturbed,
                      transient
 ``analysis/``        the analyses of the bearing at a speed: equilibrium, force coefficients,
@@ -88,6 +90,8 @@ if TYPE_CHECKING:
     from foilbearing.analysis.coefficients import force_coefficients
     from foilbearing.analysis.equilibrium import solve_equilibrium
     from foilbearing.analysis.stability import onset_speed, stability_map, whirl_mode
+    from foilbearing.bearing_system.scales import Scales
+    from foilbearing.bearing_system.verbs import BearingSystem
     from foilbearing.case import Case, default_case, load_case
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
     from foilbearing.orbit import OrbitSettings, simulate
@@ -102,6 +106,8 @@ _LAZY = {
     "Case": "foilbearing.case",
     "default_case": "foilbearing.case",
     "load_case": "foilbearing.case",
+    "BearingSystem": "foilbearing.bearing_system.verbs",
+    "Scales": "foilbearing.bearing_system.scales",
     "solve_equilibrium": "foilbearing.analysis.equilibrium",
     "force_coefficients": "foilbearing.analysis.coefficients",
     "whirl_mode": "foilbearing.analysis.stability",
@@ -121,9 +127,11 @@ _LAZY = {
 
 __all__ = [
     "RPM",
+    "BearingSystem",
     "Case",
     "InputError",
     "OrbitSettings",
+    "Scales",
     "SolverError",
     "analyse_orbit",
     "constant_speed",

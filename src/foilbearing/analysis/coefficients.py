@@ -44,6 +44,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from foilbearing.analysis.equilibrium import StaticResult
+from foilbearing.bearing_system.scales import Scales
 from foilbearing.errors import InputError, SolverError
 from foilbearing.film import FilmModel
 from foilbearing.headline import Field, headline_view
@@ -227,7 +228,8 @@ def force_coefficients(
     case, model = static.case, static.model
     dh = _journal_columns(model)
     w_x, w_y = (w.ravel() for w in model.grid.force_weights())
-    scale = -case.gas.ambient_pressure * case.bearing.radius**2 / case.bearing.clearance
+    scales = Scales.from_case(case)
+    scale = -scales.force / scales.clearance  # N/m per unit ∂(∫∫P w)/∂ε
     ws = workspace if workspace is not None else Workspace(model.grid)
     lobes = model.lobe and model.actuator.lobes_move
     if lobes:

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from foilbearing.analysis.static_result import _SHOWN, STATIC_HEADLINE, StaticResult  # noqa: F401
 from foilbearing.analysis.static_result import static_result as _result
+from foilbearing.bearing_system.scales import Scales
 from foilbearing.case import Case
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, drag_torque, film_model
@@ -113,7 +114,7 @@ def film_at_position(
             f"journal position ({eps_x:g}, {eps_y:g}) closes the film (min h/C = {h_r.min():.3g}) "
             "of a rigid bearing: choose a smaller eccentricity"
         )
-    lam = case.bearing_number(omega)
+    lam = Scales.from_case(case).bearing_number(omega)
     if model.lobe:  # the stacks' compressions are unknowns beside P (journal fixed)
         out = _Equilibrium(model, lam, opts, journal=False).solve(
             0.0, np.array([eps_x, eps_y]), None
@@ -181,9 +182,9 @@ def solve_equilibrium(
     opts = options or EquilibriumOptions()
     omega = _check_speed(case, speed)
     model = model or film_model(case)
-    lam = case.bearing_number(omega)
-    pa, r = case.gas.ambient_pressure, case.bearing.radius
-    load = case.operation.load / (pa * r * r)  # dimensionless load along +X
+    scales = Scales.from_case(case)
+    lam = scales.bearing_number(omega)
+    load = case.operation.load / scales.force  # dimensionless load along +X
     system = _Equilibrium(model, lam, opts)
     eps0 = np.zeros(2) if start is None else np.array(start[:2], dtype=float)
     p0 = None if start is None else start[2]

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.bearing_system.scales import Scales
 from foilbearing.case import Case
 from foilbearing.film import FilmModel, drag_torque
 from foilbearing.headline import Field, headline_view
@@ -284,7 +285,8 @@ def static_result(
         True for a solved equilibrium, False for a prescribed position.
     """
     g = model.grid
-    pa, r = case.gas.ambient_pressure, case.bearing.radius
+    scales = Scales.from_case(case)
+    pa = scales.ambient_pressure
     fx, fy = film_force(g, P)
     p_mean = g.gauge_mean(P)
     angles = model.preload_angles
@@ -305,7 +307,7 @@ def static_result(
         eps_y=eps_y,
         P=P,
         H=H,
-        force=(fx * pa * r * r, fy * pa * r * r),
+        force=(fx * scales.force, fy * scales.force),
         actuator_pressure=p_act,
         preload=preload,
         drag_torque=torque,

@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from foilbearing.bearing_system.scales import Scales
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.laws.actuator import ACTUATOR_DYNAMICS, PRELOAD_RESPONSES, ActuatorReading
@@ -356,10 +357,10 @@ class Case:
         return "shimmed GFB" if self.shims is not None else "GFB"
 
     def bearing_number(self, speed: float | None = None) -> float:
-        """Λ = 6 μ ω R² / (p_a C²) at ``speed`` (rad/s; default: the operating speed)."""
+        """Λ = 6 μ ω R² / (p_a C²) at ``speed`` (rad/s; default: the operating speed), from
+        the bearing's :class:`~foilbearing.bearing_system.scales.Scales`."""
         omega = self.operation.speed if speed is None else speed
-        b, g = self.bearing, self.gas
-        return 6.0 * g.viscosity * omega * b.radius**2 / (g.ambient_pressure * b.clearance**2)
+        return Scales.from_parts(self.bearing, self.gas).bearing_number(omega)
 
     def assembly_stiffness(self) -> float | None:
         """k_assy under a stinger, N/m³ (Eq. 7); None without foil or actuators."""

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from foilbearing.bearing_system.scales import Scales
 from foilbearing.case.model import (
     ACTUATOR_DYNAMICS,
     MAX_LIFT_OFF_SMOOTHING,
@@ -151,8 +152,7 @@ def case_from_dict(data: dict[str, Any], *, source: str | None = None) -> Case:
         max_speed=op_t.positive("max_speed", "speed", default=MAX_SPEED_DEFAULT),
     )
     op_t.done()
-    top = 6.0 * gas.viscosity * operation.max_speed * bearing.radius**2
-    bearing_number = top / (gas.ambient_pressure * bearing.clearance**2)
+    bearing_number = Scales.from_parts(bearing, gas).bearing_number(operation.max_speed)
     if not bearing_number <= MAX_BEARING_NUMBER:
         raise gas_t.error(
             "viscosity",

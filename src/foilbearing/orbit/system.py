@@ -15,11 +15,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from foilbearing.analysis.equilibrium import solve_equilibrium
+from foilbearing.bearing_system.verbs import BearingSystem
 from foilbearing.case import Case
 from foilbearing.control import SpeedProfile, VoltageProgram
 from foilbearing.errors import InputError, SolverError
-from foilbearing.film import film_model
 from foilbearing.orbit.disturbance import DisturbanceForce
 from foilbearing.orbit.held import HeldStingers
 from foilbearing.orbit.problem import RunStats, StepperProblem
@@ -72,25 +71,11 @@ class OrbitSimulation:
                 source=case.source,
             )
         self.voltage = voltage
-        self.model = film_model(case)
+        #: The bearing as one system (scales, film model); the run steps its transient verb.
+        self.bearing = BearingSystem.from_case(case)
+        self.model = self.bearing.film
         g = self.model.grid
-        b, gas = case.bearing, case.gas
-        self.system = TransientSystem(
-            g,
-            sigma=12.0 * gas.viscosity * b.radius**2 / (gas.ambient_pressure * b.clearance**2),
-            # Held stingers do not yield to the film's motion: their compression is an input.
-            c_act=self.model.actuator.motion_compliance(self.model.actuator_compliance),
-            c_bump=self.model.bump_compliance,
-            loss_factor=self.model.foil_damping,
-            film_force_scale=gas.ambient_pressure * b.radius**2 / (case.rotor.mass * b.clearance),
-            lift_off=self.model.lift_off,
-            # Lobes that follow their stacks (lobe + compliant): D_n(P) inside the film.
-            lobes=self.model.lobe_shapes
-            if self.model.lobe and self.model.actuator.lobes_move
-            else None,
-            lobe_rows=self.model.actuator_rows,
-            stack_compliance=self.model.stack_compliance,
-        )
+        self.system: TransientSystem = self.bearing.transient()
         # Unit preload lobes per actuator (or shim), so r_p follows the voltages in time.
         if act is not None:
             self.lobes = np.array(
@@ -103,7 +88,7 @@ class OrbitSimulation:
             self.lobes = np.zeros((0, g.n_theta))
         self.static_preload = self.model.preload if act is None else None
         self._preload_cache: tuple[bytes, FloatArray] | None = None
-        self._lambda_per_speed = case.bearing_number(1.0)  # Λ ∝ ω
+        self._lambda_per_speed = self.bearing.scales.lambda_per_speed  # Λ ∝ ω
         self.held = HeldStingers(case, speed.omega, self.volts, speed.duration) if held else None
         d = case.disturbance
         self.disturbance = None if d is None or d.force_rms == 0.0 else DisturbanceForce(d)
@@ -168,10 +153,10 @@ class OrbitSimulation:
     # ------------------------------------------------------------ start state
     def initial_state(self) -> FloatArray:
         """Static equilibrium without imbalance at the initial speed and voltages, as a state."""
-        case = self.case
-        if case.actuators is not None:
-            case = case.with_voltages(tuple(float(v) for v in self.volts(0.0)))
-        st = solve_equilibrium(case, speed=self.profile.omega(0.0), model=None)
+        volts = None
+        if self.case.actuators is not None:
+            volts = tuple(float(v) for v in self.volts(0.0))
+        st = self.bearing.equilibrium(self.profile.omega(0.0), voltages=volts)
         if not st.converged:
             raise SolverError(
                 f"no static equilibrium at the start of the run: {st.message}; start the "

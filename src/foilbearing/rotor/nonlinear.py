@@ -259,9 +259,7 @@ class RotorOrbitSystem:
         lateral = lateral_dofs(n_nodes)
         m_lat = np.asarray(model.M0, float)[np.ix_(lateral, lateral)]
         self.gravity = self.reduced.basis.T @ (m_lat @ accel)
-        self.force_per_pressure = [
-            s.case.gas.ambient_pressure * s.case.bearing.radius**2 * s.system.w for s in self.sims
-        ]
+        self.force_per_pressure = [s.bearing.scales.force * s.system.w for s in self.sims]
 
     # ------------------------------------------------------------------ pieces
     def unbalance_force(self, t: float) -> FloatArray:
