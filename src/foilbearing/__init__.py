@@ -45,14 +45,14 @@ module               responsibility
                      continuation
 ``rotor/``           rotors on foil bearings: a shaft of beam elements with disks, linear and
                      nonlinear
-``control``          speed profiles, actuator voltage programs and a closed-loop preload
-                     controller
+``control/``         speed and voltage programs in time: speed profiles, actuator voltage
+                     programs, the closed-loop preload controller, the schedule file
 ``design``           what the stack's stiffness buys: the 150 V onset against k_p under each
                      reading
 ``optimize``         actuator voltages chosen by optimisation, beyond the paper's equal voltages
 ``schedule``         a voltage schedule: the least-drag voltages that keep the rotor stable,
                      speed by speed
-``schedule_file``    the voltage-schedule file a controller (or ``foilbearing orbit``) reads
+``schedule_file``    moved: the same module as ``control/schedule_file``, under its old name
 ``check``            how far to trust a case's numbers: its headline readouts on its grid and on
                      refined grids
 ``study/``           studies: the paper's full analysis and the same analysis of any bearing

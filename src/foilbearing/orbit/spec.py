@@ -155,7 +155,7 @@ class ScheduleText:
         """The schedule along the speed profile (through its slew-rate limit)."""
         import tomllib
 
-        from foilbearing.schedule_file import parse_schedule
+        from foilbearing.control.schedule_file import parse_schedule
 
         return parse_schedule(tomllib.loads(self.text), case, self.path).program(profile)
 

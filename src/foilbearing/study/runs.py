@@ -78,7 +78,7 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
     program = None if run.ramp is None else voltage_ramp(*run.ramp, run.volts)
     schedule_spec = None
     if run.schedule is not None:
-        from foilbearing.schedule_file import schedule_toml
+        from foilbearing.control.schedule_file import schedule_toml
 
         program = run.schedule.program(profile)
         text = schedule_toml(run.schedule, case.title)

@@ -82,10 +82,10 @@ def queue_schedule(
     Returns the stage's summary, to call once the queue has drained. A run another stage
     asked for on the same queue (the protocol's 1 g·mm runs) is run once and shared.
     """
+    from foilbearing.control.schedule_file import schedule_toml
     from foilbearing.io import save_figure, write_text
     from foilbearing.output.plots.schedule import plot_schedule
     from foilbearing.schedule import voltage_schedule
-    from foilbearing.schedule_file import schedule_toml
 
     assert case.actuators is not None
     if speeds is None:
