@@ -330,6 +330,8 @@ def test_an_analysis_s_old_module_name_is_its_new_module(old: str, new: str) -> 
 #: The modules moved into the ``control`` and ``design`` packages: old name → new module.
 MOVED_MODULES = [
     ("foilbearing.schedule_file", "foilbearing.control.schedule_file"),
+    ("foilbearing.optimize", "foilbearing.design.voltages"),
+    ("foilbearing.schedule", "foilbearing.design.speed_schedule"),
 ]
 
 
@@ -359,3 +361,13 @@ def test_the_control_package_exports_what_the_control_module_did() -> None:
     }
     assert set(control.__all__) == before
     assert all(callable(getattr(control, name)) for name in before)
+
+
+def test_the_design_package_exports_what_the_design_module_did() -> None:
+    """``foilbearing.design`` was the stack-stiffness module; as a package it hands on its
+    names, the same objects as those of its new module."""
+    import foilbearing.design as design
+    from foilbearing.design import stack
+
+    assert set(design.__all__) == {"READINGS", "StackDesign", "stack_design"}
+    assert all(getattr(design, name) is getattr(stack, name) for name in design.__all__)

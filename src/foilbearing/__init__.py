@@ -47,11 +47,10 @@ module               responsibility
                      nonlinear
 ``control/``         speed and voltage programs in time: speed profiles, actuator voltage
                      programs, the closed-loop preload controller, the schedule file
-``design``           what the stack's stiffness buys: the 150 V onset against k_p under each
-                     reading
-``optimize``         actuator voltages chosen by optimisation, beyond the paper's equal voltages
-``schedule``         a voltage schedule: the least-drag voltages that keep the rotor stable,
-                     speed by speed
+``design/``          design beyond the paper: the stack's stiffness, the actuator voltages by
+                     optimisation, the voltage schedule in speed
+``optimize``         moved: the same module as ``design/voltages``, under its old name
+``schedule``         moved: the same module as ``design/speed_schedule``, under its old name
 ``schedule_file``    moved: the same module as ``control/schedule_file``, under its old name
 ``check``            how far to trust a case's numbers: its headline readouts on its grid and on
                      refined grids
@@ -90,9 +89,9 @@ if TYPE_CHECKING:
     from foilbearing.analysis.stability import onset_speed, stability_map, whirl_mode
     from foilbearing.case import Case, default_case, load_case
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
+    from foilbearing.design.speed_schedule import voltage_schedule
     from foilbearing.orbit import OrbitSettings, simulate
     from foilbearing.orbit.analysis import analyse_orbit
-    from foilbearing.schedule import voltage_schedule
     from foilbearing.study.paper import run_study
     from foilbearing.sweep.runner import run_sweep
     from foilbearing.uncertainty import run_uncertainty
@@ -116,7 +115,7 @@ _LAZY = {
     "run_sweep": "foilbearing.sweep.runner",
     "run_study": "foilbearing.study.paper",
     "run_uncertainty": "foilbearing.uncertainty",
-    "voltage_schedule": "foilbearing.schedule",
+    "voltage_schedule": "foilbearing.design.speed_schedule",
 }
 
 __all__ = [

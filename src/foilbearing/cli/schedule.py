@@ -97,9 +97,13 @@ def cmd_schedule(args: argparse.Namespace) -> int:
 
     from foilbearing.case import load_case
     from foilbearing.control.schedule_file import schedule_toml
+    from foilbearing.design.speed_schedule import (
+        DEFAULT_MARGIN,
+        check_speed_range,
+        voltage_schedule,
+    )
     from foilbearing.io import save_figure
     from foilbearing.output.plots.schedule import plot_schedule
-    from foilbearing.schedule import DEFAULT_MARGIN, check_speed_range, voltage_schedule
     from foilbearing.units import parse_quantity
 
     margin = DEFAULT_MARGIN if args.margin is None else args.margin
