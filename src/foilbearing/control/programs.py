@@ -46,7 +46,11 @@ class VoltageProgram(Protocol):
 
 @dataclass(frozen=True)
 class VoltageSchedule:
-    """Open-loop voltage program: piecewise-linear V_n(t) per actuator.
+    """Open-loop voltage program: piecewise-linear V_n(t) per actuator, in time.
+
+    Not the schedule in speed that :func:`foilbearing.design.speed_schedule.voltage_schedule`
+    chooses (a ``SpeedSchedule``, V_n(Ω)): that one becomes a program of this kind for a
+    given speed profile (``SpeedSchedule.program``).
 
     Attributes
     ----------
