@@ -21,6 +21,8 @@ module             responsibility
                    motion appears
 ``schedule_file``  the voltage-schedule file (speed → voltages, TOML) a controller, or
                    ``foilbearing orbit``, reads
+``options``        the option strings of speed and voltage programs, read once for
+                   ``foilbearing orbit`` and ``foilbearing rotor --orbit``
 =================  =============================================================================
 """
 
