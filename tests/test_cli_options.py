@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from foilbearing.case import default_case
+from foilbearing.cli.common import positive_quantity
 from foilbearing.cli.main import _parser
 from foilbearing.cli.orbit import run_spec_from_args
 from foilbearing.cli.rotor import _orbit_profile, _programs
@@ -141,15 +142,20 @@ def test_a_bad_speed_string_names_its_option(text: str, message: str) -> None:
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        ("0s", "--checkpoint-every '0s': expected a time > 0 s"),
-        ("-1s", "--checkpoint-every '-1s': expected a time > 0 s"),
+        ("0s", "--checkpoint-every = '0s': a time must be > 0"),
+        ("-1s", "--checkpoint-every = '-1s': a time must be > 0"),
         ("nan s", "--checkpoint-every = 'nan s': must be finite"),
     ],
 )
 def test_a_time_that_is_not_positive_is_refused(text: str, message: str) -> None:
-    """``--checkpoint-every`` (both commands) and the rotor's ``--stop-time``."""
+    """``--checkpoint-every`` (both commands) and the rotor's ``--stop-time``, worded as the
+    orbit's ``--stop-time`` is (:func:`foilbearing.cli.common.positive_quantity`)."""
     with pytest.raises(InputError) as err:
         positive_time(text, "--checkpoint-every")
     assert str(err.value) == message
+    if text != "nan s":
+        with pytest.raises(InputError) as orbit:
+            positive_quantity(text, "time", "--checkpoint-every", "a time")
+        assert str(orbit.value) == message
     assert positive_time("30s", "--checkpoint-every") == 30.0
     assert math.isclose(positive_time("5 ms", "--stop-time"), 5e-3)

@@ -48,10 +48,10 @@ def cli_quantity(text: str, kind: str, option: str) -> float:
 
 def positive_time(text: str, option: str) -> float:
     """A time > 0, s (``--stop-time``, ``--checkpoint-every``), else one line naming
-    ``option``."""
+    ``option``, worded as every command words it (``--stop-time = '-1s': a time must be > 0``)."""
     value = cli_quantity(text, "time", option)
     if not value > 0.0:
-        raise InputError(f"{option} {text!r}: expected a time > 0 s")
+        raise InputError(f"{option} = {text!r}: a time must be > 0")
     return value
 
 
