@@ -331,7 +331,7 @@ def test_an_analysis_s_old_module_name_is_its_new_module(old: str, new: str) -> 
 MOVED_MODULES = [
     ("foilbearing.schedule_file", "foilbearing.control.schedule_file"),
     ("foilbearing.optimize", "foilbearing.design.voltages"),
-    ("foilbearing.schedule", "foilbearing.design.speed_schedule"),
+    ("foilbearing.schedule", "foilbearing.design.schedule_search"),
 ]
 
 

@@ -18,7 +18,7 @@ import tomlkit
 from foilbearing.case import load_case
 from foilbearing.cli.main import main
 from foilbearing.control import linear_ramp
-from foilbearing.design.speed_schedule import (
+from foilbearing.design.schedule_search import (
     SpeedSchedule,
     _envelope,
     _limit_speed,

@@ -50,7 +50,7 @@ module               responsibility
 ``design/``          design beyond the paper: the stack's stiffness, the actuator voltages by
                      optimisation, the voltage schedule in speed
 ``optimize``         moved: the same module as ``design/voltages``, under its old name
-``schedule``         moved: the same module as ``design/speed_schedule``, under its old name
+``schedule``         moved: the same module as ``design/schedule_search``, under its old name
 ``schedule_file``    moved: the same module as ``control/schedule_file``, under its old name
 ``check``            how far to trust a case's numbers: its headline readouts on its grid and on
                      refined grids
@@ -89,7 +89,7 @@ if TYPE_CHECKING:
     from foilbearing.analysis.stability import onset_speed, stability_map, whirl_mode
     from foilbearing.case import Case, default_case, load_case
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
-    from foilbearing.design.speed_schedule import voltage_schedule
+    from foilbearing.design.schedule_search import voltage_schedule
     from foilbearing.orbit import OrbitSettings, simulate
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.study.paper import run_study
@@ -115,7 +115,7 @@ _LAZY = {
     "run_sweep": "foilbearing.sweep.runner",
     "run_study": "foilbearing.study.paper",
     "run_uncertainty": "foilbearing.uncertainty",
-    "voltage_schedule": "foilbearing.design.speed_schedule",
+    "voltage_schedule": "foilbearing.design.schedule_search",
 }
 
 __all__ = [

@@ -1,4 +1,4 @@
-"""Moved: this module is :mod:`foilbearing.design.speed_schedule`.
+"""Moved: this module is :mod:`foilbearing.design.schedule_search`.
 
 This name of the module stays: it is the same module object (``sys.modules`` maps the old
 name to the new), so an import from it, or a test that patches a name in it, keeps working.
@@ -6,8 +6,8 @@ name to the new), so an import from it, or a test that patches a name in it, kee
 
 import sys
 
-from foilbearing.design import speed_schedule as _speed_schedule
-from foilbearing.design.speed_schedule import (  # noqa: F401  (the names importable from here)
+from foilbearing.design import schedule_search as _schedule_search
+from foilbearing.design.schedule_search import (  # noqa: F401  (the names importable from here)
     DEFAULT_ACCELERATION,
     DEFAULT_MARGIN,
     DEFAULT_SLEW_RATE,
@@ -18,6 +18,6 @@ from foilbearing.design.speed_schedule import (  # noqa: F401  (the names import
     voltage_schedule,
 )
 
-__all__ = _speed_schedule.__all__
+__all__ = _schedule_search.__all__
 
-sys.modules[__name__] = _speed_schedule
+sys.modules[__name__] = _schedule_search

@@ -97,7 +97,7 @@ def cmd_schedule(args: argparse.Namespace) -> int:
 
     from foilbearing.case import load_case
     from foilbearing.control.schedule_file import schedule_toml
-    from foilbearing.design.speed_schedule import (
+    from foilbearing.design.schedule_search import (
         DEFAULT_MARGIN,
         check_speed_range,
         voltage_schedule,

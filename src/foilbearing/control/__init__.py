@@ -10,20 +10,22 @@ package (``from foilbearing.control import linear_ramp`` keeps working); the sch
 imported from its module, ``foilbearing.control.schedule_file`` (its old name,
 ``foilbearing.schedule_file``, is the same module).
 
-=================  =============================================================================
-module             responsibility
-=================  =============================================================================
-``profiles``       speed profiles ω(t): constant speed and the linear ramp, with the rotation
-                   angle φ(t)
-``programs``       voltage programs in time: the protocol the orbit asks of one, and the
-                   open-loop ``VoltageSchedule`` (piecewise linear V_n(t), ``voltage_ramp``)
-``controller``     the closed-loop preload controller: raise the voltage when sub-synchronous
-                   motion appears
-``schedule_file``  the voltage-schedule file (speed → voltages, TOML) a controller, or
-                   ``foilbearing orbit``, reads
-``options``        the option strings of speed and voltage programs, read once for
-                   ``foilbearing orbit`` and ``foilbearing rotor --orbit``
-=================  =============================================================================
+==================  ============================================================================
+module              responsibility
+==================  ============================================================================
+``profiles``        speed profiles ω(t): constant speed and the linear ramp, with the rotation
+                    angle φ(t)
+``programs``        voltage programs in time: the protocol the orbit asks of one, and the
+                    open-loop ``VoltageSchedule`` (piecewise linear V_n(t), ``voltage_ramp``)
+``controller``      the closed-loop preload controller: raise the voltage when sub-synchronous
+                    motion appears
+``speed_schedule``  the voltage schedule in speed, V_n(Ω): what a controller follows as the
+                    rotor speeds up, turned into a program in time through the slew rate
+``schedule_file``   the voltage-schedule file (speed → voltages, TOML) a controller, or
+                    ``foilbearing orbit``, reads
+``options``         the option strings of speed and voltage programs, read once for
+                    ``foilbearing orbit`` and ``foilbearing rotor --orbit``
+==================  ============================================================================
 """
 
 from foilbearing.control.controller import SubsyncController

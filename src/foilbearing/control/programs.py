@@ -3,7 +3,7 @@
 All times in s, voltages in V. A program answers "what is the voltage at time t" from
 what has happened up to t only. ``VoltageSchedule`` is the open-loop program in time
 (piecewise linear V_n(t)); a voltage schedule in *speed*, chosen by optimisation, is
-:class:`foilbearing.design.speed_schedule.SpeedSchedule`, which turns itself into one.
+:class:`foilbearing.control.speed_schedule.SpeedSchedule`, which turns itself into one.
 """
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ class VoltageProgram(Protocol):
 class VoltageSchedule:
     """Open-loop voltage program: piecewise-linear V_n(t) per actuator, in time.
 
-    Not the schedule in speed that :func:`foilbearing.design.speed_schedule.voltage_schedule`
+    Not the schedule in speed that :func:`foilbearing.design.schedule_search.voltage_schedule`
     chooses (a ``SpeedSchedule``, V_n(Ω)): that one becomes a program of this kind for a
     given speed profile (``SpeedSchedule.program``).
 

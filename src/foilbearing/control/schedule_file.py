@@ -31,7 +31,7 @@ import numpy as np
 
 from foilbearing.case import Case, TableReader, per_item_quantities
 from foilbearing.constants import RPM
-from foilbearing.design.speed_schedule import DEFAULT_SLEW_RATE, SpeedSchedule
+from foilbearing.control.speed_schedule import DEFAULT_SLEW_RATE, SpeedSchedule
 from foilbearing.errors import InputError
 
 __all__ = ["load_schedule", "parse_schedule", "schedule_toml"]

@@ -24,7 +24,7 @@ class OrbitRun:
     """One speed-up: final voltage, its ramp (None: no control) and the imbalance (kg·m).
 
     A ramp of (0, 0) holds the final voltage from the start. With ``schedule`` (a
-    :class:`foilbearing.design.speed_schedule.SpeedSchedule`) the voltages follow it instead,
+    :class:`foilbearing.control.speed_schedule.SpeedSchedule`) the voltages follow it instead,
     and ``volts`` and ``ramp`` are not used.
     """
 
