@@ -51,7 +51,7 @@ class SpeedSchedule:
         At the scheduled voltages, per speed: W, -, rad/s, m (None: not computed).
     power_loss_reference
         Power loss at a constant 150 V on every actuator (the paper's constant voltage,
-        ``REFERENCE_VOLTAGE`` of :mod:`foilbearing.design.schedule_search`), W.
+        ``PAPER_CONSTANT_VOLTAGE`` of :mod:`foilbearing.design.schedule_search`), W.
     midpoint_log_decrement
         δ halfway between consecutive grid speeds at the interpolated voltages
         (n_speeds − 1; NaN where no equilibrium was found).

@@ -79,7 +79,9 @@ Voltages = tuple[float, ...]
 DEFAULT_MARGIN = 0.1  # least log decrement of the least stable whirl mode
 #: Speed-up rate the schedule's smoothness is set for, rad/s²: the paper's 500 rad/s².
 DEFAULT_ACCELERATION = 500.0
-REFERENCE_VOLTAGE = 150.0  # V, the paper's constant-voltage comparison
+#: V: the paper's constant voltage, the schedule's comparison (``power_loss_reference``).
+PAPER_CONSTANT_VOLTAGE = 150.0
+REFERENCE_VOLTAGE = PAPER_CONSTANT_VOLTAGE  # its old name
 _MISSED = 1e6  # merit offset of a voltage set that misses the margin (W ≪ this)
 
 
@@ -230,7 +232,7 @@ def voltage_schedule(
         if not (math.isfinite(value) and value > 0.0):
             raise InputError(f"{name} = {value!r} {unit}: expected > 0", source=case.source)
     equal, extra = start_points(lo, hi, n_random)
-    ref_key = tuple(min(REFERENCE_VOLTAGE, float(h)) for h in hi)
+    ref_key = tuple(min(PAPER_CONSTANT_VOLTAGE, float(h)) for h in hi)
     chosen: list[SchedulePoint] = []
     reference: list[float] = []
     total = 0
