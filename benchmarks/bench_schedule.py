@@ -23,7 +23,7 @@ RPM = math.pi / 30.0
 
 def main() -> None:
     from foilbearing.case import default_case
-    from foilbearing.schedule import evaluate_voltages, voltage_schedule
+    from foilbearing.design.schedule_search import evaluate_voltages, voltage_schedule
 
     ap = argparse.ArgumentParser()
     ap.add_argument("--budget", type=int, nargs="*", default=[])

@@ -325,3 +325,49 @@ def test_an_analysis_s_old_module_name_is_its_new_module(old: str, new: str) -> 
     old_module, new_module = importlib.import_module(old), importlib.import_module(new)
     assert old_module is new_module
     assert set(new_module.__all__) <= set(vars(old_module))
+
+
+#: The modules moved into the ``control`` and ``design`` packages: old name → new module.
+MOVED_MODULES = [
+    ("foilbearing.schedule_file", "foilbearing.control.schedule_file"),
+    ("foilbearing.optimize", "foilbearing.design.voltages"),
+    ("foilbearing.schedule", "foilbearing.design.schedule_search"),
+]
+
+
+@pytest.mark.parametrize(("old", "new"), MOVED_MODULES)
+def test_a_moved_module_s_old_name_is_its_new_module(old: str, new: str) -> None:
+    """The modules gathered into the control and design packages answer under their old
+    names: the old name is the same module object, so an import or a patch reaches it."""
+    import importlib
+
+    old_module, new_module = importlib.import_module(old), importlib.import_module(new)
+    assert old_module is new_module
+    assert set(new_module.__all__) <= set(vars(old_module))
+
+
+def test_the_control_package_exports_what_the_control_module_did() -> None:
+    """``foilbearing.control`` was one module; as a package it hands on every name it had."""
+    import foilbearing.control as control
+
+    before = {
+        "SpeedProfile",
+        "SubsyncController",
+        "VoltageProgram",
+        "VoltageSchedule",
+        "constant_speed",
+        "linear_ramp",
+        "voltage_ramp",
+    }
+    assert set(control.__all__) == before
+    assert all(callable(getattr(control, name)) for name in before)
+
+
+def test_the_design_package_exports_what_the_design_module_did() -> None:
+    """``foilbearing.design`` was the stack-stiffness module; as a package it hands on its
+    names, the same objects as those of its new module."""
+    import foilbearing.design as design
+    from foilbearing.design import stack
+
+    assert set(design.__all__) == {"READINGS", "StackDesign", "stack_design"}
+    assert all(getattr(design, name) is getattr(stack, name) for name in design.__all__)

@@ -1,7 +1,7 @@
 """Speed profiles, voltage programs and the closed-loop controller, against closed forms.
 
 These run in milliseconds: they are the tests ``make mutation`` runs against the
-mutants of ``control.py``. The speed profile's angle is checked against a quadrature of
+mutants of ``control/``. The speed profile's angle is checked against a quadrature of
 its speed, the voltage program against linear interpolation written out, and the
 controller's sub-synchronous amplitude against the amplitude of a synthetic sinusoid.
 """

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import tomlkit
 
-import foilbearing.optimize as opt
+import foilbearing.design.voltages as opt
 from foilbearing.case import load_case
 from foilbearing.cli.optimize import cmd_optimize, register
 from foilbearing.errors import InputError

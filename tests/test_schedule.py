@@ -18,14 +18,14 @@ import tomlkit
 from foilbearing.case import load_case
 from foilbearing.cli.main import main
 from foilbearing.control import linear_ramp
-from foilbearing.errors import InputError
-from foilbearing.schedule import (
+from foilbearing.design.schedule_search import (
     SpeedSchedule,
     _envelope,
     _limit_speed,
     evaluate_voltages,
     voltage_schedule,
 )
+from foilbearing.errors import InputError
 from foilbearing.schedule_file import load_schedule, schedule_toml
 
 RPM = math.pi / 30.0

@@ -47,14 +47,13 @@ module               responsibility
                      continuation
 ``rotor/``           rotors on foil bearings: a shaft of beam elements with disks, linear and
                      nonlinear
-``control``          speed profiles, actuator voltage programs and a closed-loop preload
-                     controller
-``design``           what the stack's stiffness buys: the 150 V onset against k_p under each
-                     reading
-``optimize``         actuator voltages chosen by optimisation, beyond the paper's equal voltages
-``schedule``         a voltage schedule: the least-drag voltages that keep the rotor stable,
-                     speed by speed
-``schedule_file``    the voltage-schedule file a controller (or ``foilbearing orbit``) reads
+``control/``         speed and voltage programs in time: speed profiles, actuator voltage
+                     programs, the closed-loop preload controller, the schedule file
+``design/``          design beyond the paper: the stack's stiffness, the actuator voltages by
+                     optimisation, the voltage schedule in speed
+``optimize``         moved: the same module as ``design/voltages``, under its old name
+``schedule``         moved: the same module as ``design/schedule_search``, under its old name
+``schedule_file``    moved: the same module as ``control/schedule_file``, under its old name
 ``check``            how far to trust a case's numbers: its headline readouts on its grid and on
                      refined grids
 ``study/``           studies: the paper's full analysis and the same analysis of any bearing
@@ -94,9 +93,9 @@ if TYPE_CHECKING:
     from foilbearing.bearing_system.verbs import BearingSystem
     from foilbearing.case import Case, default_case, load_case
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
+    from foilbearing.design.schedule_search import voltage_schedule
     from foilbearing.orbit import OrbitSettings, simulate
     from foilbearing.orbit.analysis import analyse_orbit
-    from foilbearing.schedule import voltage_schedule
     from foilbearing.study.paper import run_study
     from foilbearing.sweep.runner import run_sweep
     from foilbearing.uncertainty import run_uncertainty
@@ -122,7 +121,7 @@ _LAZY = {
     "run_sweep": "foilbearing.sweep.runner",
     "run_study": "foilbearing.study.paper",
     "run_uncertainty": "foilbearing.uncertainty",
-    "voltage_schedule": "foilbearing.schedule",
+    "voltage_schedule": "foilbearing.design.schedule_search",
 }
 
 __all__ = [

@@ -215,7 +215,12 @@ class Shims:
 
 @dataclass(frozen=True)
 class Rotor:
-    """Rigid rotor mass carried by this bearing and its imbalance."""
+    """Rigid rotor mass carried by this bearing and its imbalance: the journal of one bearing
+    (``Case.rotor``, the case file's ``[rotor]``).
+
+    Not the flexible shaft of :mod:`foilbearing.rotor` (a ``RotorCase`` of beam elements
+    and disks on two bearings, each a ``Case`` whose ``rotor`` is the share it carries).
+    """
 
     mass: float  # kg
     imbalance: float  # kg·m (mass times radius)

@@ -69,7 +69,7 @@ def cmd_optimize(args: argparse.Namespace) -> int:
         computed then.
     """
     from foilbearing.case import load_case
-    from foilbearing.optimize import PAPER_VOLTAGES, maximize_onset, minimize_drag
+    from foilbearing.design.voltages import PAPER_VOLTAGES, maximize_onset, minimize_drag
     from foilbearing.units import parse_speed_range
 
     if args.objective not in OBJECTIVES:

@@ -27,7 +27,6 @@ from foilbearing.cli.common import (
     refuse_run_options,
 )
 from foilbearing.cli.reading import add_reading_args
-from foilbearing.errors import InputError
 
 if TYPE_CHECKING:
     from foilbearing.orbit.spec import RunSpec
@@ -198,10 +197,10 @@ def _check_positive(args: argparse.Namespace) -> None:
 
 @guard_outputs
 def _cmd_orbit(args: argparse.Namespace) -> int:
+    from foilbearing.control.options import positive_time
     from foilbearing.orbit import RunStatus, simulate
     from foilbearing.orbit.analysis import analyse_orbit, write_orbit_figures
     from foilbearing.orbit.netcdf import load_orbit, to_netcdf
-    from foilbearing.orbit.spec import cli_quantity
 
     resume = None
     if args.resume is not None:
@@ -217,9 +216,7 @@ def _cmd_orbit(args: argparse.Namespace) -> int:
         spec = run_spec_from_args(args)
         out_path = args.out
     case, profile, program, settings, stop = spec.build()
-    every = cli_quantity(args.checkpoint_every, "time", "--checkpoint-every")
-    if not every > 0.0:
-        raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
+    every = positive_time(args.checkpoint_every, "--checkpoint-every")
     own_file = args.resume is not None and _same_file(out_path, args.resume)
     target = claim_output(args, out_path, may_exist=own_file)
 

@@ -205,26 +205,9 @@ def cmd_rotor(args: argparse.Namespace) -> int:
 
 def _orbit_profile(text: str) -> Any:
     """The speed profile of ``--orbit``: SPEED:DURATION or START:STOP:ACCELERATION."""
-    from foilbearing.control import constant_speed, linear_ramp
-    from foilbearing.errors import InputError
-    from foilbearing.units import parse_quantity
+    from foilbearing.control.options import speed_program
 
-    parts = text.split(":")
-    if len(parts) == 2:
-        speed = parse_quantity(parts[0], "speed", field="--orbit SPEED")
-        duration = parse_quantity(parts[1], "time", field="--orbit DURATION")
-        if speed <= 0 or duration <= 0:
-            raise InputError(f"--orbit {text!r}: speed and duration must be > 0")
-        return constant_speed(speed, duration)
-    if len(parts) == 3:
-        start = parse_quantity(parts[0], "speed", field="--orbit START")
-        stop = parse_quantity(parts[1], "speed", field="--orbit STOP")
-        accel = parse_quantity(parts[2], "angular_acceleration", field="--orbit ACCELERATION")
-        return linear_ramp(start, stop, accel)
-    raise InputError(
-        f"--orbit {text!r}: write SPEED:DURATION (e.g. 40000rpm:0.2s) or "
-        "START:STOP:ACCELERATION (e.g. 30000rpm:60000rpm:500rad/s**2)"
-    )
+    return speed_program(text, "--orbit")
 
 
 def _programs(args: argparse.Namespace, rotor: Any, profile: Any) -> list[Any] | None:
@@ -235,7 +218,8 @@ def _programs(args: argparse.Namespace, rotor: Any, profile: Any) -> list[Any] |
         raise InputError("--voltage-ramp and --controller: give one voltage program")
     if args.controller is None:
         return _voltage_ramps(args.voltage_ramp, rotor)
-    from foilbearing.orbit.spec import ControllerParams, controller_args
+    from foilbearing.control.options import controller_args
+    from foilbearing.orbit.spec import ControllerParams
 
     params = ControllerParams(**controller_args(args.controller))
     acts = [b.case.actuators for b in rotor.bearings]
@@ -252,15 +236,10 @@ def _voltage_ramps(text: str | None, rotor: Any) -> list[Any] | None:
     if text is None:
         return None
     from foilbearing.control import voltage_ramp
+    from foilbearing.control.options import voltage_ramp_times
     from foilbearing.errors import InputError
-    from foilbearing.units import parse_quantity
 
-    parts = text.split(":")
-    if len(parts) != 3:
-        raise InputError(f"--voltage-ramp {text!r}: expected T0:T1:V, e.g. 0.5s:1.0s:150V")
-    t0 = parse_quantity(parts[0], "time", field="--voltage-ramp T0")
-    t1 = parse_quantity(parts[1], "time", field="--voltage-ramp T1")
-    volts = parse_quantity(parts[2], "voltage", field="--voltage-ramp V")
+    t0, t1, volts = voltage_ramp_times(text)
     acts = [b.case.actuators for b in rotor.bearings]
     if all(a is None for a in acts):
         raise InputError("--voltage-ramp: no bearing of the rotor has actuators")
@@ -335,20 +314,13 @@ def _orbit(
     """Run ``--orbit`` (or continue ``resume``); its JSON part (and figures, printed lines)."""
     import json
 
-    from foilbearing.errors import InputError
+    from foilbearing.control.options import positive_time
     from foilbearing.io import save_figure
     from foilbearing.rotor.nonlinear import RotorOrbitSystem
     from foilbearing.rotor.stepper import run_rotor
-    from foilbearing.units import parse_quantity
 
-    stop_time = None
-    if args.stop_time is not None:
-        stop_time = parse_quantity(args.stop_time, "time", field="--stop-time")
-        if not stop_time > 0.0:
-            raise InputError(f"--stop-time {args.stop_time!r}: expected a time > 0 s")
-    every = parse_quantity(args.checkpoint_every, "time", field="--checkpoint-every")
-    if not every > 0.0:
-        raise InputError(f"--checkpoint-every {args.checkpoint_every!r}: expected a time > 0 s")
+    stop_time = None if args.stop_time is None else positive_time(args.stop_time, "--stop-time")
+    every = positive_time(args.checkpoint_every, "--checkpoint-every")
     if args.shaft_modes is None:
         args.shaft_modes = 8  # the default, written into the run's record
     spec = getattr(args, "rotor_run", None)  # set by --resume

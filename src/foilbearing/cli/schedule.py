@@ -96,10 +96,14 @@ def cmd_schedule(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from foilbearing.case import load_case
+    from foilbearing.control.schedule_file import schedule_toml
+    from foilbearing.design.schedule_search import (
+        DEFAULT_MARGIN,
+        check_speed_range,
+        voltage_schedule,
+    )
     from foilbearing.io import save_figure
     from foilbearing.output.plots.schedule import plot_schedule
-    from foilbearing.schedule import DEFAULT_MARGIN, check_speed_range, voltage_schedule
-    from foilbearing.schedule_file import schedule_toml
     from foilbearing.units import parse_quantity
 
     margin = DEFAULT_MARGIN if args.margin is None else args.margin

@@ -24,6 +24,13 @@ import numpy as np
 
 from foilbearing.case.record import CaseRecord
 from foilbearing.control import SubsyncController
+from foilbearing.control.options import (  # cli_quantity, controller_args: importable from here
+    cli_quantity,
+    controller_args,
+    speed_ramp,
+    steady_speed,
+    voltage_ramp_times,
+)
 from foilbearing.errors import InputError
 from foilbearing.orbit.settings import OrbitSettings
 
@@ -155,7 +162,7 @@ class ScheduleText:
         """The schedule along the speed profile (through its slew-rate limit)."""
         import tomllib
 
-        from foilbearing.schedule_file import parse_schedule
+        from foilbearing.control.schedule_file import parse_schedule
 
         return parse_schedule(tomllib.loads(self.text), case, self.path).program(profile)
 
@@ -427,7 +434,7 @@ class RunSpec:
             One line naming the option, for a string that does not parse or a
             program that cannot be built (a voltage ramp needs ``[actuators]``).
         """
-        from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
+        from foilbearing.control import voltage_ramp
 
         spec = _CLI_DEFAULTS | dict(strings)
         case_obj = _load_case(  # its errors come first
@@ -439,21 +446,9 @@ class RunSpec:
             None if spec["load"] is None else cli_quantity(spec["load"], "force", "--load"),
         )
         if spec["speed"] is not None:
-            profile = constant_speed(
-                cli_quantity(spec["speed"], "speed", "--speed"),
-                cli_quantity(spec["duration"], "time", "--duration"),
-            )
+            profile = steady_speed(spec["speed"], spec["duration"])
         else:
-            parts = spec["speed_ramp"].split(":")
-            if len(parts) != 3:
-                raise InputError(
-                    f"--speed-ramp {spec['speed_ramp']!r}: expected START:STOP:ACCELERATION"
-                )
-            profile = linear_ramp(
-                cli_quantity(parts[0], "speed", "--speed-ramp START"),
-                cli_quantity(parts[1], "speed", "--speed-ramp STOP"),
-                cli_quantity(parts[2], "angular_acceleration", "--speed-ramp ACCELERATION"),
-            )
+            profile = speed_ramp(spec["speed_ramp"])
         chosen = [
             f"--{k.replace('_', '-')}"
             for k in ("voltage_ramp", "controller", "voltage_schedule")
@@ -466,22 +461,11 @@ class RunSpec:
             given = spec["voltage_schedule"]
             program = ScheduleText(given["text"], given["path"])
         if spec["voltage_ramp"] is not None:
-            parts = spec["voltage_ramp"].split(":")
-            if len(parts) != 3:
-                raise InputError(
-                    f"--voltage-ramp {spec['voltage_ramp']!r}: expected T0:T1:V, "
-                    "e.g. 6.0s:6.5s:150V"
-                )
+            t0, t1, volts = voltage_ramp_times(spec["voltage_ramp"])
             if case_obj.actuators is None:
                 raise InputError("--voltage-ramp needs a case with [actuators]")
-            program = PiecewiseVoltages.of(
-                voltage_ramp(
-                    cli_quantity(parts[0], "time", "--voltage-ramp T0"),
-                    cli_quantity(parts[1], "time", "--voltage-ramp T1"),
-                    cli_quantity(parts[2], "voltage", "--voltage-ramp V"),
-                    initial=np.asarray(case_obj.actuators.voltages),  # from the case's
-                )
-            )
+            initial = np.asarray(case_obj.actuators.voltages)  # from the case's
+            program = PiecewiseVoltages.of(voltage_ramp(t0, t1, volts, initial=initial))
         if spec["controller"] is not None:
             program = ControllerParams(**controller_args(spec["controller"]))
         settings = OrbitSettings(
@@ -534,36 +518,4 @@ def _finite(values: Any, name: str) -> tuple[float, ...]:
     out = tuple(float(v) for v in values)
     if not all(np.isfinite(out)):
         raise ValueError(f"{name} = {list(out)!r:.60}: expected finite numbers")
-    return out
-
-
-def cli_quantity(text: str, kind: str, option: str) -> float:
-    """A command-line quantity in SI (``rad/s2`` is read as ``rad/s**2``); ``option``
-    names it in the one-line error."""
-    from foilbearing.units import parse_quantity
-
-    return parse_quantity(
-        text.replace("s2", "s**2") if kind == "angular_acceleration" else text, kind, field=option
-    )
-
-
-def controller_args(text: str) -> dict[str, float]:
-    """``--controller threshold=2um,target=150V,...`` as the controller's keyword arguments."""
-    kinds = {
-        "threshold": ("length", "threshold"),
-        "target": ("voltage", "target"),
-        "slew": ("slew_rate", "slew_rate"),
-        "window": ("time", "window"),
-        "period": ("time", "period"),
-        "initial": ("voltage", "initial"),
-    }
-    out: dict[str, float] = {}
-    for item in filter(None, (s.strip() for s in text.split(","))):
-        key, _, value = item.partition("=")
-        if key not in kinds or not value:
-            raise InputError(
-                f"--controller {item!r}: expected KEY=VALUE with KEY one of " + ", ".join(kinds)
-            )
-        kind, name = kinds[key]
-        out[name] = cli_quantity(value, kind, f"--controller {key}")
     return out

@@ -1,5 +1,9 @@
 """Steady compressible Reynolds equation with a compliant foil: Newton solver.
 
+The film at a given journal position; the static analysis (the journal's equilibrium under
+load, Newton on film and position) is :mod:`foilbearing.analysis.equilibrium`, which calls
+this, and the study's sweep of it over speeds and voltages is :mod:`foilbearing.study.static`.
+
 Solves the steady form of Eq. (4) of the paper (docs/model.md §4)::
 
     ∂/∂θ(P H³ ∂P/∂θ − Λ P H) + ∂/∂Z(P H³ ∂P/∂Z) = 0,

@@ -1,5 +1,9 @@
 """Rotors on foil bearings: a shaft of beam elements with disks, on two C-GFBs.
 
+This is the flexible shaft (a ``RotorCase``, read from a rotor file). A bearing case's
+``Case.rotor`` (its ``[rotor]`` table) is something else: the rigid mass and imbalance that
+one bearing carries, its journal (:class:`foilbearing.case.Rotor`).
+
 - :mod:`.model`: the rotor (:class:`RotorCase`) and the weight each bearing carries;
 - :mod:`.toml`: the rotor file (:func:`load_rotor`);
 - :mod:`.linear`: modes, log decrements and the onset speed on ROSS with matched whirl

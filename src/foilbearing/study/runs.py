@@ -24,7 +24,7 @@ class OrbitRun:
     """One speed-up: final voltage, its ramp (None: no control) and the imbalance (kg·m).
 
     A ramp of (0, 0) holds the final voltage from the start. With ``schedule`` (a
-    :class:`foilbearing.schedule.SpeedSchedule`) the voltages follow it instead,
+    :class:`foilbearing.control.speed_schedule.SpeedSchedule`) the voltages follow it instead,
     and ``volts`` and ``ramp`` are not used.
     """
 
@@ -78,7 +78,7 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
     program = None if run.ramp is None else voltage_ramp(*run.ramp, run.volts)
     schedule_spec = None
     if run.schedule is not None:
-        from foilbearing.schedule_file import schedule_toml
+        from foilbearing.control.schedule_file import schedule_toml
 
         program = run.schedule.program(profile)
         text = schedule_toml(run.schedule, case.title)

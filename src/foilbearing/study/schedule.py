@@ -1,6 +1,6 @@
 """The study's voltage schedule (beyond the paper): computed, then verified in speed-ups.
 
-The schedule (:func:`foilbearing.schedule.voltage_schedule`) is computed on the
+The schedule (:func:`foilbearing.design.schedule_search.voltage_schedule`) is computed on the
 study's case from 10 to 90 krpm (17 speeds) with the default margin and slew
 rate, and written as ``schedule.toml`` and ``schedule.png``. It is then run in
 the paper's speed-up (3 → 90 krpm at 500 rad/s²) beside three other voltage
@@ -82,10 +82,10 @@ def queue_schedule(
     Returns the stage's summary, to call once the queue has drained. A run another stage
     asked for on the same queue (the protocol's 1 g·mm runs) is run once and shared.
     """
+    from foilbearing.control.schedule_file import schedule_toml
+    from foilbearing.design.schedule_search import voltage_schedule
     from foilbearing.io import save_figure, write_text
     from foilbearing.output.plots.schedule import plot_schedule
-    from foilbearing.schedule import voltage_schedule
-    from foilbearing.schedule_file import schedule_toml
 
     assert case.actuators is not None
     if speeds is None:

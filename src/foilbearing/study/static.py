@@ -2,6 +2,8 @@
 
 Each sweep walks the speeds in order and starts every equilibrium from the one
 before (continuation), so the whole map costs a few Newton iterations a point.
+Each point is the static analysis of :mod:`foilbearing.analysis.equilibrium` (whose old
+name is ``foilbearing.static``); the film inside it is :mod:`foilbearing.reynolds.steady`.
 """
 
 from __future__ import annotations

@@ -10,7 +10,7 @@ dD_n/dt`` to ``dH/dt``, with ``dD_n/dt`` the change of the pressure at stinger n
 further unknowns, eliminated by a small dense solve over the row solutions.
 solve_ivp's BDF then integrates it with a finite-difference Jacobian on the
 known sparsity pattern. It is slow and exists to check the fast stepper (a test oracle:
-tests and ``benchmarks/bench_reference.py`` import it, production never does).
+tests and ``benchmarks/bench_ivp_orbit.py`` import it, production never does).
 
 Under top-foil lift-off the film holds no sub-ambient pressure: here as the
 projected dynamics of that constraint, independent of the fast stepper's

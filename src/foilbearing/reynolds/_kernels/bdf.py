@@ -58,7 +58,7 @@ def transient_residual(
     ``d (P − 1) = 0`` in place of G = 0; ``slack`` says by how much each cell
     violates the branch it is on (pressure units, > 0: violated).
 
-    Twin: :func:`foilbearing.reynolds.reference.newton_residual_py`
+    Twin: :func:`foilbearing.testing.twins.newton_residual_py`
     (same result up to rounding: dot products are summed in another order).
 
     Parameters

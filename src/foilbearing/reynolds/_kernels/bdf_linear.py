@@ -40,7 +40,7 @@ def lobe_correct(
     (``lobe_border``), ``(I + L Y)⁻¹`` (``lobe_inv``) and
     ``L x = lobe_gain_n · lobe_rows_n @ mean_row(x)``: the change of each lobe's
     compression D_n with the pressures (:class:`~.groups.FactorArrays`). Nothing to do
-    without lobes. Twin: :func:`foilbearing.reynolds.reference.lobe_correct_py`.
+    without lobes. Twin: :func:`foilbearing.testing.twins.lobe_correct_py`.
 
     Parameters
     ----------
@@ -104,7 +104,7 @@ def transient_solve(
     Eliminates the bump states U and the journal (ε, v), solves the pressure
     block with :func:`block_cyclic_solve` (and the lobes' border, :func:`lobe_correct`)
     and applies the rank-2 Woodbury correction of the film force. Twin:
-    :func:`foilbearing.reynolds.reference.solve_py` (same result
+    :func:`foilbearing.testing.twins.solve_py` (same result
     up to rounding).
 
     Parameters
@@ -191,7 +191,7 @@ def transient_jacobian(
     ``a_pe = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂ε`` and, for lobes that follow their
     stacks, the lobes' border ``a_pl = (c0·diag(P) − ∂R/∂H/(Aσ)) ∂H/∂D_n`` with
     ``∂D_n/∂q(θ_n)`` (``lobe_gain``). Twin:
-    :func:`foilbearing.reynolds.reference.jacobian_blocks_py`
+    :func:`foilbearing.testing.twins.jacobian_blocks_py`
     (same result up to rounding: the axial means are summed in another order).
 
     Parameters
@@ -337,7 +337,7 @@ def transient_border(
 
     ``y_border = B'⁻¹ a_pe / c0²`` with the factors of :func:`block_cyclic_factor`
     (and the lobes' border, :func:`lobe_correct`) and ``small_inv = (I + s_vp
-    y_border)⁻¹`` in closed form. Twin: :func:`foilbearing.reynolds.reference.border_py`.
+    y_border)⁻¹`` in closed form. Twin: :func:`foilbearing.testing.twins.border_py`.
 
     Parameters
     ----------

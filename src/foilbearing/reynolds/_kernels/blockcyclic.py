@@ -1,5 +1,5 @@
 """Block cyclic tridiagonal LU of the foil-coupled matrix (compiled; NumPy twins in
-:mod:`foilbearing.reynolds.reference`)."""
+:mod:`foilbearing.testing.block_twins`)."""
 
 from __future__ import annotations
 
@@ -430,7 +430,7 @@ def block_cyclic_factor(
     none between blocks, so it is meant for block-diagonally dominant
     matrices such as the BDF Newton matrix ``c0·diag(H) + …``. Cost
     ``O(n_theta n_z³)``. Replaces ``scipy.sparse.linalg.splu`` of the CSR
-    matrix; twin :func:`~foilbearing.reynolds.reference.block_cyclic_factor_py`.
+    matrix; twin :func:`~foilbearing.testing.twins.block_cyclic_factor_py`.
     Real or complex: ``data`` and ``fac`` of one dtype (float64 or complex128;
     the pivots by modulus).
 
@@ -479,7 +479,7 @@ def block_cyclic_solve(fac: DataArray, rhs: DataArray, out: DataArray) -> None:
     """Solve ``B x = rhs`` with the factors of :func:`block_cyclic_factor`.
 
     Cost ``O(n_theta n_z²)`` per right-hand side; twin
-    :func:`~foilbearing.reynolds.reference.block_cyclic_solve_py`. Dot products may be reassociated
+    :func:`~foilbearing.testing.twins.block_cyclic_solve_py`. Dot products may be reassociated
     (vectorised), which changes results only at rounding level.
 
     Parameters

@@ -46,7 +46,7 @@ def _bern_pos(x: float) -> tuple[float, float]:
 def bernoulli(x: float) -> float:
     """Bernoulli function ``B(x) = x/(eˣ − 1)``, robust for all real x.
 
-    Twin: :func:`~foilbearing.reynolds.reference.bernoulli_py`. Negative arguments use
+    Twin: :func:`~foilbearing.testing.twins.bernoulli_py`. Negative arguments use
     ``B(x) = B(−x) − x``, which is exact and free of overflow.
     """
     if x >= 0.0:
@@ -56,7 +56,7 @@ def bernoulli(x: float) -> float:
 
 @njit(cache=True)
 def bernoulli_deriv(x: float) -> float:
-    """Derivative ``B'(x)``; twin :func:`~foilbearing.reynolds.reference.bernoulli_deriv_py`.
+    """Derivative ``B'(x)``; twin :func:`~foilbearing.testing.twins.bernoulli_deriv_py`.
 
     Negative arguments use ``B'(x) = −B'(−x) − 1``.
     """

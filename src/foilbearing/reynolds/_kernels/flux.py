@@ -84,7 +84,7 @@ def residual(
 ) -> None:
     """Finite-volume residual of Eq. (4), cell-integrated.
 
-    Twin: :func:`~foilbearing.reynolds.reference.residual_py`.
+    Twin: :func:`~foilbearing.testing.twins.residual_py`.
 
     Parameters
     ----------
@@ -284,7 +284,7 @@ def jacobian_P(
     """Fill ``data`` of the CSR ``dR/dP`` (pattern :func:`stencil_pattern`).
 
     Exact derivatives, including those of ``B(Pe)`` through ``Pe(P_f, H_f)``.
-    Twin: :func:`~foilbearing.reynolds.reference.jacobian_P_py`. Arguments as :func:`residual`;
+    Twin: :func:`~foilbearing.testing.twins.jacobian_P_py`. Arguments as :func:`residual`;
     ``data`` has shape ``(nnz,)`` and is overwritten.
     """
     _jacobian(P, H, lam, d_theta, d_z, axial, data, False)
@@ -302,7 +302,7 @@ def jacobian_H(
 ) -> None:
     """Fill ``data`` of the CSR ``dR/dH`` (pattern :func:`stencil_pattern`).
 
-    Twin: :func:`~foilbearing.reynolds.reference.jacobian_H_py`. Arguments as :func:`jacobian_P`.
+    Twin: :func:`~foilbearing.testing.twins.jacobian_H_py`. Arguments as :func:`jacobian_P`.
     """
     _jacobian(P, H, lam, d_theta, d_z, axial, data, True)
 
@@ -324,7 +324,7 @@ def coupled_jacobian(
     axial-mean weights (``1/n_z`` at second order, :attr:`AxialStencil.mean_w` at
     fourth). Row ``(i, j)`` of the product in column block ``i' ∈ {i−1, i, i+1}`` is
     ``s[i'] w_k · Σ_{j'} dR[i, j]/dH[i', j']``.
-    Twin: :func:`~foilbearing.reynolds.reference.coupled_jacobian_py`.
+    Twin: :func:`~foilbearing.testing.twins.coupled_jacobian_py`.
 
     Parameters
     ----------
@@ -434,7 +434,7 @@ def lift_off_rows(
     :mod:`foilbearing.reynolds.steady`): a cell with ``d (P − 1) < −R`` is held
     at ambient, its residual becomes ``−d (P − 1)`` and its matrix row ``−d e_k``
     (on the coupled pattern if ``coupled``, else on the stencil pattern), and
-    its row of ∂R/∂H is zero. Twin: :func:`~foilbearing.reynolds.reference.lift_off_rows_py`.
+    its row of ∂R/∂H is zero. Twin: :func:`~foilbearing.testing.twins.lift_off_rows_py`.
 
     With ``delta`` > 0, the smoothed law of width ``delta`` = δ√Λ
     (:meth:`~foilbearing.reynolds.grid.FilmGrid.lift_off_width`; docs/lift-off.md, "The

@@ -1,5 +1,5 @@
 """The modified Newton iteration of a BDF step: update, one step, lift-off branch
-switching and the compiled Newton loop (twins in :mod:`foilbearing.reynolds.reference`).
+switching and the compiled Newton loop (twins in :mod:`foilbearing.testing.twins`).
 
 Built on the BDF equations of :mod:`.bdf` (:func:`~.bdf.transient_residual`,
 :func:`~.bdf.transient_solve`, :func:`~.bdf.transient_storage`).
@@ -55,7 +55,7 @@ def transient_newton_step(
     :func:`~.bdf.transient_residual` into ``buf.g`` on the factor's lift-off
     branches; if the film stays open (minimum > 0), :func:`~.bdf.transient_solve`
     into ``buf.dy`` with the factor and :func:`newton_update` of y. Twin:
-    :func:`foilbearing.reynolds.reference.newton_step_py`
+    :func:`foilbearing.testing.twins.newton_step_py`
     (those three in sequence). Arguments as in those kernels; ``weights`` are
     the error weights of the convergence norm.
 
@@ -101,7 +101,7 @@ def switch_branches(lift_state: FloatArray, slack: FloatArray, weights: FloatArr
     A held cell is freed when its film has a net inflow of more than one unit
     of the Newton convergence norm (``slack · weight > 1``); a free cell is
     held as soon as it is below ambient (``slack · weight > FREE_SLACK``).
-    Twin: :func:`~foilbearing.reynolds.reference.switch_branches_py`.
+    Twin: :func:`~foilbearing.testing.twins.switch_branches_py`.
     """
     moved = 0
     for k in range(lift_state.shape[0]):
@@ -121,7 +121,7 @@ def lift_coordinate(lift_state: FloatArray, slack: FloatArray, out: FloatArray) 
     slack of the residual kernel, sign-corrected); it moves smoothly as the boundary moves,
     so its extrapolation predicts the next step's branches (:func:`predict_branches`).
     Returns False when no cell has a branch (suction retained: ``out`` means nothing).
-    Twin: :func:`~foilbearing.reynolds.reference.lift_coordinate_py`.
+    Twin: :func:`~foilbearing.testing.twins.lift_coordinate_py`.
     """
     known = False
     for k in range(lift_state.shape[0]):
@@ -146,7 +146,7 @@ def predict_branches(
     The boundary coordinate of the last ``known`` accepted steps (1 to 3: s0 newest),
     extrapolated to the new time: s0 itself (1), the line through s0 and s1 with
     ``weights[0] = h/h1`` (2), or the parabola through all three with the predictor's
-    Lagrange weights (3). Twin: :func:`~foilbearing.reynolds.reference.predict_branches_py`.
+    Lagrange weights (3). Twin: :func:`~foilbearing.testing.twins.predict_branches_py`.
     """
     l0, l1, l2 = weights
     for k in range(s0.shape[0]):
@@ -163,7 +163,7 @@ def predict_branches(
 def adopt_branches(lift_state: FloatArray, branches: FloatArray, most: int) -> int:
     """How many cells of a kept factor are off the step's predicted ``branches``; if they
     are no more than ``most``, they take them (the factor's rows stay: the magnitude of each
-    state is kept). Twin: :func:`~foilbearing.reynolds.reference.adopt_branches_py`.
+    state is kept). Twin: :func:`~foilbearing.testing.twins.adopt_branches_py`.
     """
     moved = 0
     for k in range(lift_state.shape[0]):
@@ -215,7 +215,7 @@ def transient_newton_solve(
     ``MAX_SWITCHES`` times; more than ``MAX_MOVED_KEPT`` cells at once ask for a
     refresh, and so does a fresh factor that diverges after such a switch
     (its rows no longer fit the switched cells). Twin:
-    :func:`foilbearing.reynolds.reference.newton_solve_py`.
+    :func:`foilbearing.testing.twins.newton_solve_py`.
 
     Parameters
     ----------
@@ -301,7 +301,7 @@ def newton_update(
 ) -> tuple[float, float]:
     """``y −= dy`` in place; the weighted max-norm of dy and the smallest new pressure.
 
-    Twin :func:`~foilbearing.reynolds.reference.newton_update_py`.
+    Twin :func:`~foilbearing.testing.twins.newton_update_py`.
 
     Parameters
     ----------

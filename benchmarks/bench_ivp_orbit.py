@@ -1,7 +1,7 @@
-"""Benchmark of the lift-off reference orbit (solve_ivp BDF): its cost must not swing with
-round-off or threads. Prints its figures.
+"""Benchmark of the test oracle of the lift-off orbit (``testing/ivp_orbit.py``, solve_ivp
+BDF): its cost must not swing with round-off or threads. Prints its figures.
 
-Run: .venv/bin/python benchmarks/bench_reference.py [--runs N]
+Run: .venv/bin/python benchmarks/bench_ivp_orbit.py [--runs N]
 
 The segment of ``tests/test_orbit.py::test_fast_stepper_agrees_with_solve_ivp_bdf``
 (lift-off): the default case at 100 V on the 32 × 4 grid, 1 g·mm, 0.01 s at 20 krpm from
