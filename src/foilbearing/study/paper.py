@@ -187,7 +187,7 @@ def run_study_result(
         return _finish(out, results, stage)
 
     sweep = _static_stage(case, out, results, stage)
-    onsets = _stability_stage(case, out, results, stage)
+    onsets, onset_errors = _stability_stage(case, out, results, stage)
     if case.actuators is not None:
         results["actuator_design"] = _design_stage(case, out, stage)
         if bifurcation:
@@ -203,7 +203,7 @@ def run_study_result(
     orbit_runs: dict[str, Any] = {}  # the runs by label, for the report's figures
     _speed_ups(case, out, results, stage, orbits, paper_reading, schedule, orbit_runs)
 
-    _paper_comparison(case, out, results, sweep, onsets, progress)
+    _paper_comparison(case, out, results, sweep, onsets, progress, onset_errors)
     return _finish(out, results, stage, orbit_runs)
 
 
@@ -254,14 +254,19 @@ def _paper_comparison(
     sweep: Any,
     onsets: dict[str, dict[float, Any]] | None,
     progress: bool,
+    onset_errors: dict[str, dict[float, dict[str, Any]]] | None = None,
 ) -> None:
-    """Our numbers beside the paper's (paper_comparison.md and the summary)."""
+    """Our numbers beside the paper's (paper_comparison.md and the summary).
+
+    ``onset_errors``: the published onsets' refinements and errors by kind and voltage
+    (:func:`~foilbearing.study.converged.published_onsets`); the paper's reading is set
+    beside the paper at its refined value."""
     from foilbearing.paper import markdown_table, static_comparison
     from foilbearing.paper_dynamics import orbit_comparison, stability_comparison
 
     rows = static_comparison(case, results["structure"], sweep)
     if onsets is not None:
-        rows += stability_comparison(onsets)
+        rows += stability_comparison(onsets, onset_errors)
     if "orbits" in results:
         # The linear partner of the orbits is the analysis on their grid.
         partner = "C-GFB, orbit grid" if case.grid.orbit_is_own else "C-GFB"
@@ -280,8 +285,13 @@ def _paper_comparison(
         if PAPER_READING_KEY in results and onsets is not None:
             held = onsets.get("C-GFB, lobe+held", {})
             lin = {v: r.onset_speed and r.onset_speed * 30.0 / math.pi for v, r in held.items()}
+            conv = (onset_errors or {}).get("C-GFB, lobe+held", {})
+            lin |= {v: e["onset_refined_rpm"] for v, e in conv.items() if "onset_refined_rpm" in e}
+            texts = {
+                v: e["onset_refined_text_krpm"] for v, e in conv.items() if e.get("refined_grid")
+            }
             runs = results[PAPER_READING_KEY]["runs"]
-            rows += orbit_comparison(runs, lin, force, "the paper's: lobe + held")
+            rows += orbit_comparison(runs, lin, force, "the paper's: lobe + held", texts)
     table = markdown_table(rows)
     results["paper_comparison"] = [r.__dict__ for r in rows]
     write_text(
@@ -401,8 +411,11 @@ def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) ->
 
 def _stability_stage(
     case: Case, out: Path, results: dict[str, Any], stage: Any
-) -> dict[str, dict[float, Any]]:
-    """Coefficients at 50 krpm and 150 V; onset speeds per voltage; the stability map."""
+) -> tuple[dict[str, dict[float, Any]], dict[str, dict[float, dict[str, Any]]]]:
+    """Coefficients at 50 krpm and 150 V; onset speeds per voltage; the stability map.
+
+    Returns the onsets by kind and voltage, and the published ones' refinements and errors
+    (:func:`~foilbearing.study.converged.published_onsets`)."""
     import math
 
     from foilbearing.analysis.coefficients import force_coefficients
@@ -410,6 +423,7 @@ def _stability_stage(
     from foilbearing.analysis.stability import onsets_per_voltage, stability_map
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
+    from foilbearing.study.converged import published_onsets
     from foilbearing.study.static import PAPER_VOLTAGES
 
     rpm = math.pi / 30.0
@@ -444,6 +458,19 @@ def _stability_stage(
         # §3.8) beside the case's own.
         paper_reading = case.with_actuator_reading("lobe", "held")
         onsets["C-GFB, lobe+held"] = onsets_per_voltage(paper_reading, PAPER_VOLTAGES, scan)
+    published = {"C-GFB": case} | (
+        {"C-GFB, lobe+held": case.with_actuator_reading("lobe", "held")}
+        if case.actuators is not None
+        else {}
+    )
+    errors: dict[str, dict[float, dict[str, Any]]] = {}
+    for kind, reading in published.items():  # what the study publishes, with its error
+        stage(f"  {kind}: the onsets on the grid refined by 2, and under the sharp lift-off law")
+
+        def line(text: str, kind: str = kind) -> None:
+            stage(f"    {kind} at {text}")
+
+        errors[kind] = published_onsets(reading, onsets[kind], scan, progress=line)
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
     fig = save_figure(
@@ -451,10 +478,13 @@ def _stability_stage(
         out / "stability_map.png",
     )
     results["stability"] = {
-        kind: [{"voltage_V": v} | r.headline() for v, r in per_volt.items()]
+        kind: [
+            {"voltage_V": v} | r.headline() | errors.get(kind, {}).get(v, {})
+            for v, r in per_volt.items()
+        ]
         for kind, per_volt in onsets.items()
     } | {"figures": [str(fig)]}
-    return onsets
+    return onsets, errors
 
 
 def _design_stage(case: Case, out: Path, stage: Any) -> dict[str, Any]:
