@@ -159,6 +159,13 @@ def orbit_comparison(
             f"sub-synchronous {a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz"
             for a, b, f in run.get("subsync_intervals_rpm_Hz", [])
         ]
+        seeds = run.get("subsync_onset_seeds") or {}
+        if seeds.get("range_rpm"):
+            lo, hi = seeds["range_rpm"]
+            parts.append(
+                f"sub-synchronous onset {lo / 1e3:.1f}-{hi / 1e3:.1f} krpm over "
+                f"{len(seeds['seeds'])} seeds of the disturbance"
+            )
         div = run.get("divergence_speed_rpm")
         parts.append(
             f"diverges at {div / 1e3:.1f} krpm"

@@ -42,6 +42,7 @@ def run_study(
     schedule: bool = True,
     paper_reading: bool = True,
     bifurcation: bool = True,
+    seeds: int = 1,
 ) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
 
@@ -60,6 +61,7 @@ def run_study(
         schedule=schedule,
         paper_reading=paper_reading,
         bifurcation=bifurcation,
+        seeds=seeds,
     ).summary
 
 
@@ -73,6 +75,7 @@ def run_study_result(
     schedule: bool = True,
     paper_reading: bool = True,
     bifurcation: bool = True,
+    seeds: int = 1,
 ) -> StudyResult:
     """Run every stage available on ``case``; write ``out/summary.json`` and the report.
 
@@ -103,6 +106,10 @@ def run_study_result(
         Is the whirl past the onset bounded? The Hopf type and the branch of limit
         cycles at each voltage under the case's reading and the paper's, on Dask
         (the paper's case; :func:`~foilbearing.study.bifurcation.bifurcation_stage`).
+    seeds
+        With ``orbits``, each 0 V speed-up over that many seeds of the case's disturbance
+        (1: the case's alone), its sub-synchronous onset given as a range over them
+        (:mod:`foilbearing.study.orbits`); each seed adds a speed-up per 0 V run.
 
     Returns
     -------
@@ -201,7 +208,7 @@ def run_study_result(
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     orbit_runs: dict[str, Any] = {}  # the runs by label, for the report's figures
-    _speed_ups(case, out, results, stage, orbits, paper_reading, schedule, orbit_runs)
+    _speed_ups(case, out, results, stage, orbits, paper_reading, schedule, orbit_runs, seeds)
 
     _paper_comparison(case, out, results, sweep, onsets, progress, onset_errors)
     return _finish(out, results, stage, orbit_runs)
@@ -216,6 +223,7 @@ def _speed_ups(
     paper_reading: bool,
     schedule: bool,
     orbit_runs: dict[str, Any],
+    seeds: int = 1,
 ) -> None:
     """The stages of speed-ups (the protocol, under the paper's reading, the schedule's) on
     one queue of worker processes: each run starts as soon as a core is free, the 0 V runs
@@ -229,9 +237,11 @@ def _speed_ups(
         from foilbearing.study.orbits import queue_paper_orbits
 
         stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
-        summaries["orbits"] = queue_paper_orbits(queue, case, out, stage, results=orbit_runs)
+        summaries["orbits"] = queue_paper_orbits(
+            queue, case, out, stage, results=orbit_runs, seeds=seeds
+        )
         if paper_reading and case.actuators is not None:
-            summaries[PAPER_READING_KEY] = queue_paper_reading(queue, case, out, stage)
+            summaries[PAPER_READING_KEY] = queue_paper_reading(queue, case, out, stage, seeds=seeds)
     if schedule:
         from foilbearing.study.schedule import queue_schedule
 
@@ -332,7 +342,12 @@ def paper_reading_orbits(
 
 
 def queue_paper_reading(
-    queue: Any, case: Case, out: Path, stage: Any, stop_time: float | None = None
+    queue: Any,
+    case: Case,
+    out: Path,
+    stage: Any,
+    stop_time: float | None = None,
+    seeds: int = 1,
 ) -> Any:
     """:func:`paper_reading_orbits` on a shared queue; returns its summary, to call once the
     queue has drained."""
@@ -349,7 +364,7 @@ def queue_paper_reading(
     reading = replace(reading, rotor=replace(reading.rotor, imbalance=SENSITIVITY_IMBALANCE))
     runs: dict[str, Any] = {}
     protocol = queue_paper_orbits(
-        queue, reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG
+        queue, reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG, seeds=seeds
     )
 
     def summary() -> dict[str, Any]:
