@@ -25,13 +25,21 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import Executor
 from dataclasses import replace
 from typing import Any
 
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 
-__all__ = ["ASSUMED_ORDER", "BRACKET", "onset_errors", "published_onsets", "with_error"]
+__all__ = [
+    "ASSUMED_ORDER",
+    "BRACKET",
+    "onset_errors",
+    "published_onsets",
+    "refine_onset",
+    "with_error",
+]
 
 #: Half-width of the refined grid's onset bracket, relative to the coarse onset: the
 #: measured grid error of the onsets is 0.5-2 % (issue 49), κ's up to 5 %.
@@ -94,11 +102,54 @@ def onset_errors(coarse: float, refined_value: float, sharp: float | None) -> di
     }
 
 
+def refine_onset(case: Case, coarse_speed: float, scan: Sequence[float]) -> dict[str, Any]:
+    """One onset of ``case`` (its voltage set) on the ×2 grid and under the sharp law.
+
+    Parameters
+    ----------
+    case
+        The case in the reading and at the voltage of the onset, on its own grid.
+    coarse_speed
+        The onset on the case's grid, rad/s: the centre of both brackets.
+    scan
+        The study's onset scan, rad/s (where the onset is not inside a bracket).
+
+    Returns
+    -------
+    dict
+        ``refined_grid``, ``onset_refined_rpm``, ``whirl_frequency_refined_Hz`` and
+        ``onset_sharp_rpm`` (None where the sharp law found no onset or no equilibrium);
+        ``message`` where the ×2 grid found no onset.
+    """
+    from foilbearing.check import onset_near, refined
+    from foilbearing.errors import SolverError
+
+    fine = refined(case, 2)
+    on = onset_near(fine, scan, coarse_speed, rel_tol=1e-4, bracket=BRACKET)
+    if on.onset_speed is None:
+        return {"message": f"no onset on the ×2 grid: {on.message}"}
+    sharp_rpm = None
+    if case.grid.lift_off_smoothing > 0:
+        sharp_case = replace(case, grid=replace(case.grid, lift_off_smoothing=0.0))
+        try:
+            sharp = onset_near(sharp_case, scan, coarse_speed, rel_tol=1e-4, bracket=BRACKET)
+            sharp_rpm = None if sharp.onset_speed is None else sharp.onset_speed / RPM
+        except SolverError:
+            pass
+    return {
+        "refined_grid": [fine.grid.n_theta, fine.grid.n_z],
+        "onset_refined_rpm": on.onset_speed / RPM,
+        "whirl_frequency_refined_Hz": (on.whirl_frequency or 0.0) / (2.0 * math.pi),
+        "onset_sharp_rpm": sharp_rpm,
+    }
+
+
 def published_onsets(
     case: Case,
     coarse: Mapping[float, Any],
     scan: Sequence[float],
     progress: Callable[[str], None] | None = None,
+    pool: Executor | None = None,
 ) -> dict[float, dict[str, Any]]:
     """Each coarse onset of ``case`` (one reading) on the ×2 grid, with its errors.
 
@@ -113,43 +164,38 @@ def published_onsets(
         The study's onset scan, rad/s (the refined grid's fallback).
     progress
         Called with a line per voltage.
+    pool
+        Where to run :func:`refine_onset` for each voltage (the study's two cores); None:
+        one after the other in this process.
 
     Returns
     -------
     dict
-        Voltage → unit-named keys: ``refined_grid`` ([n_θ, n_z]), ``onset_refined_rpm``,
-        ``whirl_frequency_refined_Hz``, ``onset_grid_difference_rpm``,
-        ``onset_kappa_effect_rpm``, ``onset_error_rpm``, ``onset_refined_error_rpm``,
-        ``onset_error_source`` and the printed ``onset_text_krpm`` and
-        ``onset_refined_text_krpm`` (:func:`with_error`); empty where the coarse scan found
-        no onset.
+        Voltage → unit-named keys: those of :func:`refine_onset`,
+        ``onset_grid_difference_rpm``, ``onset_kappa_effect_rpm``, ``onset_error_rpm``,
+        ``onset_refined_error_rpm``, ``onset_error_source`` (:func:`onset_errors`) and the
+        printed ``onset_text_krpm`` and ``onset_refined_text_krpm`` (:func:`with_error`);
+        empty where the coarse scan found no onset.
     """
-    from foilbearing.check import onset_near, refined
-    from foilbearing.errors import SolverError
-
-    out: dict[float, dict[str, Any]] = {}
+    jobs: dict[float, Any] = {}
     for volt, res in coarse.items():
         if res.onset_speed is None:
+            continue
+        args = (case.with_voltages(float(volt)), res.onset_speed, list(scan))
+        jobs[volt] = pool.submit(refine_onset, *args) if pool is not None else args
+    out: dict[float, dict[str, Any]] = {}
+    for volt, res in coarse.items():
+        if volt not in jobs:
             out[volt] = {}
             continue
-        at = case.with_voltages(float(volt))
-        fine = refined(at, 2)
-        on = onset_near(fine, scan, res.onset_speed, rel_tol=1e-4, bracket=BRACKET)
-        if on.onset_speed is None:
-            out[volt] = {"message": f"no onset on the ×2 grid: {on.message}"}
+        job = jobs[volt]
+        got = refine_onset(*job) if pool is None else job.result()
+        if "onset_refined_rpm" not in got:
+            out[volt] = got
             continue
-        sharp_case = replace(at, grid=replace(at.grid, lift_off_smoothing=0.0))
-        try:
-            sharp = onset_near(sharp_case, scan, res.onset_speed, rel_tol=1e-4, bracket=BRACKET)
-            sharp_rpm = None if sharp.onset_speed is None else sharp.onset_speed / RPM
-        except SolverError:
-            sharp_rpm = None
-        f1, f2 = res.onset_speed / RPM, on.onset_speed / RPM
-        err = onset_errors(f1, f2, sharp_rpm if at.grid.lift_off_smoothing > 0 else None)
-        out[volt] = {
-            "refined_grid": [fine.grid.n_theta, fine.grid.n_z],
-            "onset_refined_rpm": f2,
-            "whirl_frequency_refined_Hz": (on.whirl_frequency or 0.0) / (2.0 * math.pi),
+        f1, f2 = res.onset_speed / RPM, got["onset_refined_rpm"]
+        err = onset_errors(f1, f2, got["onset_sharp_rpm"])
+        out[volt] = got | {
             "onset_grid_difference_rpm": err["grid_difference"],
             "onset_kappa_effect_rpm": err["kappa_effect"],
             "onset_error_rpm": err["error"],
@@ -159,9 +205,9 @@ def published_onsets(
             "onset_refined_text_krpm": with_error(f2 / 1e3, err["refined_error"] / 1e3),
         }
         if progress is not None:
+            n, m = got["refined_grid"]
             progress(
-                f"{volt:g} V: {out[volt]['onset_text_krpm']} krpm on "
-                f"{at.grid.n_theta} × {at.grid.n_z}, {out[volt]['onset_refined_text_krpm']} "
-                f"on {fine.grid.n_theta} × {fine.grid.n_z}"
+                f"{volt:g} V: {out[volt]['onset_text_krpm']} krpm on the case's grid, "
+                f"{out[volt]['onset_refined_text_krpm']} on {n} × {m}"
             )
     return out

@@ -432,6 +432,8 @@ def _stability_stage(
     Returns the onsets by kind and voltage, and the published ones' refinements and errors
     (:func:`~foilbearing.study.converged.published_onsets`)."""
     import math
+    import os
+    from concurrent.futures import ProcessPoolExecutor
 
     from foilbearing.analysis.coefficients import force_coefficients
     from foilbearing.analysis.equilibrium import solve_equilibrium
@@ -479,13 +481,14 @@ def _stability_stage(
         else {}
     )
     errors: dict[str, dict[float, dict[str, Any]]] = {}
-    for kind, reading in published.items():  # what the study publishes, with its error
-        stage(f"  {kind}: the onsets on the grid refined by 2, and under the sharp lift-off law")
+    with ProcessPoolExecutor(max_workers=min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
+        for kind, reading in published.items():  # what the study publishes, with its error
+            stage(f"  {kind}: the onsets on the grid refined by 2 and under the sharp edge")
 
-        def line(text: str, kind: str = kind) -> None:
-            stage(f"    {kind} at {text}")
+            def line(text: str, kind: str = kind) -> None:
+                stage(f"    {kind} at {text}")
 
-        errors[kind] = published_onsets(reading, onsets[kind], scan, progress=line)
+            errors[kind] = published_onsets(reading, onsets[kind], scan, line, pool)
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
     fig = save_figure(
