@@ -98,7 +98,7 @@ def _table(
     print(
         f"  {'readout':<28}"
         + "".join(f"{'κ=0.1 ' + g:>18}" for g in grids)
-        + "".join(f"{'effect ' + g:>18}" for g in grids)
+        + "".join(f"{'effect ' + g:>26}" for g in grids)
         + "   order of the effect   grid order (κ=0.1)"
     )
     for name, levels in rows.items():
@@ -117,7 +117,7 @@ def _table(
             f"  {name:<28}"
             + "".join(f"{_fmt(v, spec):>18}" for v in vals)
             + "".join(
-                f"{'-' if e is None else f'{e:+.4g} ({r:+.2f} %)':>18}"
+                f"{'-' if e is None else f'{e:+.4g} ({r:+.2f} %)':>26}"
                 for e, r in zip(effects, rel, strict=True)
             )
             + f"   {orders:<21} {grid_order}",

@@ -175,7 +175,9 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             ),
             (
                 "its whirl (Hz)",
-                lambda r: r["paper_reading"].get("whirl_frequency_Hz"),
+                lambda r: r["paper_reading"].get(
+                    "whirl_frequency_refined_Hz", r["paper_reading"].get("whirl_frequency_Hz")
+                ),
                 ".0f",
             ),
         ]
