@@ -111,6 +111,8 @@ def queue_paper_orbits(
     notes: list[str] = []
     repeats: dict[str, list[dict[str, Any]]] = {}  # a 0 V run's label → its other seeds
     first_seed = None if case.disturbance is None else case.disturbance.seed
+    if seeds > 1 and first_seed is None:
+        stage("  seeds: the case has no [disturbance] to draw again; one run per 0 V speed-up")
 
     def finish(run: dict[str, Any]) -> None:
         done[run["label"]] = run
