@@ -77,3 +77,24 @@ def test_the_published_onset_and_its_refinement_differ_by_less_than_its_error(
     assert refined_krpm == pytest.approx(entry["onset_refined_rpm"] / 1e3, rel=1e-3)
     # the printed value and the refined one differ by less than the error printed with it
     assert abs(printed - refined_krpm) < printed_error
+
+
+def test_an_onset_the_refined_grid_cannot_solve_stays_published_without_an_error(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Where the ×2 grid finds no equilibrium the study keeps its onset and says why,
+    instead of stopping (the comparison then prints the onset to 0.1 krpm, unrefined)."""
+    import foilbearing.check
+    from foilbearing.analysis.stability import OnsetResult
+    from foilbearing.errors import SolverError
+    from foilbearing.paper_dynamics import stability_comparison
+
+    def fails(*args: object, **kwargs: object) -> None:
+        raise SolverError("no static equilibrium at 4700 rpm")
+
+    monkeypatch.setattr(foilbearing.check, "onset_near", fails)
+    coarse = {0.0: OnsetResult(5e3 * RPM, 0.1, 60.0, STUDY_SCAN[:1], [], [], "unstable")}
+    got = published_onsets(default_case(), coarse, STUDY_SCAN)
+    assert got[0.0] == {"message": "no onset on the ×2 grid: no static equilibrium at 4700 rpm"}
+    row = stability_comparison({"C-GFB": coarse}, {"C-GFB": got})[0]
+    assert row.ours.startswith("5.0 krpm, ")

@@ -132,7 +132,10 @@ def refine_onset(case: Case, coarse_speed: float, scan: Sequence[float]) -> dict
     from foilbearing.errors import SolverError
 
     fine = refined(case, 2)
-    on = onset_near(fine, scan, coarse_speed, rel_tol=1e-4, bracket=BRACKET)
+    try:
+        on = onset_near(fine, scan, coarse_speed, rel_tol=1e-4, bracket=BRACKET)
+    except SolverError as exc:  # the onset stays published, without its error
+        return {"message": f"no onset on the ×2 grid: {exc}"}
     if on.onset_speed is None:
         return {"message": f"no onset on the ×2 grid: {on.message}"}
     sharp_rpm = None
