@@ -360,6 +360,15 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
     assert summary["structure"]["k_b_N_per_m3"] > 0
     onsets = [e["onset_speed_rpm"] for e in summary["stability"]["C-GFB"]]
     assert all(o is not None and o > 5000 for o in onsets)
+    # the published onsets carry their error, printed to the digits it supports (issue 49)
+    for kind in ("C-GFB", "C-GFB, lobe+held"):
+        for e in summary["stability"][kind]:
+            assert e["refined_grid"] == [192, 24]
+            value, err = e["onset_text_krpm"].split(" ± ")
+            step = 10.0 ** -len(value.partition(".")[2])
+            assert abs(float(value) - e["onset_speed_rpm"] / 1e3) <= step / 2 + 1e-9
+            assert float(err) * 1e3 >= e["onset_error_rpm"] > 0
+    assert "±" in (study_out / "report.html").read_text(encoding="utf-8")
 
 
 @pytest.mark.slow

@@ -121,3 +121,51 @@ def test_the_study_queue_runs_a_run_two_stages_ask_for_once(tmp_path: Path) -> N
     direct = simulate(replace(case, rotor=replace(case.rotor, imbalance=1e-6)), profile,
                       stop_time=0.02)  # fmt: skip
     np.testing.assert_array_equal(seen[0]["result"].e_x, direct.e_x)
+
+
+@pytest.mark.slow
+def test_the_0v_speed_ups_over_seeds_of_the_disturbance(tmp_path: Path, capsys) -> None:
+    """``--seeds N`` (issue 49): each 0 V run of the protocol is repeated with the
+    disturbance's next seeds; a repeat is the same speed-up under another draw of the random
+    force, so its orbit differs from the case's by less than the orbit itself; the 0 V
+    headline carries the seeds and their onsets, and the comparison prints the range
+    (32 x 4, stopped at 0.02 s: the plumbing, not the readout). --seeds 0 is a one-line
+    error."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from foilbearing.case import Grid, default_case
+    from foilbearing.cli.main import main
+    from foilbearing.orbit.netcdf import load_orbit
+    from foilbearing.paper_dynamics import orbit_comparison
+    from foilbearing.study.orbits import paper_orbit_runs
+
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    ).with_actuator_reading("lobe", "held")
+    assert case.disturbance is not None and case.disturbance.seed == 1
+    out = paper_orbit_runs(case, tmp_path, lambda _: None, workers=2, stop_time=0.02, seeds=3)
+    zero = out["runs"][0]
+    assert zero["disturbance_seed"] == 1
+    over = zero["subsync_onset_seeds"]
+    assert over["seeds"] == [1, 2, 3] and len(over["onset_speed_rpm"]) == 3
+    assert over["range_rpm"] is None  # no sub-synchronous onset in 0.02 s
+    assert all("subsync_onset_seeds" not in h for h in out["runs"][1:])  # 0 V runs only
+    base = load_orbit(Path(zero["netcdf"]))[0].e_x
+    for seed in (2, 3):
+        other = load_orbit(tmp_path / f"orbit_{zero['label']}_seed{seed}.nc")[0].e_x
+        assert other.shape == base.shape
+        gap = np.abs(other - base).max()
+        assert 0.0 < gap < np.abs(base).max()
+
+    run = zero | {"subsync_onset_seeds": over | {"range_rpm": [50_100.0, 52_300.0]}}
+    row = orbit_comparison([run])[0]
+    assert "sub-synchronous onset 50.1-52.3 krpm over 3 seeds of the disturbance" in row.ours
+
+    assert main(["study", "--seeds", "0", "--out", str(tmp_path / "s")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--seeds 0: allowed 1 to 20" in err[0]

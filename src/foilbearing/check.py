@@ -28,7 +28,15 @@ from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 from foilbearing.output.display import Summarised
 
-__all__ = ["READOUTS", "RELIABLE_ORDER", "GridCheck", "error_estimate", "grid_check", "refined"]
+__all__ = [
+    "READOUTS",
+    "RELIABLE_ORDER",
+    "GridCheck",
+    "error_estimate",
+    "grid_check",
+    "onset_near",
+    "refined",
+]
 
 #: The readouts of the check: key (unit-named), label, and the factor from SI to that unit.
 READOUTS: tuple[tuple[str, str, float], ...] = (
@@ -64,6 +72,44 @@ def refined(case: Case, factor: int) -> Case:
     return replace(case, grid=replace(g, n_theta=g.n_theta * factor, n_z=g.n_z * factor))
 
 
+def onset_near(
+    case: Case,
+    speeds: Sequence[float],
+    near: float | None,
+    *,
+    rel_tol: float = 1e-6,
+    bracket: float = ONSET_BRACKET,
+) -> Any:
+    """The linear onset on the case's grid, scanned first in a bracket around ``near``.
+
+    Parameters
+    ----------
+    case
+        The case, on the grid to solve (a refined level: :func:`refined`).
+    speeds
+        The full scan, rad/s, increasing: used where ``near`` is None or the onset is not
+        inside the bracket.
+    near
+        The onset on a coarser grid, rad/s (None: the full scan at once).
+    rel_tol
+        Brent's tolerance (:func:`foilbearing.analysis.stability.onset_speed`).
+    bracket
+        Relative half-width of the bracket around ``near``.
+
+    Returns
+    -------
+    OnsetResult
+    """
+    from foilbearing.analysis.stability import onset_speed
+
+    if near is not None:
+        top = min(near * (1 + bracket), case.operation.max_speed)
+        on = onset_speed(case, [near * (1 - bracket), top], rel_tol=rel_tol)
+        if on.onset_speed is not None and on.speeds.size >= 2:  # inside the bracket
+            return on
+    return onset_speed(case, speeds, rel_tol=rel_tol)
+
+
 def _readouts(
     case: Case, onset_speeds: Sequence[float] | None, near_onset: float | None
 ) -> dict[str, float | None]:
@@ -73,7 +119,6 @@ def _readouts(
     """
     from foilbearing.analysis.coefficients import force_coefficients
     from foilbearing.analysis.equilibrium import solve_equilibrium
-    from foilbearing.analysis.stability import onset_speed
 
     st = solve_equilibrium(case)
     if not st.converged:
@@ -98,15 +143,7 @@ def _readouts(
         "whirl_frequency_Hz": None,
     }
     if onset_speeds is not None:
-        on = None
-        if near_onset is not None:
-            top = min(near_onset * (1 + ONSET_BRACKET), case.operation.max_speed)
-            bracket = [near_onset * (1 - ONSET_BRACKET), top]
-            on = onset_speed(case, bracket, rel_tol=1e-6)
-            if on.onset_speed is None or on.speeds.size < 2:  # not inside: the full scan
-                on = None
-        if on is None:
-            on = onset_speed(case, onset_speeds, rel_tol=1e-6)
+        on = onset_near(case, onset_speeds, near_onset, rel_tol=1e-6)
         si["onset_speed_rpm"] = on.onset_speed
         si["whirl_frequency_Hz"] = on.whirl_frequency
     out: dict[str, float | None] = {}

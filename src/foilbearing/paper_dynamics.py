@@ -38,8 +38,17 @@ _PAPER_RUNS: dict[float, tuple[str, float | None, float | None, float | None]] =
 }  # fmt: skip
 
 
-def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
-    """Linear onset speeds beside the paper's nonlinear orbit observations (Figs. 13-15)."""
+def stability_comparison(
+    onsets: dict[str, dict[float, Any]],
+    errors: dict[str, dict[float, dict[str, Any]]] | None = None,
+) -> list[Row]:
+    """Linear onset speeds beside the paper's nonlinear orbit observations (Figs. 13-15).
+
+    ``errors`` (kind → voltage → :func:`~foilbearing.study.converged.published_onsets`'
+    entry): where given, the C-GFB onset is printed with its error, and the paper's reading
+    (lobe + held) at its value on the refined grid, with that value's error.
+    """
+    errors = errors or {}
     why = {
         0.0: ("at 0 V no reading of the actuator enters (no preload): a linear onset against "
               "a divergence in a speed-up, with the viscosity and rotor mass assumed",
@@ -62,13 +71,23 @@ def stability_comparison(onsets: dict[str, dict[float, Any]]) -> list[Row]:
             ("C-GFB, lobe+held", "the paper's reading (lobe + held)"),
         ):
             other = onsets.get(kind, {}).get(volt)
-            if other is not None and other.onset_speed is not None:
+            conv = errors.get(kind, {}).get(volt, {})
+            if conv.get("refined_grid"):
+                n, m = conv["refined_grid"]
+                shim_txt += f"; {label} {conv['onset_refined_text_krpm']} krpm on {n} × {m}"
+            elif other is not None and other.onset_speed is not None:
                 shim_txt += f"; {label} {other.headline()['onset_speed_rpm'] / 1e3:.1f} krpm"
         onset, whirl = h["onset_speed_rpm"], h["whirl_frequency_Hz"]
+        own = errors.get("C-GFB", {}).get(volt, {})
+        value = (
+            f"{own['onset_text_krpm']} krpm ({own['onset_error_source']})"
+            if own.get("refined_grid")
+            else f"{0.0 if onset is None else onset / 1e3:.1f} krpm"
+        )
         ours = (
             "stable over the scan"
             if onset is None
-            else f"{onset / 1e3:.1f} krpm, {whirl:.0f} Hz (ratio {h['whirl_ratio']:.2f})"
+            else f"{value}, {whirl:.0f} Hz (ratio {h['whirl_ratio']:.2f})"
         )
         text, diverges, whip, whip_onset = _PAPER_RUNS.get(volt, ("", None, None, None))
         reason, where = why.get(
@@ -119,6 +138,7 @@ def orbit_comparison(
     linear_onsets_rpm: dict[float, float | None] | None = None,
     disturbance_rms: float = 0.0,
     reading: str | None = None,
+    onset_texts_krpm: dict[float, str] | None = None,
 ) -> list[Row]:
     """The speed-up runs beside the paper's Figs. 13-15 (docs/model.md §6).
 
@@ -129,6 +149,8 @@ def orbit_comparison(
     divergence against the linear onset at its final voltage: an onset read from a
     ramped nonlinear run is not a linear onset (like with like). ``disturbance_rms``
     (N) is the case's random force on the rotor, the seed of the whirls (0: none).
+    ``onset_texts_krpm`` (final voltage → the linear onset with its error, krpm, e.g.
+    ``"71.1 ± 1.2"``) prints those in place of the onset to 0.1 krpm.
     """
     rows = []
     for run in runs:
@@ -137,6 +159,13 @@ def orbit_comparison(
             f"sub-synchronous {a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz"
             for a, b, f in run.get("subsync_intervals_rpm_Hz", [])
         ]
+        seeds = run.get("subsync_onset_seeds") or {}
+        if seeds.get("range_rpm"):
+            lo, hi = seeds["range_rpm"]
+            parts.append(
+                f"sub-synchronous onset {lo / 1e3:.1f}-{hi / 1e3:.1f} krpm over "
+                f"{len(seeds['seeds'])} seeds of the disturbance"
+            )
         div = run.get("divergence_speed_rpm")
         parts.append(
             f"diverges at {div / 1e3:.1f} krpm"
@@ -145,9 +174,10 @@ def orbit_comparison(
         )
         lin = (linear_onsets_rpm or {}).get(v)
         if lin and div:
+            lin_text = (onset_texts_krpm or {}).get(v) or f"{lin / 1e3:.1f}"
             parts.append(
                 f"{100.0 * (div / lin - 1.0):+.0f} % from the linear onset at {v:g} V "
-                f"({lin / 1e3:.1f} krpm)"
+                f"({lin_text} krpm)"
             )
         half = run.get("half_order")
         if v == 0.0:

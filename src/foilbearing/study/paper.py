@@ -42,6 +42,7 @@ def run_study(
     schedule: bool = True,
     paper_reading: bool = True,
     bifurcation: bool = True,
+    seeds: int = 1,
 ) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
 
@@ -60,6 +61,7 @@ def run_study(
         schedule=schedule,
         paper_reading=paper_reading,
         bifurcation=bifurcation,
+        seeds=seeds,
     ).summary
 
 
@@ -73,6 +75,7 @@ def run_study_result(
     schedule: bool = True,
     paper_reading: bool = True,
     bifurcation: bool = True,
+    seeds: int = 1,
 ) -> StudyResult:
     """Run every stage available on ``case``; write ``out/summary.json`` and the report.
 
@@ -103,6 +106,10 @@ def run_study_result(
         Is the whirl past the onset bounded? The Hopf type and the branch of limit
         cycles at each voltage under the case's reading and the paper's, on Dask
         (the paper's case; :func:`~foilbearing.study.bifurcation.bifurcation_stage`).
+    seeds
+        With ``orbits``, each 0 V speed-up over that many seeds of the case's disturbance
+        (1: the case's alone), its sub-synchronous onset given as a range over them
+        (:mod:`foilbearing.study.orbits`); each seed adds a speed-up per 0 V run.
 
     Returns
     -------
@@ -187,7 +194,7 @@ def run_study_result(
         return _finish(out, results, stage)
 
     sweep = _static_stage(case, out, results, stage)
-    onsets = _stability_stage(case, out, results, stage)
+    onsets, onset_errors = _stability_stage(case, out, results, stage)
     if case.actuators is not None:
         results["actuator_design"] = _design_stage(case, out, stage)
         if bifurcation:
@@ -201,9 +208,9 @@ def run_study_result(
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     orbit_runs: dict[str, Any] = {}  # the runs by label, for the report's figures
-    _speed_ups(case, out, results, stage, orbits, paper_reading, schedule, orbit_runs)
+    _speed_ups(case, out, results, stage, orbits, paper_reading, schedule, orbit_runs, seeds)
 
-    _paper_comparison(case, out, results, sweep, onsets, progress)
+    _paper_comparison(case, out, results, sweep, onsets, progress, onset_errors)
     return _finish(out, results, stage, orbit_runs)
 
 
@@ -216,6 +223,7 @@ def _speed_ups(
     paper_reading: bool,
     schedule: bool,
     orbit_runs: dict[str, Any],
+    seeds: int = 1,
 ) -> None:
     """The stages of speed-ups (the protocol, under the paper's reading, the schedule's) on
     one queue of worker processes: each run starts as soon as a core is free, the 0 V runs
@@ -229,9 +237,11 @@ def _speed_ups(
         from foilbearing.study.orbits import queue_paper_orbits
 
         stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
-        summaries["orbits"] = queue_paper_orbits(queue, case, out, stage, results=orbit_runs)
+        summaries["orbits"] = queue_paper_orbits(
+            queue, case, out, stage, results=orbit_runs, seeds=seeds
+        )
         if paper_reading and case.actuators is not None:
-            summaries[PAPER_READING_KEY] = queue_paper_reading(queue, case, out, stage)
+            summaries[PAPER_READING_KEY] = queue_paper_reading(queue, case, out, stage, seeds=seeds)
     if schedule:
         from foilbearing.study.schedule import queue_schedule
 
@@ -254,14 +264,19 @@ def _paper_comparison(
     sweep: Any,
     onsets: dict[str, dict[float, Any]] | None,
     progress: bool,
+    onset_errors: dict[str, dict[float, dict[str, Any]]] | None = None,
 ) -> None:
-    """Our numbers beside the paper's (paper_comparison.md and the summary)."""
+    """Our numbers beside the paper's (paper_comparison.md and the summary).
+
+    ``onset_errors``: the published onsets' refinements and errors by kind and voltage
+    (:func:`~foilbearing.study.converged.published_onsets`); the paper's reading is set
+    beside the paper at its refined value."""
     from foilbearing.paper import markdown_table, static_comparison
     from foilbearing.paper_dynamics import orbit_comparison, stability_comparison
 
     rows = static_comparison(case, results["structure"], sweep)
     if onsets is not None:
-        rows += stability_comparison(onsets)
+        rows += stability_comparison(onsets, onset_errors)
     if "orbits" in results:
         # The linear partner of the orbits is the analysis on their grid.
         partner = "C-GFB, orbit grid" if case.grid.orbit_is_own else "C-GFB"
@@ -280,8 +295,13 @@ def _paper_comparison(
         if PAPER_READING_KEY in results and onsets is not None:
             held = onsets.get("C-GFB, lobe+held", {})
             lin = {v: r.onset_speed and r.onset_speed * 30.0 / math.pi for v, r in held.items()}
+            conv = (onset_errors or {}).get("C-GFB, lobe+held", {})
+            lin |= {v: e["onset_refined_rpm"] for v, e in conv.items() if "onset_refined_rpm" in e}
+            texts = {
+                v: e["onset_refined_text_krpm"] for v, e in conv.items() if e.get("refined_grid")
+            }
             runs = results[PAPER_READING_KEY]["runs"]
-            rows += orbit_comparison(runs, lin, force, "the paper's: lobe + held")
+            rows += orbit_comparison(runs, lin, force, "the paper's: lobe + held", texts)
     table = markdown_table(rows)
     results["paper_comparison"] = [r.__dict__ for r in rows]
     write_text(
@@ -322,7 +342,12 @@ def paper_reading_orbits(
 
 
 def queue_paper_reading(
-    queue: Any, case: Case, out: Path, stage: Any, stop_time: float | None = None
+    queue: Any,
+    case: Case,
+    out: Path,
+    stage: Any,
+    stop_time: float | None = None,
+    seeds: int = 1,
 ) -> Any:
     """:func:`paper_reading_orbits` on a shared queue; returns its summary, to call once the
     queue has drained."""
@@ -339,7 +364,7 @@ def queue_paper_reading(
     reading = replace(reading, rotor=replace(reading.rotor, imbalance=SENSITIVITY_IMBALANCE))
     runs: dict[str, Any] = {}
     protocol = queue_paper_orbits(
-        queue, reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG
+        queue, reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG, seeds=seeds
     )
 
     def summary() -> dict[str, Any]:
@@ -401,15 +426,21 @@ def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) ->
 
 def _stability_stage(
     case: Case, out: Path, results: dict[str, Any], stage: Any
-) -> dict[str, dict[float, Any]]:
-    """Coefficients at 50 krpm and 150 V; onset speeds per voltage; the stability map."""
+) -> tuple[dict[str, dict[float, Any]], dict[str, dict[float, dict[str, Any]]]]:
+    """Coefficients at 50 krpm and 150 V; onset speeds per voltage; the stability map.
+
+    Returns the onsets by kind and voltage, and the published ones' refinements and errors
+    (:func:`~foilbearing.study.converged.published_onsets`)."""
     import math
+    import os
+    from concurrent.futures import ProcessPoolExecutor
 
     from foilbearing.analysis.coefficients import force_coefficients
     from foilbearing.analysis.equilibrium import solve_equilibrium
     from foilbearing.analysis.stability import onsets_per_voltage, stability_map
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
+    from foilbearing.study.converged import published_onsets
     from foilbearing.study.static import PAPER_VOLTAGES
 
     rpm = math.pi / 30.0
@@ -444,6 +475,20 @@ def _stability_stage(
         # §3.8) beside the case's own.
         paper_reading = case.with_actuator_reading("lobe", "held")
         onsets["C-GFB, lobe+held"] = onsets_per_voltage(paper_reading, PAPER_VOLTAGES, scan)
+    published = {"C-GFB": case} | (
+        {"C-GFB, lobe+held": case.with_actuator_reading("lobe", "held")}
+        if case.actuators is not None
+        else {}
+    )
+    errors: dict[str, dict[float, dict[str, Any]]] = {}
+    with ProcessPoolExecutor(max_workers=min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
+        for kind, reading in published.items():  # what the study publishes, with its error
+            stage(f"  {kind}: the onsets on the grid refined by 2 and under the sharp edge")
+
+            def line(text: str, kind: str = kind) -> None:
+                stage(f"    {kind} at {text}")
+
+            errors[kind] = published_onsets(reading, onsets[kind], scan, line, pool)
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
     fig = save_figure(
@@ -451,10 +496,13 @@ def _stability_stage(
         out / "stability_map.png",
     )
     results["stability"] = {
-        kind: [{"voltage_V": v} | r.headline() for v, r in per_volt.items()]
+        kind: [
+            {"voltage_V": v} | r.headline() | errors.get(kind, {}).get(v, {})
+            for v, r in per_volt.items()
+        ]
         for kind, per_volt in onsets.items()
     } | {"figures": [str(fig)]}
-    return onsets
+    return onsets, errors
 
 
 def _design_stage(case: Case, out: Path, stage: Any) -> dict[str, Any]:

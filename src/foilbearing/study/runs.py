@@ -25,7 +25,9 @@ class OrbitRun:
 
     A ramp of (0, 0) holds the final voltage from the start. With ``schedule`` (a
     :class:`foilbearing.control.speed_schedule.SpeedSchedule`) the voltages follow it instead,
-    and ``volts`` and ``ramp`` are not used.
+    and ``volts`` and ``ramp`` are not used. ``seed`` (None: the case's) is the seed of
+    the case's random disturbance force (:mod:`foilbearing.orbit.disturbance`): another
+    draw of its tones' frequencies and phases, for the spread of a readout over seeds.
     """
 
     volts: float
@@ -35,6 +37,7 @@ class OrbitRun:
     schedule: Any = None
     #: Prefix of the label (and so of its files): a reading's runs beside the case's own.
     tag: str = ""
+    seed: int | None = None
 
     @property
     def constant(self) -> bool:
@@ -50,10 +53,13 @@ class OrbitRun:
         else:
             tail = "" if self.ramp is None else f"_ramp{self.ramp[0]:.2f}s"
             head = f"{self.volts:g}V{tail}"
-        return f"{self.tag}{head}_{self.imbalance * 1e6:g}gmm"
+        tail = "" if self.seed is None else f"_seed{self.seed}"
+        return f"{self.tag}{head}_{self.imbalance * 1e6:g}gmm{tail}"
 
     def describe(self) -> str:
         imbalance = f"imbalance {self.imbalance * 1e6:g} g·mm"
+        if self.seed is not None:
+            imbalance += f", disturbance seed {self.seed}"
         if self.schedule is not None:
             return f"voltage schedule, {imbalance}"
         if self.constant:
@@ -74,6 +80,8 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
     from foilbearing.orbit.spec import RunSpec, ScheduleText
 
     case = replace(case, rotor=replace(case.rotor, imbalance=run.imbalance))
+    if run.seed is not None and case.disturbance is not None:
+        case = replace(case, disturbance=replace(case.disturbance, seed=run.seed))
     profile = linear_ramp(3000 * RPM, 90000 * RPM, 500.0)
     program = None if run.ramp is None else voltage_ramp(*run.ramp, run.volts)
     schedule_spec = None
@@ -117,6 +125,7 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
         voltage_V=run.volts,
         control_ramp_s=None if ramp is None else list(ramp),
         imbalance_g_mm=run.imbalance * 1e6,
+        disturbance_seed=None if case.disturbance is None else case.disturbance.seed,
         onset_after_control_rpm=after[0][0] if after else None,
         whip_after_control_Hz=after[0][2] if after else None,
         netcdf=str(path),

@@ -136,9 +136,25 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
     def onset_of(key: str) -> Any:
         return lambda r: _krpm("onset_speed_rpm")(r[key])
 
+    # The published onsets with their error (foilbearing.study.converged): the case's
+    # reading on its grid, the paper's at its value on the grid refined by 2.
+    errors = any(e.get("onset_text_krpm") for e in d.get("C-GFB", []))
+    refined = next((e["refined_grid"] for e in d.get("C-GFB", []) if e.get("refined_grid")), None)
+    on_refined = "" if refined is None else f" on {refined[0]} × {refined[1]}"
+
+    def published(r: dict[str, Any], text: str) -> Any:
+        if r.get(text):
+            return r[text]
+        krpm = _krpm("onset_speed_rpm")(r)
+        return None if krpm is None else f"{krpm:.1f}"
+
     cols: list[Column] = [
         ("voltage (V)", _key("voltage_V"), "g"),
-        ("C-GFB onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        (
+            "C-GFB onset (krpm)",
+            lambda r: published(r, "onset_text_krpm") if errors else _krpm("onset_speed_rpm")(r),
+            "" if errors else ".1f",
+        ),
         ("whirl frequency (Hz)", _key("whirl_frequency_Hz"), ".0f"),
         ("whirl ratio", _key("whirl_ratio"), ".2f"),
         ("shimmed onset (krpm)", onset_of("shim"), ".1f"),
@@ -148,10 +164,20 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         cols.append(("C-GFB on the orbits' grid (krpm)", onset_of("orbit_grid"), ".1f"))
     if others["paper_reading"]:
         cols += [
-            ("C-GFB, paper's reading: lobe + held (krpm)", onset_of("paper_reading"), ".1f"),
+            (
+                f"C-GFB, paper's reading: lobe + held (krpm{on_refined})",
+                (
+                    (lambda r: published(r["paper_reading"], "onset_refined_text_krpm"))
+                    if errors
+                    else onset_of("paper_reading")
+                ),
+                "" if errors else ".1f",
+            ),
             (
                 "its whirl (Hz)",
-                lambda r: r["paper_reading"].get("whirl_frequency_Hz"),
+                lambda r: r["paper_reading"].get(
+                    "whirl_frequency_refined_Hz", r["paper_reading"].get("whirl_frequency_Hz")
+                ),
                 ".0f",
             ),
         ]
@@ -177,6 +203,15 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             "whirl); the paper's reading lowers the whole lobe and holds the stinger during "
             "the motion (docs/model.md §3.8)."
             if others["paper_reading"]
+            else ""
+        )
+        + (
+            " The C-GFB onsets are given with their estimated discretisation error, the "
+            "larger of the grid's (from the grid refined by 2) and the lift-off smoothing's "
+            "(κ against the sharp edge; docs/lift-off.md), the paper's reading at its value "
+            f"on the refined grid{on_refined}; the other columns are on the case's grid, "
+            "0.5-2 % from converged."
+            if errors
             else ""
         )
         + "</p>"
