@@ -216,9 +216,9 @@ class OrbitSettings:
                 f"{f_sync:.0f} Hz at the top speed: use at least {4 * f_sync:.0f} Hz"
             )
         if self.steps not in STEP_KINDS:
-            raise InputError(f"steps = {self.steps!r}: one of {', '.join(STEP_KINDS)}")
+            raise InputError(f"steps (--steps) = {self.steps!r}: one of {', '.join(STEP_KINDS)}")
         if not 1e-8 <= self.step_rtol <= 0.1:
-            raise InputError(f"step_rtol = {self.step_rtol!r}: a tolerance in [1e-8, 0.1]")
+            raise InputError(f"step_rtol (--rtol) = {self.step_rtol!r}: a tolerance in [1e-8, 0.1]")
         if not self.max_step > 0:
             raise InputError(f"max_step = {self.max_step!r} s: must be > 0")
         if self.refresh_after is not None and (
