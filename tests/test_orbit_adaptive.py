@@ -84,3 +84,32 @@ def test_an_adaptive_run_resumes_to_the_run_in_one_go() -> None:
     # Measured: 2.9e-4 C at most; 97 steps against 93 (the stop's landing step and the
     # steps after it).
     np.testing.assert_allclose(rest.e_x, whole.e_x, atol=1e-3 * case.bearing.clearance)
+
+
+def test_the_samples_between_long_steps_follow_a_whirl_and_are_the_ones_a_controller_saw() -> None:
+    # A 1X orbit recorded on irregular steps of 10-20 a revolution: the backward cubic
+    # misses it by at most 0.04 (ωΔt)⁴ of its amplitude (0.6 % at ωΔt = 2π/10; linear
+    # interpolation would miss by up to (ωΔt)²/8 = 5 %), and the samples handed out one
+    # step at a time (Samples.new_samples, for a controller) equal the stored ones.
+    from foilbearing.orbit.sampling import Samples, backward_cubic
+
+    omega = 2 * math.pi * 300.0
+    rng = np.random.default_rng(49)
+    steps = 2 * math.pi / omega / rng.uniform(10.0, 20.0, 200)
+    t = np.concatenate([[0.0], np.cumsum(steps)])
+    x = np.cos(omega * t)
+    ts = np.arange(0.0, t[-1], 1e-4)
+    cubic = backward_cubic(ts, t, x)
+    late = ts > t[3]
+    bound = 0.04 * (omega * steps.max()) ** 4
+    assert np.max(np.abs(cubic - np.cos(omega * ts))[late]) < bound
+    assert np.max(np.abs(np.interp(ts, t, x) - np.cos(omega * ts))) > 5 * bound
+    out = Samples(1e-4, cubic=True)
+    seen = []
+    for tk, xk in zip(t, x, strict=True):
+        out.t.append(float(tk))
+        out.ex.append(float(xk))
+        seen += out.new_samples()
+    got = np.array(seen)
+    np.testing.assert_allclose(got[:, 0], ts[: len(got)], atol=1e-12)
+    np.testing.assert_allclose(got[:, 1], cubic[: len(got)], atol=1e-12)
