@@ -35,7 +35,7 @@ def adaptive(rtol: float = OrbitSettings.step_rtol, **kw: float) -> OrbitSetting
 def test_adaptive_steps_meet_the_accuracy_of_the_default_against_128_steps_a_revolution() -> None:
     # Issue 49's target: 0.05 s at 20 krpm, 100 V, 8.5 g·mm from the static equilibrium,
     # the largest deviation of e_X from 128 steps a revolution within 1.2 % of its
-    # peak-to-peak (the default's accuracy: fixed BDF3 at 24 a revolution, 1.21 %).
+    # peak-to-peak (the default's accuracy: fixed BDF3 at 24 a revolution, 1.20 %).
     # Measured: rtol 3e-3 / 1e-3 / 3e-4 give 3.9 / 1.00 / 0.66 % at 272 / 356 / 472 steps
     # (the default 403): the tolerance sets the error, and the default rtol meets the
     # target in fewer steps.
