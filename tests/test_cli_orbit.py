@@ -76,6 +76,29 @@ def test_orbit_order_and_step_are_stored_and_resumed(coarse_case: Path, tmp_path
     assert float(abs(a.e_x - b.e_x).max()) < 0.01 * float(b.e_x.max() - b.e_x.min())
 
 
+def test_adaptive_steps_are_stored_and_resumed(coarse_case: Path, tmp_path: Path, capsys) -> None:
+    # --steps adaptive and --rtol go into the file with the next step the error control
+    # chose; the resumed run keeps them, refuses to be given them again, and a tolerance
+    # out of range fails in one line before any work.
+    import xarray as xr
+
+    out = tmp_path / "part.nc"
+    base = ["orbit", str(coarse_case), "--speed", "12000rpm", "--duration", "0.04s"]
+    opts = ["--steps", "adaptive", "--rtol", "3e-4"]
+    assert main([*base, *opts, "--stop-time", "0.02s", "--out", str(out)]) == 0
+    part = xr.load_dataset(out)
+    assert part.attrs["time_steps"] == "adaptive" and part.attrs["step_rtol"] == 3e-4
+    assert float(np.ravel(part["checkpoint_h_next"].values)[0]) > 0.0
+    assert main(["orbit", "--resume", str(out), "--rtol", "1e-3"]) != 0
+    assert "--rtol" in capsys.readouterr().err
+    assert main(["orbit", "--resume", str(out)]) == 0
+    done = xr.load_dataset(out)
+    assert done.attrs["status"] == "completed" and done.attrs["step_rtol"] == 3e-4
+    assert main([*base, "--steps", "adaptive", "--rtol", "0.5"]) != 0
+    err = capsys.readouterr().err
+    assert "--rtol" in err and "0.5" in err and "Traceback" not in err
+
+
 def test_a_file_with_the_old_string_spec_resumes(write_case, tmp_path: Path) -> None:
     """Files of earlier versions held the command line's strings as the run's specification:
     such a file resumes, with its voltage ramp, to the same run as the file written now."""

@@ -182,7 +182,7 @@ def bearing_flow(
 
     case = case.orbit_case()
     case = replace(case, rotor=replace(case.rotor, imbalance=0.0), disturbance=None)
-    step = {} if steps_per_rev is None else {"steps_per_rev": steps_per_rev}
+    step: dict[str, Any] = {} if steps_per_rev is None else {"steps_per_rev": steps_per_rev}
     settings = OrbitSettings(**SHOOTING_SETTINGS, **step)
     probe = BearingFlow(case, np.ones(1), 0, settings)
     system = probe.simulation(case.operation.speed).system

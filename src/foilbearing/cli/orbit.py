@@ -83,6 +83,20 @@ def register(sub: Any) -> None:
         choices=(1, 2, 3, 4),
         help="order of the BDF stepper (default 3)",
     )
+    p.add_argument(
+        "--steps",
+        default=None,
+        choices=("fixed", "adaptive"),
+        help="fixed steps a revolution (default) or variable, error-controlled steps "
+        "(at most a tenth of a revolution; --steps-per-rev sets the first)",
+    )
+    p.add_argument(
+        "--rtol",
+        type=float,
+        default=None,
+        help="relative tolerance of the adaptive steps' local error test (default 1e-3: "
+        "the orbit within 1.2 %% of 128 steps a revolution)",
+    )
     p.add_argument("--sample-rate", default=None, help="output sampling rate (default 10 kHz)")
     add_load_arg(p, several=False)
     add_subambient_arg(p)
@@ -101,7 +115,8 @@ def register(sub: Any) -> None:
         metavar="FILE.nc",
         help="continue a stopped run from its file alone: the case and the run's options are "
         "the recorded ones, so CASE and the options that shape the run (--speed-ramp, "
-        "--speed, --duration, the voltage programs, --steps-per-rev, --order, --sample-rate, "
+        "--speed, --duration, the voltage programs, --steps-per-rev, --order, --steps, --rtol, "
+        "--sample-rate, "
         "--load, --subambient and the actuator reading) are refused; --stop-time (default: "
         "to the end), --out (default: FILE.nc itself), --overwrite, --checkpoint-every, "
         "--plot and --json apply",
@@ -123,6 +138,8 @@ RUN_OPTIONS = (
     ("voltage_schedule", "--voltage-schedule"),
     ("steps_per_rev", "--steps-per-rev"),
     ("order", "--order"),
+    ("steps", "--steps"),
+    ("rtol", "--rtol"),
     ("sample_rate", "--sample-rate"),
     ("load", "--load"),
     ("subambient", "--subambient"),
@@ -156,6 +173,8 @@ def run_spec_from_args(args: argparse.Namespace) -> RunSpec:
             OrbitSettings.steps_per_rev if args.steps_per_rev is None else args.steps_per_rev
         ),
         "order": OrbitSettings.order if args.order is None else args.order,
+        "steps": args.steps,
+        "step_rtol": args.rtol,
         "sample_rate": args.sample_rate,
         "subambient": args.subambient,
         "preload_response": args.preload_response,

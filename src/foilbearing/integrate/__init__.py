@@ -11,29 +11,36 @@ imports nothing from the rest of the package.
 =====================  =====================================================================
 Module                 Responsibility
 =====================  =====================================================================
-``integrator.py``      :func:`integrate`: the step loop (nominal step, start-up, order
-                       restart, history), the record callback, the stop events and the
-                       checkpoints; the :class:`Problem`, :class:`State` and
-                       :class:`Solution`.
+``integrator.py``      :func:`integrate`: the step loop (nominal or error-controlled step,
+                       start-up, order restart, history), the record callback, the stop
+                       events and the checkpoints; the :class:`Problem`, :class:`State`,
+                       :class:`StepControl` and :class:`Solution`.
 ``newton.py``          The one modified-Newton policy: convergence, too slow, diverged,
                        refresh (compiled, called from inside compiled iterations; its
                        Python originals serve iterations written in Python), and the
                        step's keep / refresh / restart / give up (:func:`solve_step`).
 ``bdf.py``             The variable-step BDF coefficients, history, predictor and error
-                       weights of one step (compiled).
+                       weights of one step, and its local error estimate (compiled).
 ``events.py``          How a run ends (:class:`Status`), stop events, the step collapse
                        and Ctrl-C held to a step boundary.
 =====================  =====================================================================
 """
 
-from foilbearing.integrate.bdf import bdf_setup
+from foilbearing.integrate.bdf import bdf_error, bdf_setup
 from foilbearing.integrate.events import (
     Event,
     Status,
     StepCollapsed,
     interrupt_at_step_boundary,
 )
-from foilbearing.integrate.integrator import MAX_ORDER, Problem, Solution, State, integrate
+from foilbearing.integrate.integrator import (
+    MAX_ORDER,
+    Problem,
+    Solution,
+    State,
+    StepControl,
+    integrate,
+)
 from foilbearing.integrate.newton import Factor, NewtonRule, Switching, solve_step
 
 __all__ = [
@@ -46,7 +53,9 @@ __all__ = [
     "State",
     "Status",
     "StepCollapsed",
+    "StepControl",
     "Switching",
+    "bdf_error",
     "bdf_setup",
     "integrate",
     "interrupt_at_step_boundary",

@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-__all__ = ["bdf_setup"]
+__all__ = ["bdf_error", "bdf_setup"]
 
 FloatArray = NDArray[np.float64]
 Group = tuple[Any, ...]
@@ -77,3 +77,52 @@ def bdf_setup(
     for m in range(n):
         weights[m] = 1.0 / (atol[m] + rtol * abs(guess[m]))
     return c0
+
+
+@njit(cache=True, nogil=True)
+def bdf_error(
+    y_new: FloatArray,
+    guess: FloatArray,
+    weights: FloatArray,
+    c0: float,
+    span: float,
+    scale: float,
+) -> float:
+    """Weighted max-norm of the local truncation error of a full-order BDF step.
+
+    The predictor (:func:`bdf_setup`'s ``guess``) interpolates the last k + 1 states at
+    t_1 .. t_{k+1} (newest first) and misses the solution by D·Π_{i=1..k+1}(t_new − t_i),
+    D = y^(k+1)/(k+1)!; the BDFk corrector misses it by −D·Π_{i=1..k}(t_new − t_i)/c0
+    (for a step short beside the problem's own time scales). Their difference gives the
+    corrector's error, the standard estimate from the predictor–corrector difference
+    (SUNDIALS CVODE, Hindmarsh et al. 2005, §2.1), here for any step ratios:
+
+        LTE = −(y_new − guess) / (c0·(t_new − t_{k+1}) + 1),
+
+    1/3 of the difference for BDF1 and 2/11 for BDF2 at a constant step (their error
+    constants 1/2 and 2/9 over the predictor's 3/2 and 11/9).
+
+    Parameters
+    ----------
+    y_new, guess
+        The corrector's solution and the predictor of the step.
+    weights
+        The error weights 1/(atol + rtol |guess|) of :func:`bdf_setup`.
+    c0
+        The step's BDF coefficient, 1/s.
+    span
+        t_new − t_{k+1}: from the oldest state of the predictor to the new time, s.
+    scale
+        Multiplies the norm (the ratio of the weights' rtol to the error test's).
+
+    Returns
+    -------
+    float
+        The error in units of the tolerance (≤ 1: the step is accepted).
+    """
+    err = 0.0
+    for m in range(y_new.shape[0]):
+        e = abs((y_new[m] - guess[m]) * weights[m])
+        if e > err:
+            err = e
+    return err * scale / (c0 * span + 1.0)

@@ -125,7 +125,7 @@ def simulate(
         counts = (resume.steps, resume.factorizations, resume.newton_iterations)
     else:
         state = State(0.0, sim.initial_state())
-        samples = Samples(1.0 / sim.settings.sampling.sample_rate)
+        samples = Samples(1.0 / sim.settings.sampling.sample_rate, sim.settings.steps == "adaptive")
         counts = (0, 0, 0)
     s = sim.settings
     with interrupt_at_step_boundary() as interrupted:

@@ -218,6 +218,8 @@ class OrbitResult(Summarised):
             grid_axial_order=self.case.grid.axial_order,
             grid_lift_off_smoothing=self.case.grid.lift_off_smoothing,
         )
+        if s.steps == "adaptive":
+            ds.attrs.update(time_steps=s.steps, step_rtol=s.step_rtol)
         d = self.case.disturbance
         if d is not None:
             ds.attrs.update(

@@ -15,13 +15,42 @@ from foilbearing.film import drag_torque
 from foilbearing.orbit.result import OrbitResult
 from foilbearing.reynolds.transient import Inputs, TransientSystem
 
-__all__ = ["POWER_INTERVAL", "Samples", "progress_bar"]
+__all__ = ["POWER_INTERVAL", "Samples", "backward_cubic", "progress_bar"]
 
 FloatArray = NDArray[np.float64]
 
 #: Simulated time between two evaluations of the film's power loss, s (it is
 #: averaged over runs of seconds; 1 ms keeps its cost below 1 % of a step's).
 POWER_INTERVAL = 1e-3
+
+
+def backward_cubic(ts: FloatArray, t: FloatArray, x: FloatArray) -> FloatArray:
+    """x at the times ``ts`` by the cubic through the recorded step that ends at or after
+    each time and the three before it (the BDF3 interpolant of that step), linear before
+    the fourth recorded step; ``t`` increasing, ``ts`` within [t[0], t[-1]]. A sample
+    depends on no step after the one that covers it, so that a controller reading the
+    samples as the run goes (:meth:`Samples.new_samples`) sees the stored ones.
+
+    Of the error-controlled steps, up to a tenth of a revolution long: linear
+    interpolation would miss a 1X orbit by up to (ωΔt)²/8 = 5 % of its amplitude there,
+    the cubic by 0.04 (ωΔt)⁴ = 0.6 % (0.04 % at 20 steps a revolution).
+    """
+    if t.size < 4:
+        return np.interp(ts, t, x)
+    after = np.searchsorted(t, ts - 1e-12, side="left")
+    at = np.clip(after, 3, t.size - 1)
+    nodes = at[:, None] - np.arange(4)[None, :]  # the step after, then the three before
+    tn, xn = t[nodes], x[nodes]
+    out = np.zeros(ts.size)
+    for j in range(4):
+        weight = np.ones(ts.size)
+        for i in range(4):
+            if i != j:
+                weight *= (ts - tn[:, i]) / (tn[:, j] - tn[:, i])
+        out += weight * xn[:, j]
+    early = after < 3
+    out[early] = np.interp(ts[early], t, x)
+    return out
 
 
 class Samples:
@@ -31,11 +60,13 @@ class Samples:
     voltages); the uniform samples are interpolated from them at once when the
     result is made (vectorised), and one step at a time only for a controller
     that watches the signal as it comes (:meth:`new_samples`). A sample takes
-    the minimum film and voltages of the first step at or after it.
+    the minimum film and voltages of the first step at or after it. With ``cubic``
+    (the error-controlled steps), e_X and e_Y are interpolated by :func:`backward_cubic`.
     """
 
-    def __init__(self, dt: float) -> None:
+    def __init__(self, dt: float, cubic: bool = False) -> None:
         self.dt = dt
+        self.cubic = cubic
         self.start = 0.0  # time of the first sample to come from the recorded steps
         self.next = 0.0  # next sample for new_samples()
         self.done: tuple[FloatArray, ...] | None = None  # samples of the run resumed
@@ -106,7 +137,7 @@ class Samples:
         interpolated again towards the next one: the power loss is then the
         uninterrupted run's. Files without that state start the evaluations afresh.
         """
-        out = cls(1.0 / res.settings.sample_rate)
+        out = cls(1.0 / res.settings.sample_rate, res.settings.steps == "adaptive")
         out.done = (
             res.time,
             res.e_x,
@@ -132,6 +163,14 @@ class Samples:
         fresh: list[tuple[float, float]] = []
         t1, x1 = self.t[-1], self.ex[-1]
         t0, x0 = (self.t[-2], self.ex[-2]) if len(self.t) > 1 else (t1, x1)
+        if self.cubic and len(self.t) >= 4:
+            due = max(0, math.floor((t1 + 1e-12 - self.next) / self.dt) + 1)
+            times: FloatArray = self.next + self.dt * np.arange(due, dtype=np.float64)
+            if due:
+                xs = backward_cubic(times, np.asarray(self.t[-4:]), np.asarray(self.ex[-4:]))
+                fresh = [(float(a), float(b)) for a, b in zip(times, xs, strict=True)]
+                self.next = float(times[-1]) + self.dt
+            return fresh
         while self.next <= t1 + 1e-12:
             ts = self.next
             w = (ts - t0) / (t1 - t0) if t1 > t0 else 1.0
@@ -155,8 +194,9 @@ class Samples:
         else:
             count = 0
         ts: FloatArray = self.start + self.dt * np.arange(count, dtype=np.float64)
-        ex = np.interp(ts, t, np.asarray(self.ex)) if count else np.empty(0)
-        ey = np.interp(ts, t, np.asarray(self.ey)) if count else np.empty(0)
+        between = backward_cubic if self.cubic else np.interp
+        ex = between(ts, t, np.asarray(self.ex)) if count else np.empty(0)
+        ey = between(ts, t, np.asarray(self.ey)) if count else np.empty(0)
         at = np.searchsorted(t, ts - 1e-12, side="left")
         h_min = np.asarray(self.h_min, dtype=float)[at] if count else np.empty(0)
         volts = (

@@ -8,7 +8,22 @@ from dataclasses import dataclass
 from foilbearing.errors import InputError
 from foilbearing.integrate import MAX_ORDER, NewtonRule
 
-__all__ = ["MAX_ORDER", "NewtonRule", "OrbitSettings", "Sampling", "StepRule", "StopRule"]
+__all__ = [
+    "ADAPTIVE_MAX_STEP_REV",
+    "MAX_ORDER",
+    "STEP_KINDS",
+    "NewtonRule",
+    "OrbitSettings",
+    "Sampling",
+    "StepRule",
+    "StopRule",
+]
+
+#: The kinds of time step: a fixed number a revolution, or error-controlled.
+STEP_KINDS = ("fixed", "adaptive")
+
+#: The longest error-controlled step, in revolutions: the orbit sees every revolution.
+ADAPTIVE_MAX_STEP_REV = 0.1
 
 
 @dataclass(frozen=True)
@@ -23,11 +38,15 @@ class StepRule:
         Order of the variable-step BDF (1 to :data:`MAX_ORDER`).
     max_step
         Largest time step, s.
+    rtol
+        Relative tolerance of the local error test of error-controlled steps (None: fixed
+        steps of ``steps_per_rev`` a revolution; with it, ``steps_per_rev`` sets the first).
     """
 
     steps_per_rev: int
     order: int
     max_step: float
+    rtol: float | None = None
 
 
 @dataclass(frozen=True)
@@ -77,6 +96,16 @@ class OrbitSettings:
         accurate.
     max_step
         Largest time step, s.
+    steps
+        ``"fixed"`` (the default): ``steps_per_rev`` steps a revolution; ``"adaptive"``:
+        variable steps chosen by the local error test at ``step_rtol``
+        (:class:`foilbearing.integrate.StepControl`), at most
+        :data:`ADAPTIVE_MAX_STEP_REV` of a revolution and ``max_step``, the first one of
+        ``steps_per_rev`` a revolution; the samples are then interpolated by the cubic
+        through the four steps around them instead of linearly.
+    step_rtol
+        Relative tolerance of the adaptive steps' local error test (the absolute
+        tolerances ``atol_*`` scaled by ``step_rtol/rtol``).
     sample_rate
         Output sampling rate, Hz (uniform samples, linear interpolation between steps).
     contact_film
@@ -136,6 +165,8 @@ class OrbitSettings:
     steps_per_rev: int = 24
     order: int = 3
     max_step: float = 1e-3
+    steps: str = "fixed"
+    step_rtol: float = 1e-3
     sample_rate: float = 10_000.0
     contact_film: float = 0.005
     newton_tol: float = 0.3
@@ -149,7 +180,8 @@ class OrbitSettings:
     @property
     def step_rule(self) -> StepRule:
         """The settings of the time-step rule."""
-        return StepRule(self.steps_per_rev, self.order, self.max_step)
+        rtol = self.step_rtol if self.steps == "adaptive" else None
+        return StepRule(self.steps_per_rev, self.order, self.max_step, rtol)
 
     @property
     def newton_rule(self) -> NewtonRule:
@@ -183,6 +215,10 @@ class OrbitSettings:
                 f"sample_rate = {self.sample_rate:g} Hz cannot resolve the synchronous frequency "
                 f"{f_sync:.0f} Hz at the top speed: use at least {4 * f_sync:.0f} Hz"
             )
+        if self.steps not in STEP_KINDS:
+            raise InputError(f"steps (--steps) = {self.steps!r}: one of {', '.join(STEP_KINDS)}")
+        if not 1e-8 <= self.step_rtol <= 0.1:
+            raise InputError(f"step_rtol (--rtol) = {self.step_rtol!r}: a tolerance in [1e-8, 0.1]")
         if not self.max_step > 0:
             raise InputError(f"max_step = {self.max_step!r} s: must be > 0")
         if self.refresh_after is not None and (

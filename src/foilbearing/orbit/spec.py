@@ -65,6 +65,8 @@ _CLI_DEFAULTS: dict[str, Any] = {
     "stop_time": None,
     "steps_per_rev": OrbitSettings.steps_per_rev,
     "order": None,  # runs saved before the order was stored: BDF2
+    "steps": OrbitSettings.steps,
+    "step_rtol": OrbitSettings.step_rtol,
     "sample_rate": "10000Hz",
     "subambient": None,
     "preload_response": None,
@@ -425,7 +427,8 @@ class RunSpec:
         """Parse ``foilbearing orbit``'s option strings (the dictionary earlier versions
         stored): ``speed_ramp`` or ``speed`` and ``duration``, at most one of
         ``voltage_ramp``, ``controller`` and ``voltage_schedule`` ({"path", "text"}),
-        ``stop_time``, ``steps_per_rev``, ``order``, ``sample_rate``, ``case``,
+        ``stop_time``, ``steps_per_rev``, ``order``, ``steps``, ``step_rtol``,
+        ``sample_rate``, ``case``,
         ``subambient`` and ``load``; missing keys take the command's defaults.
 
         Raises
@@ -471,6 +474,8 @@ class RunSpec:
         settings = OrbitSettings(
             steps_per_rev=int(spec["steps_per_rev"]),
             order=int(spec["order"] or 2),
+            steps=str(spec["steps"]),
+            step_rtol=float(spec["step_rtol"]),
             sample_rate=cli_quantity(spec["sample_rate"], "frequency", "--sample-rate"),
         )
         stop = spec["stop_time"]
