@@ -127,6 +127,22 @@ def test_no_module_writes_a_scale_by_hand() -> None:
     assert any(p.search(line) for p in patterns for line in home.read_text().splitlines())
 
 
+def test_the_steady_solvers_loose_arguments_are_unpacked_in_one_place() -> None:
+    """The analyses call solve_steady, coupled_system and pressure_response through the
+    film model (FilmModel.steady_film, steady_residual, perturbed_pressure), so their
+    loose arguments (grid, compliance, lift-off) are written in film.py alone; reynolds/
+    defines them and the tests' oracles may call them directly."""
+    call = re.compile(r"\b(solve_steady|coupled_system|pressure_response)\(")
+    found = sorted(
+        str(path.relative_to(SRC))
+        for path in SRC.rglob("*.py")
+        if "reynolds" not in path.parts and "testing" not in path.parts
+        for line in path.read_text(encoding="utf-8").splitlines()
+        if call.search(line) and not line.lstrip().startswith(("def ", "#"))
+    )
+    assert found == ["film.py"] * 3, found
+
+
 # ---------------------------------------------------------------------------- verbs
 def test_the_verbs_are_the_analyses_functions() -> None:
     """A verb gives, to the last bit, what the function it delegates to gives."""

@@ -38,13 +38,17 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from foilbearing.bearing_system.scales import Scales
 from foilbearing.case import Case
 from foilbearing.laws.actuator import ActuatorReading
 from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping
-from foilbearing.reynolds import FilmGrid
+from foilbearing.reynolds import FilmGrid, NewtonOptions, SteadyFilm, Workspace
+from foilbearing.reynolds.assembly import coupled_system
+from foilbearing.reynolds.perturbed import pressure_response
+from foilbearing.reynolds.steady import solve_steady
 from foilbearing.structure import preload_shape, stiffness_function
 
 __all__ = ["FilmModel", "drag_torque", "film_model", "interpolation_rows"]
@@ -167,6 +171,63 @@ class FilmModel:
         th = self.grid.theta
         h = 1.0 + eps_x * np.cos(th) + eps_y * np.sin(th) - self.preload
         return np.repeat(h[:, None], self.grid.n_z, axis=1)
+
+    # ----------------------------------------------- the Reynolds solvers on this film
+    # The solvers keep their low-level signatures (grid, film, compliance, Λ, lift-off);
+    # the analyses call them through these, so those arguments are unpacked here alone.
+    def steady_film(
+        self,
+        h_rigid: FloatArray,
+        lam: float,
+        p0: FloatArray | None = None,
+        *,
+        options: NewtonOptions | None = None,
+        workspace: Workspace | None = None,
+    ) -> SteadyFilm:
+        """The steady pressure of Eq. (4) on this film at the bearing number Λ, with the foil
+        deflecting by :attr:`compliance` and the lift-off law of the case
+        (:func:`foilbearing.reynolds.solve_steady`).
+
+        ``h_rigid`` is the film without foil deflection, shape (n_theta, n_z), in units of
+        C; ``p0`` the starting pressure P = p/p_a (default P = 1).
+        """
+        return solve_steady(
+            self.grid,
+            h_rigid,
+            self.compliance,
+            lam,
+            p0,
+            options=options,
+            workspace=workspace,
+            lift_off=self.lift_off,
+        )
+
+    def steady_residual(
+        self, P: FloatArray, h_rigid: FloatArray, lam: float, workspace: Workspace | None = None
+    ) -> tuple[FloatArray, sp.csr_matrix, sp.csr_matrix]:
+        """The residual R of the steady Eq. (4) at pressures P (flat, n_theta·n_z) and its
+        Jacobians ∂R/∂P and ∂R/∂H on this film (:func:`foilbearing.reynolds.coupled_system`)."""
+        return coupled_system(
+            P, self.grid, h_rigid, self.compliance, lam, workspace, lift_off=self.lift_off
+        )
+
+    def perturbed_pressure(
+        self,
+        P: FloatArray,
+        H: FloatArray,
+        lam: float,
+        nu: float,
+        compliance: NDArray[np.complex128] | FloatArray,
+        dh: FloatArray,
+        workspace: Workspace | None = None,
+    ) -> NDArray[np.complex128]:
+        """The complex pressure response ∂P/∂e to the film perturbations ``dh`` (columns,
+        (n_theta·n_z, n)) at the frequency ratio ν = ω_e/ω, about the steady P and H with
+        the dynamic foil compliance ``compliance`` (docs/model.md §4,
+        :func:`foilbearing.reynolds.perturbed.pressure_response`)."""
+        return pressure_response(
+            self.grid, P, H, lam, nu, compliance, dh, workspace, lift_off=self.lift_off
+        )
 
     def at_angles(self, field: FloatArray, angles: tuple[float, ...]) -> FloatArray:
         """Periodic linear interpolation of a (n_theta,) cell field at ``angles`` (rad)."""
