@@ -59,6 +59,12 @@ def test_the_scales_are_the_papers_nondimensionalisation_of_the_default_case() -
     assert s.force == pytest.approx(pa * r * r, rel=1e-15) and s.force == pytest.approx(40.53)
     assert s.film_force_per_mass == pytest.approx(pa * r * r / (m * c), rel=1e-14)
     assert s.half_length == pytest.approx(length / (2 * r), rel=1e-15)
+    # the foil's compliance p_a/(C k), the drag torque's μ ω R/C, p_a C/(2R) and R³
+    k_b = case.foil.bump_stiffness
+    assert float(s.compliance(k_b)) == pytest.approx(pa / (c * k_b), rel=1e-14)
+    assert s.couette_shear(omega) == pytest.approx(mu * omega * r / c, rel=1e-14)
+    assert s.pressure_shear == pytest.approx(pa * c / (2 * r), rel=1e-14)
+    assert s.torque == pytest.approx(r**3, rel=1e-15)
     assert Scales.from_parts(case.bearing, case.gas).film_force_per_mass is None
 
 
@@ -97,13 +103,17 @@ def test_a_bad_scale_is_refused_in_one_line() -> None:
 
 
 def test_no_module_writes_a_scale_by_hand() -> None:
-    """σ, Λ and the force scale are written in bearing_system/scales.py alone: no other
+    """σ, Λ, the force scale, L/(2R), the foil compliance p_a/(C k) and the drag torque's
+    μ ω R/C are written in bearing_system/scales.py alone: no other
     module of src/ has a 6 or 12 times the viscosity, nor p_a times R² (the patterns the
     old copies had; a copy spelled otherwise would escape this check)."""
     patterns = [
         re.compile(r"\b(6|12)(\.0)?\s*\*\s*[\w.]*(viscosity|\bmu\b)"),
         re.compile(r"ambient_pressure\s*\*\s*[\w.]*radius"),
         re.compile(r"\bpa\s*\*\s*r\s*\*\s*r\b"),
+        re.compile(r"\bpa\s*/\s*\(\s*c\s*\*"),  # the foil compliance p_a/(C k)
+        re.compile(r"length\s*/\s*\(2(\.0)?\s*\*\s*[\w.]*radius"),  # L/(2R)
+        re.compile(r"\bmu\s*\*\s*omega\s*\*\s*r\b"),  # the drag torque's μ ω R
     ]
     home = SRC / "bearing_system" / "scales.py"
     found = [
@@ -115,6 +125,22 @@ def test_no_module_writes_a_scale_by_hand() -> None:
     ]
     assert not found, "; ".join(found)
     assert any(p.search(line) for p in patterns for line in home.read_text().splitlines())
+
+
+def test_the_steady_solvers_loose_arguments_are_unpacked_in_one_place() -> None:
+    """The analyses call solve_steady, coupled_system and pressure_response through the
+    film model (FilmModel.steady_film, steady_residual, perturbed_pressure), so their
+    loose arguments (grid, compliance, lift-off) are written in film.py alone; reynolds/
+    defines them and the tests' oracles may call them directly."""
+    call = re.compile(r"\b(solve_steady|coupled_system|pressure_response)\(")
+    found = sorted(
+        str(path.relative_to(SRC))
+        for path in SRC.rglob("*.py")
+        if "reynolds" not in path.parts and "testing" not in path.parts
+        for line in path.read_text(encoding="utf-8").splitlines()
+        if call.search(line) and not line.lstrip().startswith(("def ", "#"))
+    )
+    assert found == ["film.py"] * 3, found
 
 
 # ---------------------------------------------------------------------------- verbs

@@ -15,6 +15,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from foilbearing.bearing_system import BearingSystem
 from foilbearing.case import Grid, case_from_dict, default_case
 from foilbearing.control import constant_speed
 from foilbearing.errors import InputError
@@ -100,7 +101,7 @@ def test_whirl_decrement_is_a_smooth_function_of_speed() -> None:
     # 0.026 between 42.5 and 42.75 krpm (two held cells freed) and is flat around it;
     # smoothed (κ = 0.2), it falls through zero: a straight line fits it to 5 % of its range.
     case = _case(0.0, 0.2)
-    scan = _Scanner(case, film_model(case))
+    scan = _Scanner(BearingSystem.from_case(case))
     rpm = np.arange(42.0, 45.01, 0.5)
     dec = np.array([scan.mode(s * 1e3 * RPM).log_decrement for s in rpm])
     fit = np.polyval(np.polyfit(rpm, dec, 1), rpm)

@@ -3,7 +3,8 @@
 docs/model.md §2-3: ``h(θ) = C + e_X cos θ + e_Y sin θ − r_p(θ) + w(θ)`` with
 the foil deflection ``w = max(p_A, 0)/k(θ)``. Here the parts that do not
 depend on the pressure are put on the Reynolds grid; the Reynolds solvers add
-``w`` through the compliance ``c(θ) = p_a/(C k(θ))``, kept as its two springs in
+``w`` through the compliance ``c(θ) = p_a/(C k(θ))`` (:meth:`Scales.compliance
+<foilbearing.bearing_system.Scales.compliance>`, with the grid's half length L/(2R)), kept as its two springs in
 series: the bump foil's ``p_a/(C k_b)`` and, under the stingers, the
 actuator's share ``p_a/C · (1/k(θ) − 1/k_b)`` (the dynamic analyses damp the
 bump alone, docs/model.md §3.5). A foil bearing's film
@@ -37,12 +38,17 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from foilbearing.bearing_system.scales import Scales
 from foilbearing.case import Case
 from foilbearing.laws.actuator import ActuatorReading
 from foilbearing.laws.foil_damping import FoilDamping, NoFoilDamping
-from foilbearing.reynolds import FilmGrid
+from foilbearing.reynolds import FilmGrid, NewtonOptions, SteadyFilm, Workspace
+from foilbearing.reynolds.assembly import coupled_system
+from foilbearing.reynolds.perturbed import pressure_response
+from foilbearing.reynolds.steady import solve_steady
 from foilbearing.structure import preload_shape, stiffness_function
 
 __all__ = ["FilmModel", "drag_torque", "film_model", "interpolation_rows"]
@@ -166,6 +172,63 @@ class FilmModel:
         h = 1.0 + eps_x * np.cos(th) + eps_y * np.sin(th) - self.preload
         return np.repeat(h[:, None], self.grid.n_z, axis=1)
 
+    # ----------------------------------------------- the Reynolds solvers on this film
+    # The solvers keep their low-level signatures (grid, film, compliance, Λ, lift-off);
+    # the analyses call them through these, so those arguments are unpacked here alone.
+    def steady_film(
+        self,
+        h_rigid: FloatArray,
+        lam: float,
+        p0: FloatArray | None = None,
+        *,
+        options: NewtonOptions | None = None,
+        workspace: Workspace | None = None,
+    ) -> SteadyFilm:
+        """The steady pressure of Eq. (4) on this film at the bearing number Λ, with the foil
+        deflecting by :attr:`compliance` and the lift-off law of the case
+        (:func:`foilbearing.reynolds.solve_steady`).
+
+        ``h_rigid`` is the film without foil deflection, shape (n_theta, n_z), in units of
+        C; ``p0`` the starting pressure P = p/p_a (default P = 1).
+        """
+        return solve_steady(
+            self.grid,
+            h_rigid,
+            self.compliance,
+            lam,
+            p0,
+            options=options,
+            workspace=workspace,
+            lift_off=self.lift_off,
+        )
+
+    def steady_residual(
+        self, P: FloatArray, h_rigid: FloatArray, lam: float, workspace: Workspace | None = None
+    ) -> tuple[FloatArray, sp.csr_matrix, sp.csr_matrix]:
+        """The residual R of the steady Eq. (4) at pressures P (flat, n_theta·n_z) and its
+        Jacobians ∂R/∂P and ∂R/∂H on this film (:func:`foilbearing.reynolds.coupled_system`)."""
+        return coupled_system(
+            P, self.grid, h_rigid, self.compliance, lam, workspace, lift_off=self.lift_off
+        )
+
+    def perturbed_pressure(
+        self,
+        P: FloatArray,
+        H: FloatArray,
+        lam: float,
+        nu: float,
+        compliance: NDArray[np.complex128] | FloatArray,
+        dh: FloatArray,
+        workspace: Workspace | None = None,
+    ) -> NDArray[np.complex128]:
+        """The complex pressure response ∂P/∂e to the film perturbations ``dh`` (columns,
+        (n_theta·n_z, n)) at the frequency ratio ν = ω_e/ω, about the steady P and H with
+        the dynamic foil compliance ``compliance`` (docs/model.md §4,
+        :func:`foilbearing.reynolds.perturbed.pressure_response`)."""
+        return pressure_response(
+            self.grid, P, H, lam, nu, compliance, dh, workspace, lift_off=self.lift_off
+        )
+
     def at_angles(self, field: FloatArray, angles: tuple[float, ...]) -> FloatArray:
         """Periodic linear interpolation of a (n_theta,) cell field at ``angles`` (rad)."""
         th = self.grid.theta
@@ -194,15 +257,15 @@ def interpolation_rows(theta: FloatArray, angles: tuple[float, ...]) -> FloatArr
 
 def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -> FilmModel:
     """Build the film model of a case on its grid (or on ``n_theta`` × ``n_z``)."""
+    scales = Scales.from_parts(case.bearing, case.gas)
     grid = FilmGrid(
         n_theta=n_theta or case.grid.n_theta,
         n_z=n_z or case.grid.n_z,
-        half_length=case.bearing.length / (2.0 * case.bearing.radius),
+        half_length=scales.half_length,
         axial_order=case.grid.axial_order,
         lift_off_smoothing=case.grid.lift_off_smoothing,
     )
     theta = grid.theta
-    c = case.bearing.clearance
     angles: tuple[float, ...] = ()
     deltas: tuple[float, ...] = ()
     k_act = None
@@ -212,11 +275,14 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
         k_act = case.actuators.stiffness
     elif case.shims is not None:
         angles, deltas = case.shims.angles, case.shims.thicknesses
-    preload = preload_shape(theta, angles, deltas) / c if angles else np.zeros(grid.n_theta)
+    preload = (
+        preload_shape(theta, angles, deltas) / scales.clearance
+        if angles
+        else np.zeros(grid.n_theta)
+    )
     stiffness = None
     c_bump = np.zeros(grid.n_theta)
     c_act = np.zeros(grid.n_theta)
-    pa = case.gas.ambient_pressure
     reading = ActuatorReading()
     lobes = rows = None
     c_stack = 0.0
@@ -240,12 +306,14 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
             # sensitive to round-off in these (measured 12 s against 231 s on one test).
             # Under "lobe" the compliance lowers the lobe instead (the stack's c_s).
             c_act = reading.static_compliance(
-                np.maximum(pa / (c * stiffness) - pa / (c * k_b), 0.0)
+                np.maximum(scales.compliance(stiffness) - scales.compliance(k_b), 0.0)
             )
-            c_stack = reading.stack_compliance(pa, c, act.stiffness)
+            c_stack = reading.stack_compliance(
+                scales.ambient_pressure, scales.clearance, act.stiffness
+            )
         else:
             stiffness = np.full(grid.n_theta, k_b)
-        c_bump = np.full(grid.n_theta, pa / (c * k_b))
+        c_bump = np.full(grid.n_theta, scales.compliance(k_b))
     lift_off = case.foil is not None and case.foil.lift_off
     return FilmModel(
         grid,
@@ -270,16 +338,16 @@ def drag_torque(case: Case, g: FilmGrid, P: FloatArray, H: FloatArray, omega: fl
 
     Shear on the journal surface from the Couette-Poiseuille profile,
     τ = μ ω R/h + (h/(2R)) ∂p/∂θ, integrated over the full surface:
-    T = R³ ∫∫ [μ ω R/(C H) + (C H p_a/(2R)) ∂P/∂θ] dθ dZ. For a concentric rigid
-    journal this is Petroff's 2π μ ω R³ L / C.
+    T = R³ ∫∫ [μ ω R/(C H) + (C H p_a/(2R)) ∂P/∂θ] dθ dZ, its scales (μ ω R/C,
+    p_a C/(2R), R³) taken from :class:`~foilbearing.bearing_system.Scales`. For a
+    concentric rigid journal this is Petroff's 2π μ ω R³ L / C.
     """
-    mu, pa = case.gas.viscosity, case.gas.ambient_pressure
-    r, c = case.bearing.radius, case.bearing.clearance
+    scales = Scales.from_parts(case.bearing, case.gas)
     dp = (np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)) / (2.0 * g.d_theta)
-    couette = mu * omega * r / (c * H)
-    poiseuille = c * H * pa / (2.0 * r) * dp
+    couette = scales.couette_shear(omega) / H
+    poiseuille = scales.pressure_shear * H * dp
     if g.axial_order == 2:
-        return float(2.0 * r**3 * (couette + poiseuille).sum() * g.d_theta * g.d_z)
+        return float(2.0 * scales.torque * (couette + poiseuille).sum() * g.d_theta * g.d_z)
     # Fourth order: ∂P/∂θ vanishes on the end face, where the axial-mean weights apply.
     axial = couette.sum() * g.d_z + g.half_length * float(np.sum(poiseuille @ g.axial.mean_w))
-    return float(2.0 * r**3 * axial * g.d_theta)
+    return float(2.0 * scales.torque * axial * g.d_theta)

@@ -51,7 +51,6 @@ from foilbearing.headline import Field, headline_view
 from foilbearing.laws.foil_damping import ViscousBump
 from foilbearing.output.display import Summarised
 from foilbearing.reynolds import Workspace
-from foilbearing.reynolds.perturbed import pressure_response
 from foilbearing.units import QuantityLike, as_si_array
 
 __all__ = [
@@ -237,8 +236,7 @@ def force_coefficients(
     K = np.empty((omega_e.size, 2, 2))
     C = np.empty((omega_e.size, 2, 2))
     for n, w_e in enumerate(omega_e):
-        dp = pressure_response(
-            model.grid,
+        dp = model.perturbed_pressure(
             static.P,
             static.H,
             static.bearing_number,
@@ -246,7 +244,6 @@ def force_coefficients(
             dynamic_compliance(static, w_e, loss_factor),
             dh,
             ws,
-            lift_off=model.lift_off,
         )
         if lobes:
             dp = _with_lobes(model, static.P, dp)

@@ -26,7 +26,7 @@ from foilbearing.bearing_system.scales import Scales
 from foilbearing.case import Case
 from foilbearing.errors import InputError
 from foilbearing.film import FilmModel, drag_torque, film_model
-from foilbearing.reynolds import NewtonOptions, Workspace, coupled_system, solve_steady
+from foilbearing.reynolds import NewtonOptions, Workspace
 from foilbearing.reynolds.blocksolve import TransposedSuperLU, factor_coupled
 from foilbearing.units import QuantityLike, as_si
 
@@ -124,9 +124,7 @@ def film_at_position(
         msg = out.message if ok else f"film not found at this position: {out.message}"
         its, res = out.iterations, out.residual
     else:
-        sol = solve_steady(
-            model.grid, h_r, model.compliance, lam, options=opts.newton, lift_off=model.lift_off
-        )
+        sol = model.steady_film(h_r, lam, options=opts.newton)
         P, ok, msg, its, res = sol.P, sol.converged, sol.message, sol.iterations, sol.residual
     return _result(
         case,
@@ -287,15 +285,7 @@ class _Equilibrium:
         self, P: FloatArray, eps: FloatArray, D: FloatArray, load: float
     ) -> tuple[Any, ...]:
         m = self.model
-        R, j_pp, j_ph = coupled_system(
-            P,
-            m.grid,
-            m.h_rigid_loaded(eps[0], eps[1], D),
-            m.compliance,
-            self.lam,
-            self.ws,
-            lift_off=m.lift_off,
-        )
+        R, j_pp, j_ph = m.steady_residual(P, m.h_rigid_loaded(eps[0], eps[1], D), self.lam, self.ws)
         G = np.array([self.w_x @ (P - 1.0) + load, self.w_y @ (P - 1.0)]) if self.journal else None
         if self.n_stack:
             g_d = D - m.stack_compression(P)
@@ -355,19 +345,15 @@ class _Equilibrium:
         """Damped Newton on (P, ε, D) for a dimensionless load along +X (ε fixed if not
         ``journal``)."""
         m, opts = self.model, self.opts
-        g = m.grid
         eps = np.asarray(eps, dtype=float).copy()
         D = m.stack_compression(P0) if P0 is not None else np.zeros(self.n_stack)
         D = D[: self.n_stack]
-        first = solve_steady(
-            g,
+        first = m.steady_film(
             m.h_rigid_loaded(eps[0], eps[1], D),
-            m.compliance,
             self.lam,
             P0,
             options=opts.newton,
             workspace=self.ws,
-            lift_off=m.lift_off,
         )
         P = first.P.ravel().copy()
         load_ref = max(abs(load), FORCE_FLOOR)

@@ -20,11 +20,13 @@ import numpy as np
 from scipy.optimize import brentq
 
 from foilbearing.analysis.coefficients import force_coefficients
-from foilbearing.analysis.equilibrium import StaticResult, solve_equilibrium
+from foilbearing.analysis.equilibrium import StaticResult
+from foilbearing.bearing_system import Scales
+from foilbearing.bearing_system.verbs import BearingSystem
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
-from foilbearing.film import FilmModel, film_model
+from foilbearing.film import FilmModel
 from foilbearing.output.display import Summarised
 from foilbearing.reynolds import Workspace
 from foilbearing.units import as_si, as_si_array
@@ -201,24 +203,25 @@ class OnsetResult(Summarised):
 
 
 class _Scanner:
-    """Equilibria and whirl modes along increasing speed, each started from the last."""
+    """Equilibria and whirl modes of one bearing system along increasing speed, each
+    started from the last (the system, and so its film model, built once per case)."""
 
-    def __init__(self, case: Case, model: FilmModel) -> None:
-        self.case, self.model = case, model
-        self.ws = Workspace(model.grid)
+    def __init__(self, system: BearingSystem) -> None:
+        self.system = system
+        self.ws = Workspace(system.grid)
         self.start: tuple[float, float, Any] | None = None
 
     def mode(self, speed: float) -> WhirlMode:
-        st = solve_equilibrium(self.case, speed=speed, model=self.model, start=self.start)
+        st = self.system.equilibrium(speed, start=self.start)
         if not st.converged:
-            st = solve_equilibrium(self.case, speed=speed, model=self.model)
+            st = self.system.equilibrium(speed)
         if not st.converged:
             raise SolverError(
                 f"no static equilibrium at {speed / RPM:.0f} rpm ({st.message}); the linear "
                 "stability analysis needs one: narrow the speed range"
             )
         self.start = (st.eps_x, st.eps_y, st.P)
-        return whirl_mode(st, self.case.rotor.mass, workspace=self.ws)
+        return whirl_mode(st, self.system.case.rotor.mass, workspace=self.ws)
 
 
 def onset_speed(
@@ -239,7 +242,9 @@ def onset_speed(
         Increasing scan speeds, rad/s, or quantities (``["20 krpm", "40 krpm"]``; default 5
         to 150 krpm in 5 krpm steps).
     model
-        Film model of the case (built if omitted).
+        Film model of the case (built if omitted); the scan runs on the
+        :class:`~foilbearing.bearing_system.BearingSystem` of the case and this model,
+        built once and reused at every speed.
     rel_tol
         Brent's tolerance on the onset, relative to the bracket's upper speed.
     """
@@ -250,7 +255,12 @@ def onset_speed(
     if speeds_arr.size < 2 or speeds_arr[0] <= 0:
         raise InputError("the onset search needs at least two speeds > 0")
     case.check_speeds(speeds_arr, "onset scan")
-    scan = _Scanner(case, model or film_model(case))
+    system = (
+        BearingSystem.from_case(case)
+        if model is None
+        else BearingSystem(case, model, Scales.from_case(case))
+    )
+    scan = _Scanner(system)
     dec, ratio = [], []
     prev_mode = None
     for k, w in enumerate(speeds_arr):
@@ -368,7 +378,7 @@ def stability_map(
         c = case.with_voltages(float(volt))
         if shimmed:
             c = c.shimmed()
-        scan = _Scanner(c, film_model(c))
+        scan = _Scanner(BearingSystem.from_case(c))
         for s, w in enumerate(speeds):
             try:
                 mode = scan.mode(float(w))

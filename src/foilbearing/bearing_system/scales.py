@@ -19,6 +19,9 @@ import math
 from dataclasses import dataclass, field
 from typing import Protocol
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from foilbearing.errors import InputError
 
 __all__ = ["BearingLike", "CaseLike", "GasLike", "Scales"]
@@ -92,6 +95,12 @@ class Scales:
     film_force_per_mass
         p_a R²/(m C), 1/s²: that force as an acceleration of ε = e/C (the orbit's
         journal rows); None without a mass.
+    pressure_shear
+        p_a C/(2R), Pa: the Poiseuille shear on the journal, h/(2R) ∂p/∂θ, per unit of
+        H ∂P/∂θ (the drag torque, docs/model.md §2).
+    torque
+        R³, m³: the torque on the journal, N·m, per unit of the shear stress (Pa)
+        integrated over θ and Z = z/R.
     """
 
     ambient_pressure: float
@@ -104,6 +113,8 @@ class Scales:
     lambda_per_speed: float = field(init=False)
     force: float = field(init=False)
     film_force_per_mass: float | None = field(init=False)
+    pressure_shear: float = field(init=False)
+    torque: float = field(init=False)
 
     def __post_init__(self) -> None:
         for name in ("ambient_pressure", "radius", "clearance", "length", "viscosity", "mass"):
@@ -121,6 +132,8 @@ class Scales:
         set_(self, "force", pa * r**2)
         per_mass = None if self.mass is None else pa * r**2 / (self.mass * c)
         set_(self, "film_force_per_mass", per_mass)
+        set_(self, "pressure_shear", c * pa / (2.0 * r))
+        set_(self, "torque", r**3)
 
     @classmethod
     def from_parts(cls, bearing: BearingLike, gas: GasLike, mass: float | None = None) -> Scales:
@@ -143,6 +156,16 @@ class Scales:
         """Λ = 6 μ ω R²/(p_a C²) at the speed ω (rad/s): the parameter of Eq. (4)."""
         pa, r, c, mu = self.ambient_pressure, self.radius, self.clearance, self.viscosity
         return 6.0 * mu * speed * r**2 / (pa * c**2)
+
+    def compliance(self, stiffness: ArrayLike) -> NDArray[np.float64]:
+        """c = p_a/(C k): the foil's deflection in units of C per unit gauge pressure
+        P − 1, for a stiffness k in N/m³ (a number or per θ-row; docs/model.md §3)."""
+        return self.ambient_pressure / (self.clearance * np.asarray(stiffness, float))
+
+    def couette_shear(self, speed: float) -> float:
+        """μ ω R/C, Pa: the Couette shear on the journal at the speed ω (rad/s) across
+        the clearance; divided by H where the film is H = h/C (the drag torque)."""
+        return self.viscosity * speed * self.radius / self.clearance
 
     @property
     def half_length(self) -> float:
