@@ -52,10 +52,9 @@ def repository_file(name: str) -> Path:
 case_file = repository_file("examples/bump_foil_bearing.toml")
 folder = Path(tempfile.mkdtemp())
 uq_file = folder / "bump_uq.toml"
-uq_file.write_text(
-    f"""
+text = """
 title = "Bump foil bearing: what we do not know"
-case = "{case_file.as_posix()}"
+case = "CASE"           # the case file (here its path, filled in below)
 samples = 64            # coarse: a real study takes a few hundred
 sampler = "lhs"         # a Latin hypercube, as RBD-FAST wants
 estimator = "rbd_fast"  # first-order indices from any sample
@@ -66,10 +65,10 @@ seed = 1
 "grid.n_z" = 4
 
 [inputs]
-"bearing.clearance" = {{ distribution = "normal", mean = "32 um", std = "1.5 um" }}
-"gas.viscosity" = {{ distribution = "uniform", low = "1.80e-5 Pa*s", high = "1.90e-5 Pa*s" }}
-"foil.loss_factor" = {{ distribution = "uniform", low = 0.05, high = 0.2 }}
-"rotor.mass" = {{ distribution = "uniform", low = "9 kg", high = "11.4 kg" }}
+"bearing.clearance" = { distribution = "normal", mean = "32 um", std = "1.5 um" }
+"gas.viscosity" = { distribution = "uniform", low = "1.80e-5 Pa*s", high = "1.90e-5 Pa*s" }
+"foil.loss_factor" = { distribution = "uniform", low = 0.05, high = 0.2 }
+"rotor.mass" = { distribution = "uniform", low = "9 kg", high = "11.4 kg" }
 
 [outputs.static]
 speeds = ["20000 rpm", "40000 rpm", "60000 rpm"]
@@ -77,7 +76,7 @@ speeds = ["20000 rpm", "40000 rpm", "60000 rpm"]
 [outputs.stability]
 speed_range = ["10000 rpm", "100000 rpm", "10000 rpm"]
 """
-)
+uq_file.write_text(text.replace("CASE", case_file.as_posix()))
 spec = load_uncertainty(uq_file)
 print(f"{spec.n_points} points of {len(spec.inputs)} inputs: {spec.estimator}, {spec.sampler}")
 
