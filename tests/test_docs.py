@@ -34,11 +34,14 @@ EXECUTED = (
     "generated/tutorials/plot_01_bump_foil_bearing.html",
     "generated/tutorials/plot_02_cgfb_voltage.html",
     "generated/tutorials/plot_03_sweep_dask.html",
+    "generated/tutorials/plot_04_uncertainty_dask.html",
+    "generated/tutorials/plot_05_rotor_on_two_bearings.html",
     "generated/gallery/plot_static_map.html",
     "generated/gallery/plot_coefficients.html",
     "generated/gallery/plot_onset_map.html",
     "generated/gallery/plot_waterfall.html",
     "generated/gallery/plot_limit_cycles.html",
+    "generated/gallery/plot_campbell.html",
 )
 
 
@@ -218,7 +221,7 @@ def run_site_in_chromium(
 def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """``make docs``'s build, into a temporary folder, the tutorials and gallery run afresh.
     Longer than a test's 120 s budget under load (about 50 s quiet, 2 minutes with the
-    2 cores shared): it runs eight scripts and reads 100 pages, once for this module."""
+    2 cores shared): it runs eleven scripts and reads 110 pages, once for this module."""
     try:
         import sphinx_gallery  # noqa: F401  (the docs extra)
     except ImportError:
@@ -276,15 +279,75 @@ def test_the_tutorials_and_gallery_ran(site: Path) -> None:
         text = (site / name).read_text(encoding="utf-8")
         assert "sphx-glr-script-out" in text, f"{name}: no output"
         assert re.search(r'<img[^>]+src="[^"]*sphx_glr_plot_\w+_\d{3}\.png"', text), name
-    voltage = (site / EXECUTED[1]).read_text(encoding="utf-8")
+    voltage = (site / "generated/tutorials/plot_02_cgfb_voltage.html").read_text(encoding="utf-8")
     # What a voltage buys: 150 V lifts the C-GFB's onset (43.9 to 55.2 krpm on the default grid)
     gain = re.search(r"150 V raises the onset by (-?\d+) %", voltage)
     assert gain and 15 <= int(gain.group(1)) <= 40, gain
-    assert "8 of 8 points, 0 failed" in (site / EXECUTED[2]).read_text(encoding="utf-8")
+    assert "8 of 8 points, 0 failed" in page_output(
+        site, "generated/tutorials/plot_03_sweep_dask.html"
+    )
     # The paper's bounded whip at 150 V: a supercritical Hopf bifurcation, every cycle stable
-    cycles = script_output((site / EXECUTED[7]).read_text(encoding="utf-8"))
+    cycles = page_output(site, "generated/gallery/plot_limit_cycles.html")
     assert cycles.startswith("supercritical Hopf bifurcation"), cycles
     assert cycles.count(", stable") >= 3 and "unstable" not in cycles, cycles
+
+
+def page_output(site: Path, name: str) -> str:
+    """What the executed page ``name`` (one of EXECUTED) printed."""
+    assert name in EXECUTED, name
+    return script_output((site / name).read_text(encoding="utf-8"))
+
+
+def test_the_uncertainty_envelope_holds_the_nominal_bearing(site: Path) -> None:
+    """The uncertainty tutorial's study ran every point, and the nominal bearing, computed
+    beside the study, lies inside the 5-95 % band of the minimum film and of the onset:
+    the inputs' distributions are centred on the nominal values and both outputs are
+    monotone in the input that dominates them (the clearance)."""
+    out = page_output(site, "generated/tutorials/plot_04_uncertainty_dask.html")
+    assert "64 of 64 points computed" in out, out
+    for what, unit in (("minimum film at 40 krpm", "µm"), ("onset of whirl", "krpm")):
+        m = re.search(
+            rf"{what}: ([\d.]+) to ([\d.]+) {unit} \(median ([\d.]+)\); nominal ([\d.]+) {unit}",
+            out,
+        )
+        assert m, out
+        low, high, median, nominal = (float(g) for g in m.groups())
+        assert low < median < high and low <= nominal <= high, m.group(0)
+    # The onset is set by the clearance first: it ranks first among the four inputs
+    onset = re.search(r"onset_speed_krpm\[[^\]]*\]: ([\w.]+) ", out)
+    assert onset and onset.group(1) == "bearing.clearance", out
+
+
+def test_the_rotor_whirls_below_half_its_speed_at_onset(site: Path) -> None:
+    """The rotor tutorial ran ROSS: the onset lies inside its scan (30-60 krpm), and the
+    rotor whirls there sub-synchronously, below half its running speed, as a rotor on
+    gas films does (the film's mean circumferential flow moves at half the surface)."""
+    out = page_output(site, "generated/tutorials/plot_05_rotor_on_two_bearings.html")
+    m = re.search(r"onset (\d+) rpm, whirl ([\d.]+) Hz", out)
+    assert m, out
+    onset_rpm, whirl_hz = float(m.group(1)), float(m.group(2))
+    assert 30000 < onset_rpm < 60000, out
+    assert 0.0 < whirl_hz < 0.5 * onset_rpm / 60.0, out
+
+
+def test_the_campbell_diagram_splits_its_bending_pair_and_crosses_1x(site: Path) -> None:
+    """The Campbell gallery example: the shaft's bending pair splits with speed, the
+    backward whirl falling and the forward rising (the disks' gyroscopic moments); where
+    a mode meets the 1X line, the diagram's interpolated crossing and ROSS's modal solve
+    at that speed agree on the frequency to 2 %."""
+    out = page_output(site, "generated/gallery/plot_campbell.html")
+    pair = dict(
+        (whirl, (float(f0), float(f1)))
+        for whirl, f0, f1 in re.findall(r"mode \d+ \((\w+)\): (\d+) Hz at \d+ krpm, (\d+) Hz", out)
+    )
+    assert set(pair) == {"backward", "forward"}, out
+    assert pair["backward"][1] < pair["backward"][0] and pair["forward"][1] > pair["forward"][0]
+    crossings = re.findall(
+        r"meets 1X at (\d+) rpm \([\d.]+ Hz\); ROSS at that speed: ([\d.]+) Hz", out
+    )
+    assert crossings, out
+    for rpm, hz in crossings:
+        assert float(hz) == pytest.approx(float(rpm) / 60.0, rel=0.02), (rpm, hz)
 
 
 def test_every_link_and_anchor_resolves_inside_the_site(site: Path) -> None:

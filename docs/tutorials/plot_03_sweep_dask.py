@@ -63,8 +63,9 @@ spec = load_sweep(sweep_file)
 from distributed import Client, LocalCluster
 
 with (
+    # its HTTP port: any free one on this machine (8787, Dask's default, may be taken)
     LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address="127.0.0.1:0"
     ) as cluster,
     Client(cluster) as client,
 ):

@@ -300,19 +300,26 @@ def _import_ross(what: str = "the ROSS export") -> Any:
 def _quiet_import(name: str) -> Any:
     """Import ``name`` with its output to stdout dropped, Python's and the C libraries': ROSS's
     property libraries announce at import that REFPROP is missing, which would break the
-    one JSON object a ``--json`` command prints."""
+    one JSON object a ``--json`` command prints. Their warning that names the missing
+    library's path is dropped too (it would show on every page that imports ROSS)."""
     import contextlib
     import importlib
     import io
     import os
     import sys
+    import warnings
 
     if name in sys.modules:
         return importlib.import_module(name)
     sys.stdout.flush()
     saved = os.dup(1)
     try:
-        with open(os.devnull, "w") as null, contextlib.redirect_stdout(io.StringIO()):
+        with (
+            open(os.devnull, "w") as null,
+            contextlib.redirect_stdout(io.StringIO()),
+            warnings.catch_warnings(),
+        ):
+            warnings.filterwarnings("ignore", message=r"[\s\S]*REFPROP", category=UserWarning)
             os.dup2(null.fileno(), 1)
             try:
                 return importlib.import_module(name)
