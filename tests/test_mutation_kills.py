@@ -50,3 +50,129 @@ def test_a_held_run_started_at_its_equilibrium_stays_there() -> None:
     assert run.status == "completed"
     drift = np.hypot(run.e_x - run.e_x[0], run.e_y - run.e_y[0]).max()
     assert drift < 1e-3 * case.bearing.clearance, drift / case.bearing.clearance
+
+
+# ------------------------------------------------------------- the stack under the film
+
+
+def _lobe_model(axial_order: int = 2):
+    from foilbearing.film import film_model
+
+    case = default_case().with_voltages(100.0).with_actuator_reading("lobe", "compliant")
+    grid = Grid(n_theta=32, n_z=4, axial_order=axial_order, orbit_n_z=None, orbit_axial_order=None)
+    case = replace(case, grid=grid)
+    return case, film_model(case)
+
+
+def test_the_stack_is_compressed_by_its_spring_law_under_the_film_pressure() -> None:
+    """``stack_compression`` (docs/model.md §3.8, Eq. 3b): each stack is a spring of
+    stiffness k_p + 4k_sp per unit area (N/m³) under the gauge pressure at its angle, so
+    D_n C (k_p + 4k_sp) = p_a max(q(θ_n), 0): the force balance on the stack, with k_p
+    by hand from the case's stack stiffness and contact area (0.46e6 N/m over 3.54e-4
+    m²), q at θ_n by ``at_angles`` (np.interp: an independent interpolation). The film's
+    pressure pushes, its sub-ambient part does not pull; a film at ambient compresses
+    nothing; the compression is linear in the pressure; ``"local"`` lowers no lobe."""
+    case, m = _lobe_model()
+    g = m.grid
+    k_stack = 0.46e6 / 3.54e-4 + 4 * 3.95e6  # N/m³
+    pa, c = case.gas.ambient_pressure, case.bearing.clearance
+    # One gauge pressure above ambient at 60 and 180 deg, below it at 300 deg.
+    q = 0.2 + 0.5 * np.cos(g.theta - math.radians(100.0))
+    P = 1.0 + np.repeat(q[:, None], g.n_z, axis=1)
+    q_at = m.at_angles(q, m.preload_angles)
+    assert q_at[0] > 0.5 and 0.2 < q_at[1] < 0.35 and q_at[2] < -0.2
+    D = m.stack_compression(P)
+    np.testing.assert_allclose(D * c * k_stack, pa * np.maximum(q_at, 0.0), rtol=1e-3)
+    assert D[0] > D[1] > 0.0 and D[2] == 0.0
+    np.testing.assert_array_equal(m.stack_compression(P.ravel()), D)  # flat P too
+    np.testing.assert_allclose(m.stack_compression(1.0 + 2.0 * (P - 1.0)), 2.0 * D, rtol=1e-13)
+    np.testing.assert_array_equal(m.stack_compression(np.ones(g.shape)), np.zeros(3))
+    np.testing.assert_array_equal(m.stack_compression(np.full(g.shape, 0.5)), np.zeros(3))
+    local = replace(m, stack_compliance=0.0)  # the "local" reading's model
+    np.testing.assert_array_equal(local.stack_compression(P), np.zeros(3))
+    # A hand number: 1 kPa over a stack lowers its lobe by 1e3/k_stack = 0.76 nm.
+    one_kpa = 1.0 + np.full(g.shape, 1e3 / pa)
+    assert m.stack_compression(one_kpa) * c == pytest.approx(np.full(3, 1e3 / k_stack), rel=1e-3)
+
+
+def test_the_lowered_lobes_open_the_film_the_stack_compression_says() -> None:
+    """``film``: under ``"lobe"`` the film of a pressure field is the rigid film plus
+    each lobe lowered by its stack's compression plus the bump's deflection; with the
+    stacks held rigid (compliance 0) the lobe term vanishes. A difference of two films,
+    so the deflection cancels: exactly Σ_n D_n lobe_n(θ)."""
+    _, m = _lobe_model()
+    g = m.grid
+    q = 0.3 + 0.2 * np.sin(g.theta)
+    P = 1.0 + np.repeat(q[:, None], g.n_z, axis=1)
+    D = m.stack_compression(P)
+    assert np.all(D > 0.0)
+    rigid = replace(m, stack_compliance=0.0)
+    opened = m.film(P, 0.2, -0.1) - rigid.film(P, 0.2, -0.1)
+    assert m.lobe_shapes is not None
+    np.testing.assert_allclose(opened, (D @ m.lobe_shapes)[:, None] * np.ones(g.n_z), atol=1e-15)
+
+
+# ------------------------------------------------------------- interpolation at the stingers
+
+
+def test_interpolation_rows_are_linear_interpolation_on_the_periodic_grid() -> None:
+    """``interpolation_rows``: each row's weights are ≥ 0 and sum to 1 (a constant field
+    is itself at any angle); a field linear in θ is reproduced exactly between the cells;
+    at a cell centre the row is that cell alone; across the seam (2π) the two cells on
+    either side share it; and any field agrees with np.interp (``at_angles``)."""
+    from foilbearing.film import interpolation_rows
+
+    _, m = _lobe_model()
+    th = m.grid.theta
+    d = 2 * math.pi / th.size
+    angles = (0.3, 1.0, 2.0 * math.pi - 0.01, 0.01, -0.5, 7.0, float(th[5]), float(th[-1]) + d / 2)
+    rows = interpolation_rows(th, angles)
+    assert rows.shape == (len(angles), th.size) and rows.min() >= 0.0
+    np.testing.assert_allclose(rows.sum(axis=1), 1.0, rtol=1e-14)
+    assert np.count_nonzero(rows, axis=1).max() <= 2
+    inner = [a for a in angles[:2]]
+    np.testing.assert_allclose(
+        interpolation_rows(th, tuple(inner)) @ (3.0 - 2.0 * th),
+        3.0 - 2.0 * np.array(inner),
+        rtol=1e-13,
+    )
+    np.testing.assert_allclose(rows[6], np.eye(th.size)[5], atol=1e-12)
+    seam = rows[7]
+    assert seam[-1] == pytest.approx(0.5) and seam[0] == pytest.approx(0.5)
+    rng = np.random.default_rng(3)
+    field = rng.normal(size=th.size)
+    np.testing.assert_allclose(rows @ field, m.at_angles(field, angles), rtol=1e-12, atol=1e-13)
+    np.testing.assert_allclose(m.actuator_rows, interpolation_rows(th, m.preload_angles))
+
+
+# ------------------------------------------------------------- imbalance and disturbance
+
+
+def test_the_imbalance_force_is_m_e_omega_squared_rotating_with_the_rotor() -> None:
+    """The orbit's input force (per unit mass and clearance) at constant speed, without
+    the disturbance: the load W/m along +X plus the imbalance force m_u e ω² (here
+    8.5 g·mm at 12 krpm: 13.4 N, by hand) along the rotor's angle ωt; during a ramp the
+    tangential term m_u e ω̇ joins it, 90 deg behind."""
+    from foilbearing.constants import RPM
+    from foilbearing.control import constant_speed, linear_ramp
+    from foilbearing.orbit import OrbitSimulation
+
+    case = replace(default_case(), disturbance=None)
+    m, c, w = case.rotor.mass, case.bearing.clearance, 12000 * RPM
+    sim = OrbitSimulation(case, constant_speed(w, 0.1))
+    volts = sim.volts(0.0)
+    assert 8.5e-6 * w**2 == pytest.approx(13.43, abs=0.01)
+    for t in (0.0, 0.0013, 0.0271):
+        f = sim.inputs(t, volts).force * m * c - np.array([8.8, 0.0])
+        want = 8.5e-6 * w**2 * np.array([math.cos(w * t), math.sin(w * t)])
+        np.testing.assert_allclose(f, want, rtol=1e-9, atol=1e-9)
+        quiet = sim.inputs(t, volts, imbalance=False).force * m * c
+        np.testing.assert_allclose(quiet, [8.8, 0.0], rtol=1e-12)
+    accel = 500.0  # rad/s²
+    ramp = OrbitSimulation(case, linear_ramp(w, 2 * w, accel))
+    t = 0.01
+    omega, phi = w + accel * t, w * t + 0.5 * accel * t * t
+    f = ramp.inputs(t, volts).force * m * c - np.array([8.8, 0.0])
+    radial = 8.5e-6 * omega**2 * np.array([math.cos(phi), math.sin(phi)])
+    tangential = 8.5e-6 * accel * np.array([math.sin(phi), -math.cos(phi)])
+    np.testing.assert_allclose(f, radial + tangential, rtol=1e-9)
