@@ -39,7 +39,10 @@ import numpy as np
 __all__ = ["LiftOff", "smoothed_edge"]
 
 
-def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:
+# Not mutated (`make mutation`): numba compiles this function into the kernels, and cannot
+# compile mutmut's trampoline around it; tests/test_lift_off_smoothing.py checks the row
+# against its NumPy twin.
+def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:  # pragma: no mutate block
     """The smoothed lift-off row ``φ/2`` and its weight α, for floats or NumPy arrays.
 
     The formula is written once, here; :func:`smoothed_edge_kernel` is this function
