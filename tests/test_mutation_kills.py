@@ -176,3 +176,93 @@ def test_the_imbalance_force_is_m_e_omega_squared_rotating_with_the_rotor() -> N
     radial = 8.5e-6 * omega**2 * np.array([math.cos(phi), math.sin(phi)])
     tangential = 8.5e-6 * accel * np.array([math.sin(phi), -math.cos(phi)])
     np.testing.assert_allclose(f, radial + tangential, rtol=1e-9)
+
+
+# ------------------------------------------------------------- coefficients: lobes and speeds
+
+
+def _coarse_case(reading: tuple[str, str] = ("local", "compliant")):
+    case = default_case().with_voltages(100.0).with_actuator_reading(*reading)
+    grid = Grid(n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None)
+    return replace(case, grid=grid)
+
+
+def _static_stiffness(case, st) -> np.ndarray:
+    """−∂F/∂e from central differences of the film force at ±1e-4 C (film_at_position, which
+    solves the stacks' compressions with the film under ``"lobe"``), N/m."""
+    from foilbearing.static import film_at_position
+
+    d, c = 1e-4, case.bearing.clearance
+    fd = np.empty((2, 2))
+    for j, (dx, dy) in enumerate([(d, 0.0), (0.0, d)]):
+        plus = film_at_position(case, st.eps_x + dx, st.eps_y + dy, speed=st.speed)
+        minus = film_at_position(case, st.eps_x - dx, st.eps_y - dy, speed=st.speed)
+        fd[:, j] = -(np.array(plus.force) - np.array(minus.force)) / (2 * d * c)
+    return fd
+
+
+def test_lobe_stiffness_at_a_low_frequency_is_the_static_derivative_with_the_stacks() -> None:
+    """Under ``"lobe" + "compliant"`` the stacks' compression follows the film during the
+    motion (``_with_lobes``: ΔD = (I − M X_D)⁻¹ M X_ε): at ω_e = 0.001 ω the stiffness is
+    −∂F/∂e of static films each with its own stack compression (central differences), to
+    the difference's error. The stacks (c_s = p_a/(C(k_p + 4k_sp)) = 0.77) soften the
+    bearing: the held stacks' stiffness differs by far more than that error."""
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.static import solve_equilibrium
+
+    case = _coarse_case(("lobe", "compliant"))
+    st = solve_equilibrium(case, speed=40e3 * math.pi / 30)
+    assert st.converged
+    co = force_coefficients(st, 1e-3 * st.speed)
+    fd = _static_stiffness(case, st)
+    np.testing.assert_allclose(co.K[0], fd, rtol=3e-3, atol=3e-3 * np.abs(fd).max())
+    held = force_coefficients(
+        replace(st, model=replace(st.model, actuator=replace(st.model.actuator, dynamics="held"))),
+        1e-3 * st.speed,
+    )
+    assert np.abs(held.K[0] - co.K[0]).max() > 0.05 * np.abs(fd).max()
+
+
+def test_coefficients_over_speeds_are_each_speed_solved_on_its_own() -> None:
+    """``coefficients_over_speeds``: each speed about its own equilibrium, the same as one
+    run at that speed; the default excitation is 20 ratios ω_e/ω from 0.1 to 2.0 of each
+    speed, so frequency (Hz) = ratio · ω/2π; the printed table is K in MN/m and C in
+    kN·s/m at the first ratio, against the speed in rpm."""
+    from foilbearing.coefficients import coefficients_over_speeds, force_coefficients
+    from foilbearing.static import solve_equilibrium
+
+    case = _coarse_case()
+    rpm = (30e3, 60e3)
+    sweep = coefficients_over_speeds(case, [f"{r:g} rpm" for r in rpm])
+    np.testing.assert_allclose(sweep.speeds, np.array(rpm) * math.pi / 30, rtol=1e-14)
+    np.testing.assert_allclose(sweep.frequency_ratios, np.linspace(0.1, 2.0, 20))
+    for point, r in zip(sweep.points[1:], rpm[1:], strict=True):  # one checked: the cost
+        w = r * math.pi / 30
+        alone = force_coefficients(solve_equilibrium(case.with_speed(w)), [0.1 * w, 2.0 * w])
+        np.testing.assert_allclose(point.K[[0, -1]], alone.K, rtol=1e-9)
+        np.testing.assert_allclose(point.C[[0, -1]], alone.C, rtol=1e-9)
+        np.testing.assert_allclose(point.frequencies, np.linspace(0.1, 2.0, 20) * w, rtol=1e-14)
+    # faster, the film is stiffer along the load (the journal sits nearer the centre)
+    assert sweep.points[1].static.eccentricity < sweep.points[0].static.eccentricity
+    ds = sweep.to_dataset()
+    assert ds.sizes["speed"] == 2 and ds.sizes["frequency_ratio"] == 20
+    np.testing.assert_allclose(
+        ds["frequency"].values, np.outer(sweep.speeds, ds["frequency_ratio"].values) / (2 * math.pi)
+    )
+    head = sweep.headline()
+    assert head["load_N"] == pytest.approx(8.8) and len(head["speeds"]) == 2
+    title, rows, _ = sweep._summary()
+    assert "2 speeds" in title and "8.8 N" in title and "ω_e/ω = 0.1" in title
+    np.testing.assert_allclose(rows["speed_rpm"], rpm, rtol=1e-12)
+    for k, (i, j) in enumerate([(0, 0), (0, 1), (1, 0), (1, 1)]):
+        name = ("XX", "XY", "YX", "YY")[k]
+        np.testing.assert_allclose(
+            rows[f"K_{name}_MN_per_m"], [p.K[0, i, j] / 1e6 for p in sweep.points]
+        )
+        np.testing.assert_allclose(
+            rows[f"C_{name}_kNs_per_m"], [p.C[0, i, j] / 1e3 for p in sweep.points]
+        )
+    fixed = coefficients_over_speeds(case, [30e3 * math.pi / 30], "100 Hz")
+    assert fixed.frequency_ratios is None
+    assert fixed.points[0].frequencies[0] == pytest.approx(2 * math.pi * 100.0)
+    assert "100 Hz" in fixed._summary()[0]
