@@ -266,3 +266,88 @@ def test_coefficients_over_speeds_are_each_speed_solved_on_its_own() -> None:
     assert fixed.frequency_ratios is None
     assert fixed.points[0].frequencies[0] == pytest.approx(2 * math.pi * 100.0)
     assert "100 Hz" in fixed._summary()[0]
+
+
+# ------------------------------------------------------------- quantities and readouts
+
+
+def test_a_speed_ramp_given_in_quantities_is_the_ramp_in_si() -> None:
+    """The paper's speed-up, 3 to 90 krpm at 500 rad/s², lasts (90 − 3) krpm/500 rad/s²
+    = 18.2 s, given in rpm or in rad/s; a quantity of another kind is one error naming
+    the argument."""
+    from foilbearing.control import linear_ramp
+    from foilbearing.errors import InputError
+
+    rpm = math.pi / 30
+    quantities = linear_ramp("3000 rpm", "90 krpm", "500 rad/s**2")
+    floats = linear_ramp(3000 * rpm, 90000 * rpm, 500.0)
+    np.testing.assert_allclose(quantities.times, floats.times, rtol=1e-14)
+    np.testing.assert_allclose(quantities.speeds, [3000 * rpm, 90000 * rpm], rtol=1e-14)
+    assert (
+        quantities.times[-1] == pytest.approx(87000 * rpm / 500.0) == pytest.approx(18.22, abs=0.01)
+    )
+    for args, name in (
+        (("3000 N", "90 krpm", "500 rad/s**2"), "start"),
+        (("3000 rpm", "90 m", "500 rad/s**2"), "stop"),
+        (("3000 rpm", "90 krpm", "500 rpm"), "acceleration"),
+    ):
+        with pytest.raises(InputError, match=name):
+            linear_ramp(*args)
+
+
+def test_divergence_reports_which_event_came_first_and_when() -> None:
+    """A synthetic speed-up (ω = 1000 + 100 t rad/s) whose whirl grows as r(t) = 0.1 C e^t
+    about a centre of 0.3 C: its radius passes 0.9 C at t = ln 9 = 2.197 s. Without
+    contact that is the divergence, by "orbit radius"; with a contact at 3 s after it,
+    the divergence is still the radius's, and the orbit was large for 3 − 2.197 s before
+    the contact; with a contact at 1 s, before it, the contact is the divergence."""
+    from foilbearing.signals import divergence
+
+    c = 1e-4
+    t = np.arange(0.0, 3.0, 4e-4)
+    speed = 1000.0 + 100.0 * t
+    r = 0.1 * c * np.exp(t)
+    phase = 2 * math.pi * 100.0 * t
+    e_x, e_y = 0.3 * c + r * np.cos(phase), r * np.sin(phase)
+    rpm = 30 / math.pi
+    t9 = math.log(9.0)
+    free = divergence(t, e_x, e_y, speed, c, stopped_by_contact=False, window_s=0.02)
+    assert free is not None and free.by == "orbit radius" and free.contact_speed_rpm is None
+    assert free.time_s == pytest.approx(t9, abs=0.02) and free.large_orbit_before_contact_s == 0.0
+    assert free.speed_rpm == pytest.approx((1000.0 + 100.0 * free.time_s) * rpm, rel=1e-6)
+    late = divergence(t, e_x, e_y, speed, c, stopped_by_contact=True, window_s=0.02)
+    assert late is not None and late.by == "orbit radius" and late.time_s == free.time_s
+    assert late.contact_speed_rpm == pytest.approx((1000.0 + 100.0 * t[-1]) * rpm, rel=1e-9)
+    assert late.large_orbit_before_contact_s == pytest.approx(t[-1] - free.time_s, rel=1e-12)
+    early = divergence(
+        t, e_x, e_y, speed, c, stopped_by_contact=True, contact_time=1.0, window_s=0.02
+    )
+    assert early is not None and early.by == "contact" and early.time_s == 1.0
+    assert early.speed_rpm == early.contact_speed_rpm == pytest.approx(1100.0 * rpm, rel=1e-9)
+    assert early.large_orbit_before_contact_s == 0.0
+    calm = divergence(
+        t, e_x * 0 + 0.3 * c, e_y * 0, speed, c, stopped_by_contact=False, window_s=0.02
+    )
+    assert calm is None
+
+
+def test_the_coefficients_dataset_labels_shared_quantities_as_the_static_one_does() -> None:
+    """The coefficients' Dataset carries the static point's speed, load, eccentricity and
+    attitude angle with the static Dataset's units and labels (one quantity, one name),
+    and its frequency ratio as the speed sweep's; each of these has a ``long_name``."""
+    from foilbearing.coefficients import coefficients_over_speeds
+    from foilbearing.static import solve_equilibrium
+
+    case = _coarse_case()
+    st = solve_equilibrium(case, speed=40e3 * math.pi / 30)
+    from foilbearing.coefficients import force_coefficients
+
+    ds = force_coefficients(st, [0.5 * st.speed, st.speed]).to_dataset()
+    static = st.to_dataset()
+    for name in ("speed", "load", "eccentricity", "attitude_angle"):
+        assert ds[name].attrs == static[name].attrs, name
+    for name in ("speed", "load", "eccentricity", "attitude_angle", "frequency", "frequency_ratio"):
+        assert ds[name].attrs.get("long_name"), name
+    assert "ω_e" in ds["frequency"].attrs["long_name"] and ds["frequency"].attrs["units"] == "Hz"
+    sweep = coefficients_over_speeds(case, [40e3 * math.pi / 30], frequency_ratios=[0.5, 1.0])
+    assert ds["frequency_ratio"].attrs == sweep.to_dataset()["frequency_ratio"].attrs

@@ -75,7 +75,9 @@ def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:  # pragma: no
     return 0.5 * (x + y - root), 0.5 * (1.0 + (x - y) / root)
 
 
-def __getattr__(name: str) -> Any:
+# Not mutated either: it runs once, when a kernel module is imported, before mutmut's
+# switch between mutants can reach it (its mutants survive unexercised, broken or not).
+def __getattr__(name: str) -> Any:  # pragma: no mutate block
     """``smoothed_edge_kernel``: :func:`smoothed_edge` compiled for the kernels to inline,
     made on first use so that importing the laws (every case does) does not import numba."""
     if name == "smoothed_edge_kernel":
