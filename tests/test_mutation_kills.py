@@ -351,3 +351,22 @@ def test_the_coefficients_dataset_labels_shared_quantities_as_the_static_one_doe
     assert "ω_e" in ds["frequency"].attrs["long_name"] and ds["frequency"].attrs["units"] == "Hz"
     sweep = coefficients_over_speeds(case, [40e3 * math.pi / 30], frequency_ratios=[0.5, 1.0])
     assert ds["frequency_ratio"].attrs == sweep.to_dataset()["frequency_ratio"].attrs
+
+
+def test_a_printed_static_point_says_whether_it_is_an_equilibrium() -> None:
+    """A printed equilibrium is titled as one, a film at a prescribed position as that,
+    each with the case's grid and the headline's numbers (the eccentricity of the
+    position given: √(0.3² + 0.2²))."""
+    from foilbearing.static import film_at_position, solve_equilibrium
+
+    case = _coarse_case()
+    w = 40e3 * math.pi / 30
+    eq = repr(solve_equilibrium(case, speed=w))
+    point = film_at_position(case, 0.3, 0.2, speed=w)
+    text = repr(point)
+    assert eq.startswith("Static equilibrium, ") and "32" in eq.splitlines()[0]
+    assert text.startswith("Static point (position prescribed), ")
+    assert case.title in text.splitlines()[0]
+    ecc = next(ln for ln in text.splitlines() if ln.strip().startswith("eccentricity"))
+    assert float(ecc.split()[1]) == pytest.approx(math.hypot(0.3, 0.2), rel=1e-3)
+    assert "min_film_um" not in text.splitlines()[0]
