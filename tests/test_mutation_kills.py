@@ -370,3 +370,41 @@ def test_a_printed_static_point_says_whether_it_is_an_equilibrium() -> None:
     ecc = next(ln for ln in text.splitlines() if ln.strip().startswith("eccentricity"))
     assert float(ecc.split()[1]) == pytest.approx(math.hypot(0.3, 0.2), rel=1e-3)
     assert "min_film_um" not in text.splitlines()[0]
+
+
+def test_the_disturbance_is_its_multisine_with_phases_over_the_whole_turn() -> None:
+    """F(t) = a Σ_k cos(2π f_k t + φ_k) per direction, summed here by hand from the tones'
+    frequencies and phases at times where ``+ φ`` and ``− φ`` differ; the phases are
+    uniform over [0, 2π): 512 of them reach within 0.1 rad of either end, their mean
+    is π (within 4 standard errors, 4 · 1.81/√512)."""
+    from foilbearing.case import Disturbance
+    from foilbearing.orbit.disturbance import DisturbanceForce
+
+    force = DisturbanceForce(Disturbance(0.02, 5.0, 500.0, tones=256, seed=3))
+    phases = force.phases
+    assert phases.shape == (2, 256) and force.amplitude == pytest.approx(0.02 * math.sqrt(2 / 256))
+    assert 0.0 <= phases.min() < 0.1 and 2 * math.pi - 0.1 < phases.max() < 2 * math.pi
+    assert abs(phases.mean() - math.pi) < 4 * (math.pi / math.sqrt(3)) / math.sqrt(512)
+    for t in (0.0137, 0.25):
+        by_hand = [
+            force.amplitude
+            * sum(
+                math.cos(2 * math.pi * f * t + p)
+                for f, p in zip(force.frequencies, row, strict=True)
+            )
+            for row in phases
+        ]
+        np.testing.assert_allclose(force(t), by_hand, rtol=1e-9, atol=1e-15)
+
+
+def test_the_static_force_along_x_is_the_load_direction_component() -> None:
+    """In the static Dataset, ``force`` along ``axis = "X"`` is F_X (along the load, which
+    the equilibrium balances: −W) and along ``"Y"`` F_Y (≈ 0 at equilibrium)."""
+    from foilbearing.static import solve_equilibrium
+
+    case = _coarse_case()
+    st = solve_equilibrium(case, speed=40e3 * math.pi / 30)
+    ds = st.to_dataset()
+    assert float(ds["force"].sel(axis="X")) == pytest.approx(st.force[0], rel=1e-15)
+    assert float(ds["force"].sel(axis="X")) == pytest.approx(-8.8, rel=1e-6)
+    assert abs(float(ds["force"].sel(axis="Y"))) < 1e-6
