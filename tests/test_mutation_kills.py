@@ -291,7 +291,7 @@ def test_a_speed_ramp_given_in_quantities_is_the_ramp_in_si() -> None:
         (("3000 rpm", "90 m", "500 rad/s**2"), "stop"),
         (("3000 rpm", "90 krpm", "500 rpm"), "acceleration"),
     ):
-        with pytest.raises(InputError, match=name):
+        with pytest.raises(InputError, match=rf"\b{name}\b"):
             linear_ramp(*args)
 
 
@@ -408,3 +408,64 @@ def test_the_static_force_along_x_is_the_load_direction_component() -> None:
     assert float(ds["force"].sel(axis="X")) == pytest.approx(st.force[0], rel=1e-15)
     assert float(ds["force"].sel(axis="X")) == pytest.approx(-8.8, rel=1e-6)
     assert abs(float(ds["force"].sel(axis="Y"))) < 1e-6
+
+
+def test_lobe_stiffness_with_a_stack_under_the_lifted_film_is_the_static_derivative() -> None:
+    """As the lobe test above, under a heavier load (20 N, ε₀ = 0.66) whose film has
+    lifted off the foil over the stack at 300 deg (gauge pressure 0 there): that stack is
+    not loaded, so it does not follow the motion (``_with_lobes``' ``loaded``); K at
+    ω_e = 0.001 ω is still −∂F/∂e of static films each with its own compressions."""
+    from foilbearing.coefficients import force_coefficients
+    from foilbearing.static import solve_equilibrium
+
+    case = _coarse_case(("lobe", "compliant"))
+    case = replace(case, operation=replace(case.operation, load=20.0))
+    st = solve_equilibrium(case, speed=40e3 * math.pi / 30)
+    assert st.converged
+    assert st.model.actuator_rows is not None
+    q = st.model.actuator_rows @ st.model.grid.gauge_mean(st.P)
+    assert q[2] == 0.0 < q[1], q  # the stack at 300 deg unloaded, at 180 deg loaded
+    co = force_coefficients(st, 1e-3 * st.speed)
+    fd = _static_stiffness(case, st)
+    np.testing.assert_allclose(co.K[0], fd, rtol=3e-3, atol=3e-3 * np.abs(fd).max())
+
+
+def test_the_smoothed_edge_width_is_kappa_cells_squared() -> None:
+    """δ = κ Δθ² (docs/lift-off.md): 0.1 on cells of 2π/96 is 4.28e-4, and w = δ √Λ; κ < 0
+    or NaN is refused."""
+    from foilbearing.laws.lift_off import LiftOff
+
+    d = 2 * math.pi / 96
+    assert (
+        LiftOff(0.1).delta(d)
+        == pytest.approx(0.1 * d * d, rel=1e-15)
+        == pytest.approx(4.28e-4, rel=1e-3)
+    )
+    assert LiftOff(0.1).width(d, 4.0) == pytest.approx(2.0 * 0.1 * d * d, rel=1e-15)
+    assert LiftOff(0.0).delta(d) == 0.0 and LiftOff(0.0).sharp
+    for bad in (-0.1, math.nan, math.inf):
+        with pytest.raises(ValueError, match="kappa"):
+            LiftOff(bad)
+
+
+def test_an_unknown_actuator_reading_is_refused_naming_the_field_and_the_choices() -> None:
+    from foilbearing.laws.actuator import ActuatorReading
+
+    with pytest.raises(
+        ValueError,
+        match=r"ActuatorReading\.preload_response = 'sideways': expected one of 'local', 'lobe'$",
+    ):
+        ActuatorReading("sideways")
+    with pytest.raises(
+        ValueError,
+        match=r"ActuatorReading\.dynamics = 'loose': expected one of 'compliant', 'held'$",
+    ):
+        ActuatorReading("lobe", "loose")
+
+
+def test_a_static_point_of_an_untitled_case_is_printed_as_the_case() -> None:
+    from foilbearing.static import film_at_position
+
+    case = replace(_coarse_case(), title="")
+    text = repr(film_at_position(case, 0.3, 0.2, speed=40e3 * math.pi / 30))
+    assert text.startswith("Static point (position prescribed), case; ")
