@@ -191,6 +191,10 @@ DAMAGE: dict[str, tuple[Callable[[xr.Dataset], None], str]] = {
     "NaN state": (_set("checkpoint_y", _with(3, np.nan)), "checkpoint_y holds values that"),
     "NaN past state": (_set("checkpoint_y_prev", _with(0, np.nan)), "checkpoint_y_prev holds"),
     "short state": (_set("checkpoint_y", lambda a: a[:-5]), "the run's case has"),
+    "garbage state": (_set("checkpoint_y", _with(1, 1e300)), "film pressure p/p_a = 1e+300"),
+    "negative pressure": (_set("checkpoint_y_prev", _with(0, -0.5)), "p/p_a = -0.5: expected"),
+    "journal far away": (_set("checkpoint_y", _with(-3, 5e3)), "displacement of 5e+03 C"),
+    "journal flying": (_set("checkpoint_y", _with(-1, 1e12)), "journal velocity of 1e+12 C/s"),
     "negative step": (_set("checkpoint_h_prev", lambda a: -a), "expected one step > 0 s"),
     "garbage series": (_set("e_x", _with(2, np.inf)), "e_x holds values that are not finite"),
     "cut run_spec": (

@@ -39,7 +39,10 @@ import numpy as np
 __all__ = ["LiftOff", "smoothed_edge"]
 
 
-def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:
+# Not mutated (`make mutation`): numba compiles this function into the kernels, and cannot
+# compile mutmut's trampoline around it; tests/test_lift_off_smoothing.py checks the row
+# against its NumPy twin.
+def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:  # pragma: no mutate block
     """The smoothed lift-off row ``φ/2`` and its weight α, for floats or NumPy arrays.
 
     The formula is written once, here; :func:`smoothed_edge_kernel` is this function
@@ -72,7 +75,9 @@ def smoothed_edge(x: Any, y: Any, width2: Any) -> tuple[Any, Any]:
     return 0.5 * (x + y - root), 0.5 * (1.0 + (x - y) / root)
 
 
-def __getattr__(name: str) -> Any:
+# Not mutated either: it runs once, when a kernel module is imported, before mutmut's
+# switch between mutants can reach it (its mutants survive unexercised, broken or not).
+def __getattr__(name: str) -> Any:  # pragma: no mutate block
     """``smoothed_edge_kernel``: :func:`smoothed_edge` compiled for the kernels to inline,
     made on first use so that importing the laws (every case does) does not import numba."""
     if name == "smoothed_edge_kernel":

@@ -115,6 +115,42 @@ def load_orbit(path: Path, notice: Callable[[str], None] = _notice) -> tuple[Any
     return result, spec
 
 
+#: The largest film pressure p/p_a, and journal or foil displacement in units of C, a
+#: checkpoint's state may hold: 10⁴ atmospheres and 10³ clearances are no state of a gas
+#: bearing, and a state of that size (1e300 from a damaged file) would overflow the film's
+#: Jacobian into a traceback instead of a one-line error.
+STATE_BOUNDS = (1e4, 1e3)
+
+
+def _check_state(name: str, y: Any, n: int, omega_max: float) -> None:
+    """A finite state (P, U, ε, v) of ``n`` pressures that a bearing can be in: 0 < P ≤ 10⁴,
+    |U|, |ε| ≤ 10³ C and |v| ≤ 10³ C times the run's top speed (rad/s).
+
+    Raises
+    ------
+    ValueError
+        Naming the part of the state out of range and its worst value.
+    """
+    p_max, x_max = STATE_BOUNDS
+    pressure, v = y[:n], y[-2:]
+    if not (pressure.min() > 0.0 and pressure.max() <= p_max):
+        worst = pressure.min() if pressure.min() <= 0.0 else pressure.max()
+        raise ValueError(
+            f"{name} holds a film pressure p/p_a = {worst:.3g}: expected 0 < p/p_a <= {p_max:g}"
+        )
+    displacement = np.abs(y[n:-2]).max()
+    if displacement > x_max:
+        raise ValueError(
+            f"{name} holds a journal or foil displacement of {displacement:.3g} C: expected "
+            f"at most {x_max:g} C"
+        )
+    if np.abs(v).max() > x_max * max(omega_max, 1.0):
+        raise ValueError(
+            f"{name} holds a journal velocity of {np.abs(v).max():.3g} C/s: expected at most "
+            f"{x_max:g} C times the run's top speed, {x_max * omega_max:.3g} C/s"
+        )
+
+
 def _result(ds: Any, case: Any, spec: RunSpec) -> Any:
     """The run of the dataset on ``case``, its checkpoint checked against the run.
 
@@ -148,7 +184,8 @@ def _result(ds: Any, case: Any, spec: RunSpec) -> Any:
         )
     t_check = float(checkpoint["t"][0])
     built = spec.build(case)
-    size = OrbitSimulation(built.case, built.profile, None, built.settings).system.size
+    system = OrbitSimulation(built.case, built.profile, None, built.settings).system
+    size = system.size
     for key, value in checkpoint.items():
         is_state = key == "y" or key.startswith("y_prev")
         if is_state and value.shape != (size,):
@@ -159,6 +196,8 @@ def _result(ds: Any, case: Any, spec: RunSpec) -> Any:
             raise ValueError(f"checkpoint_{key} = {value.tolist()}: expected one step > 0 s")
         if key != "triggered_at" and not np.all(np.isfinite(value)):  # NaN: not triggered
             raise ValueError(f"checkpoint_{key} holds values that are not finite")
+        if is_state:
+            _check_state(f"checkpoint_{key}", value, system.n, float(np.max(spec.speeds)))
     time = np.asarray(ds.time.values, float)
     series = {name: _si(ds, name) for name in _SERIES}
     # a bearing without actuators writes no voltage (a zero-length dimension does not
