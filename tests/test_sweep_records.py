@@ -106,6 +106,29 @@ DAMAGE = {
 }
 
 
+def test_a_record_cut_short_at_any_byte_is_called_cut_short(tmp_path: Path) -> None:
+    """A point record cut at every position (inside a number's exponent, a sign, ``true``,
+    a key) is reported as not valid JSON and cut short: the damage test above cuts at half
+    the file, whose length varies with the record's numbers, so it once cut inside
+    ``1.2e-05`` and the message lost its "(cut short?)". A whole document with a stray word
+    after it is not called cut short."""
+    from foilbearing.sweep.records import _load_json
+
+    text = json.dumps(
+        {"onset_speed_rpm": -1.25e-05, "converged": True, "note": None, "f": [3.5e7, 2]},
+        indent=1,
+    )
+    path = tmp_path / "000001.json"
+    for cut in range(1, len(text)):
+        path.write_text(text[:cut], encoding="utf-8")
+        data, problem = _load_json(path)
+        assert data is None and problem is not None, cut
+        assert problem.startswith("not valid JSON (cut short?)"), (text[:cut], problem)
+    path.write_text(text + " extra", encoding="utf-8")
+    data, problem = _load_json(path)
+    assert problem is not None and "cut short" not in problem
+
+
 @pytest.mark.parametrize("kind", list(DAMAGE))
 def test_a_damaged_point_record_is_named_or_set_aside_and_computed_again(
     kind: str, run: Path, finished: Path, client, capsys

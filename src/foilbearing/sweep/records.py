@@ -77,6 +77,12 @@ def point_file(folder: Path, index: int) -> Path:
     return folder / "points" / f"{index:06d}.json"
 
 
+#: What a file cut short leaves after the place its parse fails: nothing, or part of one
+#: number or literal (``1.5e``, ``-``, ``tr``). A cut anywhere else (inside a string, between
+#: tokens) is an unterminated string or ends at the end of the text.
+_PARTIAL_TOKEN = re.compile(r"[-+.0-9eE]*|[a-z]*")
+
+
 def _reject_constant(name: str) -> Any:
     raise ValueError(f"{name} is not a finite number")
 
@@ -96,7 +102,9 @@ def _load_json(path: Path) -> tuple[Any, str | None]:
     try:
         return json.loads(text, parse_constant=_reject_constant), None
     except json.JSONDecodeError as exc:
-        short = exc.pos >= len(text.rstrip()) or exc.msg.startswith("Unterminated")
+        short = exc.msg.startswith("Unterminated") or (
+            exc.msg != "Extra data" and _PARTIAL_TOKEN.fullmatch(text[exc.pos :].rstrip())
+        )
         cut = " (cut short?)" if short else ""
         return None, f"not valid JSON{cut}: {exc.msg} at line {exc.lineno} column {exc.colno}"
     except ValueError as exc:
