@@ -116,9 +116,7 @@ def film_at_position(
         )
     lam = Scales.from_case(case).bearing_number(omega)
     if model.lobe:  # the stacks' compressions are unknowns beside P (journal fixed)
-        out = _Equilibrium(model, lam, opts, journal=False).solve(
-            0.0, np.array([eps_x, eps_y]), None
-        )
+        out = _lobe_film_on_ray(_Equilibrium(model, lam, opts, journal=False), eps_x, eps_y)
         P = out.P.reshape(model.grid.shape)
         ok = out.converged
         msg = out.message if ok else f"film not found at this position: {out.message}"
@@ -141,6 +139,53 @@ def film_at_position(
         ok,
         msg,
         equilibrium=False,
+    )
+
+
+#: The shortest step, as a fraction of the journal's distance from the centre, that
+#: :func:`_lobe_film_on_ray` takes before it gives up.
+RAY_MIN_STEP = 1.0 / 256
+
+
+def _lobe_film_on_ray(solver: _Equilibrium, eps_x: float, eps_y: float) -> _EquilibriumOutcome:
+    """The film and the stacks' compressions D_n at a fixed journal position, under
+    ``preload_response = "lobe"``.
+
+    From P = 1 and D = 0 first. Where that fails (a journal that overlaps an
+    uncompressed lobe, min h_rigid < 0, whose film only the stack's compression
+    opens), the journal is walked out from the centre along its ray, s (ε_X, ε_Y) for
+    s from 0 to 1, each film starting from the last (its P gives the start's D); a
+    failed step is halved, down to :data:`RAY_MIN_STEP`. The equilibrium reaches the
+    same positions by the same kind of path (Newton from the previous iterate), so
+    both land on the same film.
+    """
+    eps = np.array([eps_x, eps_y], dtype=float)
+    out = solver.solve(0.0, eps, None)
+    if out.converged:
+        return out
+    first, iterations = out, out.iterations
+    done, step, start = 0.0, 0.25, None
+    while done < 1.0:
+        s = min(1.0, done + step)
+        trial = solver.solve(0.0, s * eps, start)
+        iterations += trial.iterations
+        if trial.converged:
+            done, start, out = s, trial.P, trial
+            step = min(2.0 * step, 0.5)
+        elif step / 2.0 < RAY_MIN_STEP:
+            return replace(
+                first,
+                iterations=iterations,
+                message=f"{first.message}; walking out from the centre along the ray also "
+                f"failed at {s:.4g} of the way ({trial.message})",
+            )
+        else:
+            step /= 2.0
+    return replace(
+        out,
+        iterations=iterations,
+        message="converged by walking the journal out from the centre along its ray "
+        "(from P = 1 at the position itself it did not)",
     )
 
 
