@@ -34,14 +34,23 @@ def _closed_form(
     tangent: bool = False,
     blocks: bool = False,
     no_flow_above: float = math.inf,
+    omega: float = OMEGA,
+    ellipse: np.ndarray = ELLIPSE,
+    centre: float = 0.0,
+    p_hopf: float = 0.0,
 ) -> FlowMap:
+    """The closed-form system; its equilibrium at ``centre`` in every component, its
+    Hopf point at p = ``p_hopf`` (μ = p − p_hopf)."""
     n = 2 + len(decay)
     lam = np.asarray(decay, float)
     S = np.eye(n)
-    S[:2, :2] = ELLIPSE
+    S[:2, :2] = ellipse
     S_inv = np.linalg.inv(S)
 
-    def advance(y0: np.ndarray, T: float, mu: float) -> np.ndarray:
+    def advance(y0: np.ndarray, T: float, p: float) -> np.ndarray:
+        return centre + moved(np.asarray(y0, float) - centre, T, p - p_hopf)
+
+    def moved(y0: np.ndarray, T: float, mu: float) -> np.ndarray:
         if mu > no_flow_above:
             return np.full(n, np.nan)
         xi = S_inv @ np.asarray(y0, float)
@@ -57,15 +66,15 @@ def _closed_form(
         if w <= 0.0:  # blown up within T
             return np.full(n, np.nan)
         r = w ** (-1.0 / (2 * k))
-        angle = math.atan2(xi[1], xi[0]) + OMEGA * T
+        angle = math.atan2(xi[1], xi[0]) + omega * T
         out[0], out[1] = r * math.cos(angle), r * math.sin(angle)
         return S @ out
 
-    def field(y: np.ndarray, mu: float) -> np.ndarray:
-        xi = S_inv @ np.asarray(y, float)
-        g = mu + s * (xi[0] ** 2 + xi[1] ** 2) ** k
+    def field(y: np.ndarray, p: float) -> np.ndarray:
+        xi = S_inv @ (np.asarray(y, float) - centre)
+        g = p - p_hopf + s * (xi[0] ** 2 + xi[1] ** 2) ** k
         rate = np.concatenate(
-            [[g * xi[0] - OMEGA * xi[1], OMEGA * xi[0] + g * xi[1]], -lam * xi[2:]]
+            [[g * xi[0] - omega * xi[1], omega * xi[0] + g * xi[1]], -lam * xi[2:]]
         )
         return S @ rate
 
@@ -85,14 +94,22 @@ def _closed_form(
     )
 
 
-def _hopf(n: int, turn: complex = 1.0, unstable_side: int = 1) -> HopfPoint:
+def _hopf(
+    n: int,
+    turn: complex = 1.0,
+    unstable_side: int = 1,
+    *,
+    ellipse: np.ndarray = ELLIPSE,
+    p_hopf: float = 0.0,
+    omega: float = OMEGA,
+) -> HopfPoint:
     q = np.zeros(n, complex)
-    q[:2] = ELLIPSE @ np.array([1.0, -1j])  # A q = iω q for the linear part S [[0,−ω],[ω,0]] S⁻¹
-    return HopfPoint(0.0, OMEGA, turn * q, unstable_side)
+    q[:2] = ellipse @ np.array([1.0, -1j])  # A q = iω q for the linear part S [[0,−ω],[ω,0]] S⁻¹
+    return HopfPoint(p_hopf, omega, turn * q, unstable_side)
 
 
-def _radius(y: np.ndarray) -> float:
-    xi = np.linalg.solve(ELLIPSE, y[:2])
+def _radius(y: np.ndarray, ellipse: np.ndarray = ELLIPSE) -> float:
+    xi = np.linalg.solve(ellipse, y[:2])
     return float(np.hypot(*xi))
 
 
@@ -401,3 +418,142 @@ def test_the_subcritical_branch_turns_at_its_fold_and_regains_stability() -> Non
     small, large = r**2 < 0.5 - 1e-3, r**2 > 0.5 + 1e-3
     assert small.any() and large.any()
     assert not np.any(branch.stable[small]) and np.all(branch.stable[large])
+
+
+# ------------------------------------------------------ scales, defaults and the section
+
+
+def test_a_cycle_far_from_the_origin_and_a_fast_one_are_found_alike() -> None:
+    """The residual and the step are judged relative to 1 + ‖y‖ (the state's own scale):
+    about an equilibrium at 1e4 in every component the cycle of μ = 0.04 is found to the
+    same radius; and a fast cycle (T = 0.3) is found with its period 2π/ω."""
+    far = _closed_form(centre=1e4)
+    guess = 1e4 + np.concatenate([ELLIPSE @ [0.21, 0.0], [0.0]])
+    orbit = periodic_orbit(far, guess, PERIOD, 0.04)
+    assert _radius(orbit.state - 1e4) == pytest.approx(0.2, abs=1e-6)
+    branch = hopf_branch(
+        far, _hopf(3), lambda mu: np.full(3, 1e4), amplitude=0.02, steps=2, ds=0.5, p_scale=0.01
+    )
+    r = np.array([_radius(o.state - 1e4) for o in branch.orbits])
+    np.testing.assert_allclose(branch.parameters, r**2, atol=1e-6)
+    omega = 2 * math.pi / 0.3
+    fast = _closed_form(omega=omega)
+    orbit = periodic_orbit(fast, np.concatenate([ELLIPSE @ [0.21, 0.0], [0.0]]), 0.3, 0.04)
+    assert orbit.period == pytest.approx(0.3, rel=1e-9)
+    assert _radius(orbit.state) == pytest.approx(0.2, abs=1e-8)
+    fast_branch = hopf_branch(
+        fast, _hopf(3, omega=omega), _zero(3), amplitude=0.02, steps=2, ds=0.5, p_scale=0.01
+    )
+    np.testing.assert_allclose([o.period for o in fast_branch.orbits], 0.3, rtol=1e-9)
+
+
+def test_an_integer_guess_and_a_given_section() -> None:
+    """A guess given in integers is a state like any other (at μ = 1/4 the cycle r = 1/2
+    passes through (1, 0, 0)); a given section normal holds the orbit on that section."""
+    flow = _closed_form()
+    orbit = periodic_orbit(flow, [1, 0, 0], PERIOD, 0.25)
+    assert _radius(orbit.state) == pytest.approx(0.5, abs=1e-9)
+    normal = np.array([0.0, 1.0, 0.0])
+    guess = np.concatenate([ELLIPSE @ [0.21, 0.02], [0.0]])
+    held = periodic_orbit(flow, guess, PERIOD, 0.04, normal=normal)
+    assert held.state[1] == pytest.approx(guess[1], abs=1e-10)
+    assert _radius(held.state) == pytest.approx(0.2, abs=1e-8)
+
+
+def test_newton_s_iteration_count_is_the_one_it_needed() -> None:
+    """The orbit reports the iterations it took: allowed exactly that many it converges,
+    one fewer it does not; with none allowed the error says so (residual inf)."""
+    flow = _closed_form()
+    guess = np.concatenate([ELLIPSE @ [0.21, 0.0], [0.01]])
+    orbit = periodic_orbit(flow, guess, PERIOD, 0.04)
+    again = periodic_orbit(flow, guess, PERIOD, 0.04, max_iter=orbit.iterations)
+    np.testing.assert_array_equal(again.state, orbit.state)
+    with pytest.raises(ShootingError):
+        periodic_orbit(flow, guess, PERIOD, 0.04, max_iter=orbit.iterations - 1)
+    with pytest.raises(ShootingError, match=r"in 0 Newton iterations .*residual inf"):
+        periodic_orbit(flow, guess, PERIOD, 0.04, max_iter=0)
+    with pytest.raises(ShootingError, match=r"in 25 Newton iterations.*from a longer transient$"):
+        periodic_orbit(flow, guess, PERIOD, -0.04)  # no cycle: the default 25 iterations
+    with pytest.raises(ShootingError, match=r"^continuation corrector did not converge"):
+        hopf_branch(flow, _hopf(3), _zero(3), amplitude=0.02, max_iter=0)
+
+
+def test_the_number_of_multipliers_of_a_large_system() -> None:
+    """Arnoldi returns the asked number of multipliers (default 6), at most n − 2; at
+    n = dense_max the monodromy is still dense (all n)."""
+    guess = np.concatenate([ELLIPSE @ [0.21, 0.0], 1e-3 * np.ones(7)])
+    decay = (0.3, 0.5, 0.9, 1.2, 1.5, 2.0, 3.0)
+    large = periodic_orbit(_closed_form(decay=decay, dense_max=4), guess, PERIOD, 0.04)
+    assert large.multipliers.size == 6
+    small = periodic_orbit(_closed_form(decay=decay[:3], dense_max=4), guess[:5], PERIOD, 0.04)
+    assert small.multipliers.size == 3  # n − 2 of n = 5 > dense_max
+    edge = periodic_orbit(_closed_form(decay=decay[:2], dense_max=4), guess[:4], PERIOD, 0.04)
+    assert edge.multipliers.size == 4
+    np.testing.assert_allclose(
+        np.abs(edge.multipliers),
+        [1.0, math.exp(-0.08 * PERIOD), math.exp(-0.3 * PERIOD), math.exp(-0.5 * PERIOD)],
+        rtol=1e-6,
+    )
+    no_blocks = FlowMap(
+        _closed_form().advance, _closed_form().field, tangent=None, tangent_blocks=True
+    )
+    orbit = periodic_orbit(no_blocks, guess[:3], PERIOD, 0.04)
+    assert _radius(orbit.state) == pytest.approx(0.2, abs=1e-8)
+
+
+def test_the_branch_record_each_orbit_on_the_last_one_s_section() -> None:
+    """Past the first two, each orbit lies on the section through the previous one normal
+    to the flow there (the corrector's phase condition), at the Hopf period, with its
+    residual within tol; the branch keeps its Hopf point; a measure given is the amplitude."""
+    flow = _closed_form()
+    hopf = _hopf(3)
+    branch = hopf_branch(
+        flow, hopf, _zero(3), amplitude=0.02, steps=4, ds=0.5, p_scale=0.01,
+        measure=lambda o: o.period,
+    )  # fmt: skip
+    assert branch.hopf is hopf
+    orbits = branch.orbits
+    for prev, this in zip(orbits[1:-1], orbits[2:], strict=True):
+        normal = flow.field(prev.state, prev.parameter)
+        assert normal @ (this.state - prev.state) == pytest.approx(0.0, abs=1e-8)
+    np.testing.assert_allclose([o.period for o in orbits], PERIOD, rtol=1e-9)
+    np.testing.assert_allclose(branch.amplitudes, [o.period for o in orbits])
+    assert all(0.0 <= o.residual <= 1e-9 for o in orbits)
+
+
+def test_the_type_s_resolution_is_relative_to_the_hopf_parameter() -> None:
+    """The same cycles (p(2a) − p(a) = 2e-6) are resolved at p_H = 0 (10 fd_step = 1e-6)
+    but not at p_H = 2 (3e-6, the resolution relative to 1 + |p_H|); a subcritical Hopf at
+    p_H = 2 is subcritical, and with the exact derivative a = 0.02 is resolved."""
+    sigma = np.linalg.norm(ELLIPSE, 2)
+    a = sigma * math.sqrt(2e-6 / 3.0)
+    at_0 = hopf_branch(_closed_form(), _hopf(3), _zero(3), amplitude=a, steps=0, tol=1e-12)
+    at_2 = hopf_branch(
+        _closed_form(p_hopf=2.0), _hopf(3, p_hopf=2.0), _zero(3), amplitude=a, steps=0, tol=1e-12
+    )
+    assert at_0.parameters[1] - at_0.parameters[0] == pytest.approx(2e-6, rel=1e-4)
+    assert at_0.bifurcation_type == "supercritical"
+    assert at_2.bifurcation_type == "degenerate"
+    sub = hopf_branch(
+        _closed_form(s=1.0, p_hopf=2.0), _hopf(3, p_hopf=2.0), _zero(3), amplitude=0.02, steps=0
+    )
+    assert sub.bifurcation_type == "subcritical"
+    assert sub.parameters[0] < 2.0
+    exact = hopf_branch(_closed_form(tangent=True), _hopf(3), _zero(3), amplitude=0.02, steps=0)
+    assert exact.bifurcation_type == "supercritical"
+
+
+def test_the_section_s_sign_follows_the_largest_component() -> None:
+    """With the ellipse's long axis along y₁, q and −q give the same first orbit, and its
+    largest component (y₁) is positive."""
+    tall = np.array([[0.5, 0.0], [0.3, 2.0]])
+    flow = _closed_form(ellipse=tall)
+    firsts = [
+        hopf_branch(flow, _hopf(3, turn, ellipse=tall), _zero(3), amplitude=0.02, steps=0)
+        .orbits[0]
+        .state
+        for turn in (1.0, -1.0, 1j)
+    ]
+    assert int(np.argmax(np.abs(firsts[0]))) == 1 and firsts[0][1] > 0.0
+    for state in firsts[1:]:
+        np.testing.assert_allclose(state, firsts[0], atol=1e-10)
