@@ -13,6 +13,7 @@ choice). With ``w = r^(−2k)``, ``ẇ = −2kμ w − 2ks``, so
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -513,7 +514,7 @@ def test_the_branch_record_each_orbit_on_the_last_one_s_section() -> None:
     )  # fmt: skip
     assert branch.hopf is hopf
     orbits = branch.orbits
-    for prev, this in zip(orbits[1:-1], orbits[2:], strict=True):
+    for prev, this in itertools.pairwise(orbits[1:]):
         normal = flow.field(prev.state, prev.parameter)
         assert normal @ (this.state - prev.state) == pytest.approx(0.0, abs=1e-8)
     np.testing.assert_allclose([o.period for o in orbits], PERIOD, rtol=1e-9)
