@@ -17,7 +17,9 @@ from foilbearing.cli.common import (
     add_case_arg,
     add_load_arg,
     add_overwrite_arg,
+    add_run_control_args,
     add_subambient_arg,
+    add_voltage_program_args,
     claim_output,
     emit,
     guard_outputs,
@@ -49,19 +51,7 @@ def register(sub: Any) -> None:
         help="constant speed instead of a ramp, e.g. 20000rpm (with --duration)",
     )
     p.add_argument("--duration", default=None, help="duration at constant --speed (default 1 s)")
-    p.add_argument(
-        "--voltage-ramp",
-        default=None,
-        metavar="T0:T1:V",
-        help="ramp all actuators from their case voltage to V between T0 and T1, "
-        "e.g. 6.0s:6.5s:150V (the paper's control)",
-    )
-    p.add_argument(
-        "--controller",
-        default=None,
-        metavar="K=V,...",
-        help="closed loop: threshold=2um,target=150V,slew=1000V/s,window=0.1s",
-    )
+    add_voltage_program_args(p, example="threshold=2um,target=150V,slew=1000V/s,window=0.1s")
     p.add_argument(
         "--voltage-schedule",
         default=None,
@@ -69,7 +59,6 @@ def register(sub: Any) -> None:
         help="voltages per speed from a schedule file (foilbearing schedule --out), followed "
         "at the file's slew rate",
     )
-    p.add_argument("--stop-time", default=None, help="end the run at this simulated time, e.g. 5s")
     p.add_argument(
         "--steps-per-rev",
         type=int,
@@ -103,12 +92,7 @@ def register(sub: Any) -> None:
     add_reading_args(p)
     p.add_argument("--out", type=Path, help="write the time series (NetCDF); checkpoints too")
     add_overwrite_arg(p)
-    p.add_argument(
-        "--checkpoint-every",
-        default="30s",
-        metavar="TIME",
-        help="wall time between checkpoints written to --out (default 30s)",
-    )
+    add_run_control_args(p)
     p.add_argument(
         "--resume",
         type=Path,

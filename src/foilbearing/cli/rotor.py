@@ -9,6 +9,8 @@ from typing import Any
 
 from foilbearing.cli.common import (
     add_overwrite_arg,
+    add_run_control_args,
+    add_voltage_program_args,
     claim_output,
     emit,
     guard_outputs,
@@ -56,20 +58,12 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "1:8.5g*mm:90deg (phase from "
         "the bearings' +X, the load, in the sense of rotation); repeat for several",
     )
-    rot.add_argument(
-        "--voltage-ramp",
-        default=None,
-        metavar="T0:T1:V",
-        help="during --orbit, ramp every bearing's actuators from their case voltages to V "
-        "between T0 and T1, e.g. 0.5s:1.0s:150V",
-    )
-    rot.add_argument(
-        "--controller",
-        default=None,
-        metavar="K=V,...",
-        help="during --orbit, a closed-loop controller on every bearing with actuators, "
-        "reading its own journal: threshold=1um,target=150V,slew=5000V/s,window=0.03s "
-        "(as foilbearing orbit --controller)",
+    add_voltage_program_args(
+        rot,
+        during="during --orbit, ",
+        whose="every bearing's actuators",
+        example="threshold=1um,target=150V,slew=5000V/s,window=0.03s (one on each bearing with "
+        "actuators)",
     )
     rot.add_argument(
         "--shaft-modes",
@@ -82,14 +76,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "--out", type=Path, help="write the --orbit run (NetCDF), with checkpoints as it goes"
     )
     add_overwrite_arg(rot)
-    rot.add_argument(
-        "--stop-time", default=None, help="end the --orbit run at this simulated time, e.g. 1s"
-    )
-    rot.add_argument(
-        "--checkpoint-every",
-        default="30s",
-        help="wall time between checkpoints written to --out (default 30s)",
-    )
+    add_run_control_args(rot, run="the --orbit run")
     rot.add_argument(
         "--resume",
         type=Path,
