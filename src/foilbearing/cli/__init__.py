@@ -9,6 +9,7 @@ module            responsibility
 ``main``          the ``foilbearing`` command: a thin layer over the library, its exit codes
 ``common``        pieces shared by the subcommands
 ``reading``       ``--preload-response`` and ``--actuator-dynamics``: the actuator's reading
+``run_args``      an orbit run's voltage programs, ``--stop-time``, ``--checkpoint-every``
 ``case``          ``foilbearing case show``
 ``structure``     ``foilbearing structure``
 ``identify``      ``foilbearing identify``

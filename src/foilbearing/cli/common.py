@@ -410,40 +410,6 @@ def add_overwrite_arg(p: argparse.ArgumentParser) -> None:
     )
 
 
-def add_voltage_program_args(
-    p: argparse.ArgumentParser, *, during: str = "", whose: str = "all actuators", example: str
-) -> None:
-    """``--voltage-ramp T0:T1:V`` and ``--controller K=V,...``: the voltage programs of an
-    orbit run (parsed by :mod:`foilbearing.control.options`); ``during`` prefixes the help
-    (e.g. ``"during --orbit, "``), ``whose`` names what is ramped, ``example`` the
-    controller's settings."""
-    p.add_argument(
-        "--voltage-ramp",
-        default=None,
-        metavar="T0:T1:V",
-        help=f"{during}ramp {whose} from their case voltage to V between T0 and T1, "
-        "e.g. 6.0s:6.5s:150V (the paper's control)",
-    )
-    p.add_argument(
-        "--controller",
-        default=None,
-        metavar="K=V,...",
-        help=f"{during}a closed-loop controller reading the journal: {example}",
-    )
-
-
-def add_run_control_args(p: argparse.ArgumentParser, *, run: str = "the run") -> None:
-    """``--stop-time`` (simulated time, e.g. ``5s``) and ``--checkpoint-every`` (wall
-    time between checkpoints to ``--out``, default 30 s) of an orbit run."""
-    p.add_argument("--stop-time", default=None, help=f"end {run} at this simulated time, e.g. 5s")
-    p.add_argument(
-        "--checkpoint-every",
-        default="30s",
-        metavar="TIME",
-        help="wall time between checkpoints written to --out (default 30s)",
-    )
-
-
 class Output:
     """An output file reserved for this run (:func:`claim_output`), written atomically.
 

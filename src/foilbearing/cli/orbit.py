@@ -17,9 +17,7 @@ from foilbearing.cli.common import (
     add_case_arg,
     add_load_arg,
     add_overwrite_arg,
-    add_run_control_args,
     add_subambient_arg,
-    add_voltage_program_args,
     claim_output,
     emit,
     guard_outputs,
@@ -29,6 +27,7 @@ from foilbearing.cli.common import (
     refuse_run_options,
 )
 from foilbearing.cli.reading import add_reading_args
+from foilbearing.cli.run_args import add_run_control_args, add_voltage_program_args
 
 if TYPE_CHECKING:
     from foilbearing.orbit.spec import RunSpec

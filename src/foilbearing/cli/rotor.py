@@ -9,13 +9,12 @@ from typing import Any
 
 from foilbearing.cli.common import (
     add_overwrite_arg,
-    add_run_control_args,
-    add_voltage_program_args,
     claim_output,
     emit,
     guard_outputs,
     refuse_run_options,
 )
+from foilbearing.cli.run_args import add_run_control_args, add_voltage_program_args
 
 __all__ = ["cmd_rotor", "register"]
 
