@@ -50,7 +50,11 @@ def register(sub: Any) -> None:
         help="constant speed instead of a ramp, e.g. 20000rpm (with --duration)",
     )
     p.add_argument("--duration", default=None, help="duration at constant --speed (default 1 s)")
-    add_voltage_program_args(p, example="threshold=2um,target=150V,slew=1000V/s,window=0.1s")
+    add_voltage_program_args(
+        p,
+        ramp_example="6.0s:6.5s:150V (the paper's control)",
+        controller_example="threshold=2um,target=150V,slew=1000V/s,window=0.1s",
+    )
     p.add_argument(
         "--voltage-schedule",
         default=None,

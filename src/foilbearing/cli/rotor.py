@@ -61,7 +61,8 @@ def register(sub: Any) -> argparse.ArgumentParser:
         rot,
         during="during --orbit, ",
         whose="every bearing's actuators",
-        example="threshold=1um,target=150V,slew=5000V/s,window=0.03s (one on each bearing with "
+        ramp_example="0.5s:1.0s:150V",
+        controller_example="threshold=1um,target=150V,slew=5000V/s,window=0.03s (one on each bearing with "
         "actuators)",
     )
     rot.add_argument(
@@ -75,7 +76,7 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "--out", type=Path, help="write the --orbit run (NetCDF), with checkpoints as it goes"
     )
     add_overwrite_arg(rot)
-    add_run_control_args(rot, run="the --orbit run")
+    add_run_control_args(rot, run="the --orbit run", stop_example="1s")
     rot.add_argument(
         "--resume",
         type=Path,

@@ -10,31 +10,40 @@ __all__ = ["add_run_control_args", "add_voltage_program_args"]
 
 
 def add_voltage_program_args(
-    p: argparse.ArgumentParser, *, during: str = "", whose: str = "all actuators", example: str
+    p: argparse.ArgumentParser,
+    *,
+    during: str = "",
+    whose: str = "all actuators",
+    ramp_example: str,
+    controller_example: str,
 ) -> None:
     """``--voltage-ramp T0:T1:V`` and ``--controller K=V,...``: the voltage programs of an
     orbit run (parsed by :mod:`foilbearing.control.options`); ``during`` prefixes the help
-    (e.g. ``"during --orbit, "``), ``whose`` names what is ramped, ``example`` the
-    controller's settings."""
+    (e.g. ``"during --orbit, "``), ``whose`` names what is ramped, and the examples are
+    the command's own."""
     p.add_argument(
         "--voltage-ramp",
         default=None,
         metavar="T0:T1:V",
         help=f"{during}ramp {whose} from their case voltage to V between T0 and T1, "
-        "e.g. 6.0s:6.5s:150V (the paper's control)",
+        f"e.g. {ramp_example}",
     )
     p.add_argument(
         "--controller",
         default=None,
         metavar="K=V,...",
-        help=f"{during}a closed-loop controller reading the journal: {example}",
+        help=f"{during}a closed-loop controller reading the journal: {controller_example}",
     )
 
 
-def add_run_control_args(p: argparse.ArgumentParser, *, run: str = "the run") -> None:
-    """``--stop-time`` (simulated time, e.g. ``5s``) and ``--checkpoint-every`` (wall
-    time between checkpoints to ``--out``, default 30 s) of an orbit run."""
-    p.add_argument("--stop-time", default=None, help=f"end {run} at this simulated time, e.g. 5s")
+def add_run_control_args(
+    p: argparse.ArgumentParser, *, run: str = "the run", stop_example: str = "5s"
+) -> None:
+    """``--stop-time`` (simulated time) and ``--checkpoint-every`` (wall time between
+    checkpoints to ``--out``, default 30 s) of an orbit run."""
+    p.add_argument(
+        "--stop-time", default=None, help=f"end {run} at this simulated time, e.g. {stop_example}"
+    )
     p.add_argument(
         "--checkpoint-every",
         default="30s",

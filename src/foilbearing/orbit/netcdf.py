@@ -144,10 +144,11 @@ def _check_state(name: str, y: Any, n: int, omega_max: float) -> None:
             f"{name} holds a journal or foil displacement of {displacement:.3g} C: expected "
             f"at most {x_max:g} C"
         )
-    if np.abs(v).max() > x_max * max(omega_max, 1.0):
+    v_max = x_max * max(omega_max, 1.0)
+    if np.abs(v).max() > v_max:
         raise ValueError(
             f"{name} holds a journal velocity of {np.abs(v).max():.3g} C/s: expected at most "
-            f"{x_max:g} C times the run's top speed, {x_max * omega_max:.3g} C/s"
+            f"{x_max:g} C times the run's top speed, {v_max:.3g} C/s"
         )
 
 
