@@ -262,6 +262,8 @@ def test_poisson_ratio_up_to_below_one_half(tmp_path: Path) -> None:
          "diameters 30 / 35 mm: need a length > 0 and outer > inner"),
         ({"shaft__colour": "red", "shaft__inner_diameters": ["0 mm"] * 3}, "unknown field "
          "'colour' in [shaft] (allowed: inner_diameters, lengths, outer_diameters)"),
+        ({"shaft__colour": "red"}, "unknown field 'colour' in [shaft] (allowed: "
+         "inner_diameters, lengths, outer_diameters)"),  # the optional field listed when absent
     ],
 )  # fmt: skip
 def test_bad_shaft(tmp_path: Path, changes: dict[str, Any], detail: str) -> None:

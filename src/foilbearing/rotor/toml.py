@@ -120,6 +120,7 @@ def _shaft(t: TableReader, source: str | None) -> tuple[ShaftElement, ...]:
     lengths = _lengths(t, "lengths", None)
     outer = _lengths(t, "outer_diameters", len(lengths))
     inner = _lengths(t, "inner_diameters", len(lengths)) if "inner_diameters" in t.data else None
+    t.used.add("inner_diameters")  # optional: an unknown field's message lists it all the same
     t.done()
     elements = []
     for k, (length, od) in enumerate(zip(lengths, outer, strict=True)):
