@@ -368,6 +368,11 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
             step = 10.0 ** -len(value.partition(".")[2])
             assert abs(float(value) - e["onset_speed_rpm"] / 1e3) <= step / 2 + 1e-9
             assert float(err) * 1e3 >= e["onset_error_rpm"] > 0
+            # and at the published resolution, κ = 0.02: never below the 0.7 % floor
+            assert e["refined_kappa"] == 0.02
+            value, err = e["onset_refined_text_krpm"].split(" ± ")
+            assert float(err) * 1e3 >= e["onset_refined_error_rpm"]
+            assert e["onset_refined_error_rpm"] >= 0.007 * e["onset_refined_rpm"] * (1 - 1e-12)
     assert "±" in (study_out / "report.html").read_text(encoding="utf-8")
 
 

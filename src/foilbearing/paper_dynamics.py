@@ -45,8 +45,9 @@ def stability_comparison(
     """Linear onset speeds beside the paper's nonlinear orbit observations (Figs. 13-15).
 
     ``errors`` (kind → voltage → :func:`~foilbearing.study.converged.published_onsets`'
-    entry): where given, the C-GFB onset is printed with its error, and the paper's reading
-    (lobe + held) at its value on the refined grid, with that value's error.
+    entry): where given, the C-GFB onset and the paper's reading (lobe + held) are printed
+    at the published resolution (the grid refined by 2, κ ≤ 0.02) with their errors, and the
+    case's grid value beside the first.
     """
     errors = errors or {}
     why = {
@@ -73,23 +74,28 @@ def stability_comparison(
             other = onsets.get(kind, {}).get(volt)
             conv = errors.get(kind, {}).get(volt, {})
             if conv.get("refined_grid"):
-                n, m = conv["refined_grid"]
-                shim_txt += f"; {label} {conv['onset_refined_text_krpm']} krpm on {n} × {m}"
+                shim_txt += f"; {label} {conv['onset_refined_text_krpm']} krpm{_at(conv)}"
             elif other is not None and other.onset_speed is not None:
                 shim_txt += f"; {label} {other.headline()['onset_speed_rpm'] / 1e3:.1f} krpm"
-        onset, whirl = h["onset_speed_rpm"], h["whirl_frequency_Hz"]
+        onset, whirl, ratio = h["onset_speed_rpm"], h["whirl_frequency_Hz"], h["whirl_ratio"]
         own = errors.get("C-GFB", {}).get(volt, {})
+        if own.get("refined_grid"):  # set beside the paper at the published resolution
+            whirl = own["whirl_frequency_refined_Hz"]
+            ratio = whirl / (own["onset_refined_rpm"] / 60.0)
         value = (
-            f"{own['onset_text_krpm']} krpm ({own['onset_error_source']})"
+            f"{own['onset_refined_text_krpm']} krpm{_at(own)} ({own['onset_text_krpm']} on "
+            f"the case's grid, {own['onset_error_source']} the larger part)"
             if own.get("refined_grid")
             else f"{0.0 if onset is None else onset / 1e3:.1f} krpm"
         )
         ours = (
             "stable over the scan"
             if onset is None
-            else f"{value}, {whirl:.0f} Hz (ratio {h['whirl_ratio']:.2f})"
+            else f"{value}, {whirl:.0f} Hz (ratio {ratio:.2f})"
         )
         text, diverges, whip, whip_onset = _PAPER_RUNS.get(volt, ("", None, None, None))
+        if own.get("refined_grid"):  # set beside the paper at the published resolution
+            onset = own["onset_refined_rpm"]
         reason, where = why.get(
             volt, (f"the paper has no run at {volt:g} V to set a linear onset against", REPORTED)
         )
@@ -104,6 +110,12 @@ def stability_comparison(
             )
         )
     return rows
+
+
+def _at(entry: dict[str, Any]) -> str:
+    """ " on 192 × 24, κ 0.02": where a published onset was solved."""
+    n, m = entry["refined_grid"]
+    return f" on {n} × {m}, κ {entry.get('refined_kappa', 0.0):g}"
 
 
 def _onset_deviation(

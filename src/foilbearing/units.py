@@ -35,6 +35,7 @@ __all__ = [
     "parse_quantity",
     "parse_speed_range",
     "si_text",
+    "speed_text",
     "ureg",
 ]
 
@@ -433,3 +434,15 @@ def from_si(value: Any, unit: str, si_unit: str) -> Any:
         return value / known[1]
     ureg = _registry()
     return ureg.Quantity(value, si_unit).to(unit).magnitude
+
+
+def speed_text(rpm: float) -> str:
+    """A computed speed (an onset, a divergence) to three significant figures in krpm,
+    e.g. "65.0 krpm", "7.84 krpm", "142 krpm".
+
+    An onset on a case's grid is 0.5-2 % from its converged value (docs/lift-off.md,
+    "The published onsets' error"); its fourth digit would be noise.
+    """
+    krpm = rpm / 1e3
+    decimals = 0 if abs(krpm) >= 99.95 else 1 if abs(krpm) >= 9.995 else 2
+    return f"{krpm:.{decimals}f} krpm"

@@ -15,6 +15,7 @@ from typing import Any
 
 from foilbearing.cli.common import add_case_arg, emit, positive_quantity
 from foilbearing.errors import InputError
+from foilbearing.units import speed_text
 
 __all__ = ["cmd_optimize", "register"]
 
@@ -116,8 +117,8 @@ def cmd_optimize(args: argparse.Namespace) -> int:
         emit(head)
         return 0
     if result.objective == "onset":
-        show = f"onset {head['onset_speed_rpm']:.0f} rpm"
-        base = f"onset {head['baseline_onset_speed_rpm']:.0f} rpm"
+        show = f"onset {speed_text(head['onset_speed_rpm'])}"
+        base = f"onset {speed_text(head['baseline_onset_speed_rpm'])}"
     else:
         show = (
             f"drag {head['drag_torque_Nm'] * 1e3:.4f} mN·m, min film {head['min_film_um']:.1f} um"

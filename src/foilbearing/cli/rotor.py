@@ -15,6 +15,7 @@ from foilbearing.cli.common import (
     refuse_run_options,
 )
 from foilbearing.cli.run_args import add_run_control_args, add_voltage_program_args
+from foilbearing.units import speed_text
 
 __all__ = ["cmd_rotor", "register"]
 
@@ -158,7 +159,7 @@ def cmd_rotor(args: argparse.Namespace) -> int:
         if onset is None:
             lines.append(f"  stable up to {speeds[-1] / RPM:.0f} rpm")
         else:
-            lines.append(f"  onset {onset / RPM:.0f} rpm, whirl {whirl:.1f} Hz")
+            lines.append(f"  onset {speed_text(onset / RPM)}, whirl {whirl:.1f} Hz")
         if args.plot is not None:
             from foilbearing.output.plots.rotor import (
                 plot_campbell,
@@ -364,7 +365,8 @@ def _orbit(
     for label, a in zip(run.labels, amplitude, strict=True):
         lines.append(f"    {label}: largest excursion {a * 1e6:.2f} µm")
     if part.get("onset_speed_rpm") is not None:
-        lines.append(f"    sub-synchronous onset at bearing A: {part['onset_speed_rpm']:.0f} rpm")
+        onset_text = speed_text(part["onset_speed_rpm"])
+        lines.append(f"    sub-synchronous onset at bearing A: {onset_text}")
     if target is not None and target.failure is None:
         part["out"] = str(args.out)
     if run.resumable:

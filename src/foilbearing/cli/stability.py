@@ -25,6 +25,7 @@ from foilbearing.cli.common import (
 from foilbearing.cli.reading import add_reading_args, apply_reading
 from foilbearing.errors import InputError
 from foilbearing.output.summary import grid_line, grid_used
+from foilbearing.units import speed_text
 
 __all__ = ["cmd_stability", "register"]
 
@@ -106,17 +107,17 @@ def cmd_stability(args: argparse.Namespace) -> int:
         emit(out)
     else:
         for e in entries:
-            onset = e["onset_speed_rpm"]
+            onset: Any = e["onset_speed_rpm"]
             text = (
                 "stable over the scan"
                 if onset is None
                 else (
-                    f"onset {onset:8.0f} rpm, whirl {e['whirl_frequency_Hz']:.1f} Hz "
+                    f"onset {speed_text(onset)}, whirl {e['whirl_frequency_Hz']:.1f} Hz "
                     f"(ratio {e['whirl_ratio']:.3f})"
                 )
             )
             print(f"  {e['bearing']} {e['voltage_V']:6.1f} V: {text}")
-        print(f"  {grid_line(case)}")
+        print(f"  {grid_line(case)}; {_check_hint(args)}")
     return 0
 
 
@@ -171,13 +172,19 @@ def _passive(case: Any, args: argparse.Namespace) -> int:
         result.message
         if onset is None
         else (
-            f"onset {onset:8.0f} rpm, whirl {out['whirl_frequency_Hz']:.1f} Hz "
+            f"onset {speed_text(onset)}, whirl {out['whirl_frequency_Hz']:.1f} Hz "
             f"(ratio {out['whirl_ratio']:.3f}); {result.message}"
         )
     )
     print(f"  {case.kind} at {case.operation.load:g} N, rotor {case.rotor.mass:g} kg: {text}")
-    print(f"  {grid_line(case)}")
+    print(f"  {grid_line(case)}; {_check_hint(args)}")
     return 0
+
+
+def _check_hint(args: argparse.Namespace) -> str:
+    """Where the onset's discretisation error comes from: ``foilbearing check``."""
+    case = f" {args.case}" if getattr(args, "case", None) else ""
+    return f"its error on this grid: foilbearing check{case}"
 
 
 def _design(case: Any, args: argparse.Namespace, speeds: Any) -> int:
@@ -205,7 +212,7 @@ def _design(case: Any, args: argparse.Namespace, speeds: Any) -> int:
         text = (
             "stable over the scan"
             if on is None
-            else (f"onset {on:8.0f} rpm, whirl {row['whirl_frequency_Hz']:.1f} Hz")
+            else (f"onset {speed_text(on)}, whirl {row['whirl_frequency_Hz']:.1f} Hz")
         )
         print(f"  {row['bearing']:52s} {text}")
     target = f"{design.target:.0%} of the shimmed GFB's onset"

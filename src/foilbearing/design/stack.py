@@ -31,6 +31,7 @@ from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError
 from foilbearing.laws.actuator import READINGS as ACTUATOR_READINGS
+from foilbearing.units import speed_text
 
 __all__ = ["READINGS", "StackDesign", "stack_design"]
 
@@ -192,7 +193,7 @@ def stack_design(
         stack = replace(base.actuators, stack_stiffness=act.stack_stiffness * factor)
         r = onset_speed(replace(base, actuators=stack).with_actuator_reading(*reading), speeds)
         if progress is not None:
-            text = "stable" if r.onset_speed is None else f"{r.onset_speed / RPM:8.0f} rpm"
+            text = "stable" if r.onset_speed is None else speed_text(r.onset_speed / RPM)
             progress(f"  {'+'.join(reading):16s} K_p × {factor:<7.3g} onset {text}")
         found = (math.nan, math.nan)
         if r.onset_speed is not None and r.whirl_frequency is not None:

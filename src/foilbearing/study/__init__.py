@@ -12,7 +12,7 @@ module           responsibility
 ``runs``         one speed-up of the orbit stages, as a worker process runs it
 ``schedule``     the voltage schedule as a study stage, verified in speed-ups
 ``bifurcation``  the limit-cycle branches as a study stage
-``converged``    the published onsets on the grid refined by 2, with their errors
+``converged``    the published onsets (×2 grid, κ 0.02) with their errors
 ``rotor``        the study of a rotor on two foil bearings (``foilbearing study ROTOR.toml``)
 ===============  ===============================================================================
 """

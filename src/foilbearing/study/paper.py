@@ -270,7 +270,7 @@ def _paper_comparison(
 
     ``onset_errors``: the published onsets' refinements and errors by kind and voltage
     (:func:`~foilbearing.study.converged.published_onsets`); the paper's reading is set
-    beside the paper at its refined value."""
+    beside the paper at its value at the published resolution."""
     from foilbearing.paper import markdown_table, static_comparison
     from foilbearing.paper_dynamics import orbit_comparison, stability_comparison
 
@@ -483,7 +483,10 @@ def _stability_stage(
     errors: dict[str, dict[float, dict[str, Any]]] = {}
     with ProcessPoolExecutor(max_workers=min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
         for kind, reading in published.items():  # what the study publishes, with its error
-            stage(f"  {kind}: the onsets on the grid refined by 2 and under the sharp edge")
+            stage(
+                f"  {kind}: the onsets at the published resolution (the grid refined by 2, "
+                "κ ≤ 0.02) and on the case's grid at its κ"
+            )
 
             def line(text: str, kind: str = kind) -> None:
                 stage(f"    {kind} at {text}")

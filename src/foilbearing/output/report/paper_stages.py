@@ -137,10 +137,15 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         return lambda r: _krpm("onset_speed_rpm")(r[key])
 
     # The published onsets with their error (foilbearing.study.converged): the case's
-    # reading on its grid, the paper's at its value on the grid refined by 2.
+    # reading on its grid and at the published resolution, the paper's at the latter.
     errors = any(e.get("onset_text_krpm") for e in d.get("C-GFB", []))
-    refined = next((e["refined_grid"] for e in d.get("C-GFB", []) if e.get("refined_grid")), None)
-    on_refined = "" if refined is None else f" on {refined[0]} × {refined[1]}"
+    first = next((e for e in d.get("C-GFB", []) if e.get("refined_grid")), None)
+    on_refined = (
+        ""
+        if first is None
+        else f" on {first['refined_grid'][0]} × {first['refined_grid'][1]}, "
+        f"κ {first.get('refined_kappa', 0.0):g}"
+    )
 
     def published(r: dict[str, Any], text: str) -> Any:
         if r.get(text):
@@ -155,6 +160,16 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             lambda r: published(r, "onset_text_krpm") if errors else _krpm("onset_speed_rpm")(r),
             "" if errors else ".1f",
         ),
+    ]
+    if errors:
+        cols.append(
+            (
+                f"C-GFB onset (krpm{on_refined})",
+                lambda r: r.get("onset_refined_text_krpm"),
+                "",
+            )
+        )
+    cols += [
         ("whirl frequency (Hz)", _key("whirl_frequency_Hz"), ".0f"),
         ("whirl ratio", _key("whirl_ratio"), ".2f"),
         ("shimmed onset (krpm)", onset_of("shim"), ".1f"),
@@ -206,11 +221,11 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             else ""
         )
         + (
-            " The C-GFB onsets are given with their estimated discretisation error, the "
-            "larger of the grid's (from the grid refined by 2) and the lift-off smoothing's "
-            "(κ against the sharp edge; docs/lift-off.md), the paper's reading at its value "
-            f"on the refined grid{on_refined}; the other columns are on the case's grid, "
-            "0.5-2 % from converged."
+            " The C-GFB onsets are given with their estimated discretisation error, on the "
+            "case's grid and at the published resolution"
+            f"{on_refined} (the grid refined by 2, the lift-off smoothing κ ≤ 0.02, where it "
+            "moves no onset by more than 0.23 %; docs/lift-off.md), the paper's reading at "
+            "the latter; the other columns are on the case's grid, 0.5-2 % from converged."
             if errors
             else ""
         )
