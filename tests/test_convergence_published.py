@@ -139,3 +139,23 @@ def test_an_onset_the_refined_grid_cannot_solve_stays_published_without_an_error
     assert got[0.0] == {"message": "no onset on the ×2 grid: no static equilibrium at 4700 rpm"}
     row = stability_comparison({"C-GFB": coarse}, {"C-GFB": got})[0]
     assert row.ours.startswith("5.0 krpm, ")
+
+
+def test_the_shimmed_twin_is_refined_as_itself(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The study's shimmed column is refined on the shimmed twin at each voltage (shims of
+    that voltage's preload, no actuator), not on the C-GFB it comes from."""
+    import foilbearing.check
+    from foilbearing.analysis.stability import OnsetResult
+
+    seen = []
+
+    def record(case: object, *args: object, **kwargs: object) -> OnsetResult:
+        seen.append(case)
+        return OnsetResult(None, None, None, [], [], [], "stable")
+
+    monkeypatch.setattr(foilbearing.check, "onset_near", record)
+    coarse = {150.0: OnsetResult(90e3 * RPM, 0.1, 600.0, STUDY_SCAN[:1], [], [], "unstable")}
+    published_onsets(default_case(), coarse, STUDY_SCAN, shimmed=True)
+    twin = default_case().with_voltages(150.0).shimmed()
+    assert seen and seen[0] == published_case(twin)
+    assert seen[0] != published_case(default_case().with_voltages(150.0))

@@ -81,9 +81,12 @@ def test_a_run_on_a_warm_cache_says_nothing_and_json_stays_clean(write_case) -> 
     assert COMPILE_NOTICE not in runs[1].stderr
 
 
-def test_the_set_up_s_warm_up_runs() -> None:
+def test_the_set_up_s_warm_up_runs(capsys) -> None:
     """``python -m foilbearing.warmup`` (the end of scripts/setup_venv.sh) completes: a static
-    solve, coefficients, a whirl mode and two short orbits on a coarse grid."""
-    from foilbearing.warmup import compile_kernels
+    solve, coefficients, a whirl mode and two short orbits on a coarse grid, in this process
+    and as its two parts in two processes at once."""
+    from foilbearing.warmup import compile_kernels, main
 
     assert compile_kernels() > 0.0
+    assert main([]) == 0
+    assert "film kernels ready" in capsys.readouterr().err

@@ -361,7 +361,7 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
     onsets = [e["onset_speed_rpm"] for e in summary["stability"]["C-GFB"]]
     assert all(o is not None and o > 5000 for o in onsets)
     # the published onsets carry their error, printed to the digits it supports (issue 49)
-    for kind in ("C-GFB", "C-GFB, lobe+held"):
+    for kind in ("C-GFB", "shimmed", "C-GFB, lobe+held"):
         for e in summary["stability"][kind]:
             assert e["refined_grid"] == [192, 24]
             value, err = e["onset_text_krpm"].split(" ± ")

@@ -1,8 +1,8 @@
 """The study's published linear onsets with their discretisation error (issue 49).
 
 The study solves its onset table on the case's grid (96 × 12 at κ = 0.1 on the built-in
-case). Each onset it publishes (the default reading and the paper's, lobe + held) is
-solved again at the *published resolution*: the grid refined by 2 in θ and Z, the axial
+case). Each onset it publishes (the default reading, its shimmed twin and the paper's
+reading, lobe + held) is solved again at the *published resolution*: the grid refined by 2 in θ and Z, the axial
 order held (:func:`foilbearing.check.refined`), and the lift-off smoothing at
 :data:`PUBLISHED_KAPPA` (or the case's own κ where that is smaller), where κ moves no
 published onset by more than 0.23 % (docs/lift-off.md, "Choosing κ for the published
@@ -194,6 +194,7 @@ def published_onsets(
     scan: Sequence[float],
     progress: Callable[[str], None] | None = None,
     pool: Executor | None = None,
+    shimmed: bool = False,
 ) -> dict[float, dict[str, Any]]:
     """Each coarse onset of ``case`` (one reading) at the published resolution, with the
     errors of both.
@@ -201,7 +202,8 @@ def published_onsets(
     Parameters
     ----------
     case
-        The case in the reading of the onsets (voltage set per entry).
+        The case in the reading of the onsets (voltage set per entry; with ``shimmed``,
+        its shimmed twin at each voltage, :meth:`~foilbearing.case.Case.shimmed`).
     coarse
         Voltage (V) → the :class:`~foilbearing.analysis.stability.OnsetResult` on the case's
         grid.
@@ -227,7 +229,8 @@ def published_onsets(
     for volt, res in coarse.items():
         if res.onset_speed is None:
             continue
-        args = (case.with_voltages(float(volt)), res.onset_speed, list(scan))
+        at_volt = case.with_voltages(float(volt))
+        args = (at_volt.shimmed() if shimmed else at_volt, res.onset_speed, list(scan))
         jobs[volt] = pool.submit(refine_onset, *args) if pool is not None else args
     out: dict[float, dict[str, Any]] = {}
     for volt, res in coarse.items():

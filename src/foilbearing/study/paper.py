@@ -475,14 +475,16 @@ def _stability_stage(
         # §3.8) beside the case's own.
         paper_reading = case.with_actuator_reading("lobe", "held")
         onsets["C-GFB, lobe+held"] = onsets_per_voltage(paper_reading, PAPER_VOLTAGES, scan)
-    published = {"C-GFB": case} | (
-        {"C-GFB, lobe+held": case.with_actuator_reading("lobe", "held")}
+    # What the study publishes, with its error: the case's reading, its shimmed twin (the
+    # paper's comparison) and the paper's reading; kind → (case, shimmed).
+    published = {"C-GFB": (case, False), "shimmed": (case, True)} | (
+        {"C-GFB, lobe+held": (case.with_actuator_reading("lobe", "held"), False)}
         if case.actuators is not None
         else {}
     )
     errors: dict[str, dict[float, dict[str, Any]]] = {}
     with ProcessPoolExecutor(max_workers=min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
-        for kind, reading in published.items():  # what the study publishes, with its error
+        for kind, (reading, shim) in published.items():
             stage(
                 f"  {kind}: the onsets at the published resolution (the grid refined by 2, "
                 "κ ≤ 0.02) and on the case's grid at its κ"
@@ -491,7 +493,7 @@ def _stability_stage(
             def line(text: str, kind: str = kind) -> None:
                 stage(f"    {kind} at {text}")
 
-            errors[kind] = published_onsets(reading, onsets[kind], scan, line, pool)
+            errors[kind] = published_onsets(reading, onsets[kind], scan, line, pool, shim)
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
     fig = save_figure(

@@ -172,8 +172,20 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
     cols += [
         ("whirl frequency (Hz)", _key("whirl_frequency_Hz"), ".0f"),
         ("whirl ratio", _key("whirl_ratio"), ".2f"),
-        ("shimmed onset (krpm)", onset_of("shim"), ".1f"),
-        ("shimmed whirl (Hz)", lambda r: r["shim"].get("whirl_frequency_Hz"), ".0f"),
+        (
+            f"shimmed onset (krpm{on_refined})",
+            (lambda r: published(r["shim"], "onset_refined_text_krpm"))
+            if errors
+            else onset_of("shim"),
+            "" if errors else ".1f",
+        ),
+        (
+            "shimmed whirl (Hz)",
+            lambda r: r["shim"].get(
+                "whirl_frequency_refined_Hz", r["shim"].get("whirl_frequency_Hz")
+            ),
+            ".0f",
+        ),
     ]
     if others["orbit_grid"]:
         cols.append(("C-GFB on the orbits' grid (krpm)", onset_of("orbit_grid"), ".1f"))
