@@ -2,7 +2,7 @@
 behave, and where its time goes. Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit_steps.py [--steps] [--newton] [--refresh]
-     [--readings] [--profile]
+     [--readings] [--profile] [--floor]
 
 
 - ``--steps`` (the default): the cost of a step on a smooth orbit (C-GFB, 0 V, 1 g·mm, 30 krpm: the kind
@@ -24,6 +24,10 @@ docs/development/orbit-performance.md.
   iterations and factorisations per step, best of 3 (about 1 minute).
 - ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
   0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
+- ``--floor``: the floor of today's step, what a compiled step loop could not remove: on
+  the smooth and the large orbit of ``--steps`` (0.1 s each), the wall time a step (best of
+  3) and the time inside the compiled kernels (every numba function called from Python,
+  timed by a wrapper), the rest being the Python around them (about 20 s).
 
 The cost model behind these figures and every route tried towards the 60 s target:
 docs/development/orbit-performance.md.
@@ -57,7 +61,10 @@ def step_costs() -> None:
         ),
         "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm": (base.with_voltages(150.0).shimmed(), 50e3),
     }
-    print("cost of a step, 0.05 s of each orbit, 96 x 12, default settings, best of 3:")
+    print(
+        f"cost of a step, 0.05 s of each orbit, orbit grid {base.grid.orbit_label}, default "
+        "settings, best of 3:"
+    )
     for name, (case, rpm) in runs.items():
         simulate(case, constant_speed(rpm * RPM, 2e-3))  # compile, warm up
         costs = []
@@ -254,8 +261,81 @@ def step_profile() -> None:
     print(f"  {'Python around them':<38} {python:.3f} ms per step (cProfile's own cost included)")
 
 
+@contextmanager
+def _compiled_calls_timed(spent: list[float]) -> Iterator[None]:
+    """While the block runs, add the wall time of every call from Python into a compiled
+    (numba) function of foilbearing to ``spent[0]``, s. Calls from one compiled function
+    into another are inside the first and are not seen twice."""
+    import time
+
+    from numba.core.dispatcher import Dispatcher
+
+    clock = time.perf_counter
+    saved: list[tuple[object, str, object]] = []
+
+    def timed(kernel: Callable[..., object]) -> Callable[..., object]:
+        def call(*args: object, **kwargs: object) -> object:
+            start = clock()
+            try:
+                return kernel(*args, **kwargs)
+            finally:
+                spent[0] += clock() - start
+
+        return call
+
+    for module in [m for n, m in sys.modules.items() if n.startswith("foilbearing")]:
+        for name, value in list(vars(module).items()):
+            if isinstance(value, Dispatcher):
+                saved.append((module, name, value))
+                setattr(module, name, timed(value))
+    try:
+        yield
+    finally:
+        for module, name, kernel in saved:
+            setattr(module, name, kernel)
+
+
+def compiled_floor() -> None:
+    """The step's wall time against the time inside its compiled kernels (the floor)."""
+    base = default_case()
+    runs = {
+        "C-GFB, 0 V, 1 g·mm, 30 krpm (smooth)": (
+            replace(base, rotor=replace(base.rotor, imbalance=1e-6)),
+            30e3,
+        ),
+        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm (large)": (
+            base.with_voltages(150.0).shimmed(),
+            50e3,
+        ),
+    }
+    print(
+        f"the floor of a step, 0.1 s of each orbit, orbit grid {base.grid.orbit_label}, default "
+        "settings: ms a step (best of 3) = compiled kernels + the Python around them"
+    )
+    for name, (case, rpm) in runs.items():
+        simulate(case, constant_speed(rpm * RPM, 2e-3), progress=False)  # compile, warm up
+        plain = min(
+            (simulate(case, constant_speed(rpm * RPM, 0.1), progress=False) for _ in range(3)),
+            key=lambda r: r.wall_time,
+        )
+        spent = [0.0]
+        with _compiled_calls_timed(spent):
+            timed = simulate(case, constant_speed(rpm * RPM, 0.1), progress=False)
+        step = 1e3 * plain.wall_time / plain.steps
+        compiled = 1e3 * spent[0] / timed.steps
+        print(
+            f"  {name}: {step:.3f} ms a step = {compiled:.3f} compiled "
+            f"({100 * compiled / step:.0f} %) + {step - compiled:.3f} Python; "
+            f"{plain.newton_iterations / plain.steps:.2f} iterations and "
+            f"{plain.factorizations / plain.steps:.3f} factorisations a step; a compiled "
+            f"step loop could take it to {compiled:.3f} ms at best ({step / compiled:.2f} times)"
+        )
+
+
 if __name__ == "__main__":
-    if "--profile" in sys.argv:
+    if "--floor" in sys.argv:
+        compiled_floor()
+    elif "--profile" in sys.argv:
         step_profile()
     elif "--newton" in sys.argv:
         newton_statistics()

@@ -68,3 +68,15 @@ def test_orbit_inputs_carry_the_force_per_unit_mass_and_clearance() -> None:
         sim.inputs(0.01, volts, imbalance=False).force,
         quiet.inputs(0.01, volts, imbalance=False).force,
     )
+
+
+@pytest.mark.parametrize("tones", [1, 7, 8, 13, 128, 129, 256, 300, 1000])
+def test_the_compiled_force_is_numpys_sum_to_the_bit(tones: int) -> None:
+    """The force a time step evaluates (compiled) is the NumPy form a Σ cos(ω t + φ) to the
+    last bit: the runs before it was compiled are unchanged. Tone counts on each side of
+    the pairwise summation's block sizes (8 and 128) and past two halvings."""
+    force = DisturbanceForce(Disturbance(0.01, 5.0, 500.0, seed=tones, tones=tones))
+    omega = 2.0 * np.pi * force.frequencies
+    for t in np.random.default_rng(tones).uniform(0.0, 20.0, 200):
+        numpy_form = force.amplitude * np.cos(omega * t + force.phases).sum(axis=1)
+        assert np.array_equal(force(t), numpy_form)
