@@ -433,7 +433,6 @@ def _stability_stage(
     (:func:`~foilbearing.study.converged.published_onsets`)."""
     import math
     import os
-    from concurrent.futures import ProcessPoolExecutor
 
     from foilbearing.analysis.coefficients import force_coefficients
     from foilbearing.analysis.equilibrium import solve_equilibrium
@@ -441,6 +440,7 @@ def _stability_stage(
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
     from foilbearing.study.converged import published_onsets
+    from foilbearing.study.queue import worker_pool
     from foilbearing.study.static import PAPER_VOLTAGES
 
     rpm = math.pi / 30.0
@@ -483,7 +483,7 @@ def _stability_stage(
         else {}
     )
     errors: dict[str, dict[float, dict[str, Any]]] = {}
-    with ProcessPoolExecutor(max_workers=min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
+    with worker_pool(min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
         for kind, (reading, shim) in published.items():
             stage(
                 f"  {kind}: the onsets at the published resolution (the grid refined by 2, "
