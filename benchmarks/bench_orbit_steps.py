@@ -2,7 +2,7 @@
 behave, and where its time goes. Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit_steps.py [--steps] [--newton] [--refresh]
-     [--readings] [--profile] [--floor]
+     [--readings] [--profile] [--floor] [--dump FILE] [--same A B]
 
 
 - ``--steps`` (the default): the cost of a step on a smooth orbit (C-GFB, 0 V, 1 g·mm, 30 krpm: the kind
@@ -24,6 +24,11 @@ docs/development/orbit-performance.md.
   iterations and factorisations per step, best of 3 (about 1 minute).
 - ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
   0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
+- ``--dump FILE``: e_X, e_Y, the minimum film, the power loss, the sample times and the
+  counts of three short runs (the two orbits of ``--steps`` for 0.05 s, 0.3 s of the
+  paper's speed-up under lobe + held at 100 V) into FILE (.npz); ``--same A B`` says
+  whether two such files are equal to the bit: run ``--dump`` in two checkouts to check
+  that a change of the step's code left every number as it was (about 20 s).
 - ``--floor``: the floor of today's step, what a compiled step loop could not remove: on
   the smooth and the large orbit of ``--steps`` (0.1 s each), the wall time a step (best of
   3) and the time inside the compiled kernels (every numba function called from Python,
@@ -332,8 +337,53 @@ def compiled_floor() -> None:
         )
 
 
+def dump_runs(path: str) -> None:
+    """Write the outputs of three short runs to ``path`` (.npz), to compare two checkouts."""
+    import numpy as np
+
+    from foilbearing.control import linear_ramp
+
+    base = default_case()
+    runs = {
+        "smooth": (
+            replace(base, rotor=replace(base.rotor, imbalance=1e-6)),
+            constant_speed(30e3 * RPM, 0.05),
+            None,
+        ),
+        "large": (base.with_voltages(150.0).shimmed(), constant_speed(50e3 * RPM, 0.05), None),
+        "ramp": (
+            base.with_actuator_reading("lobe", "held").with_voltages(100.0),
+            linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0),
+            0.3,
+        ),
+    }
+    out = {}
+    for key, (case, profile, stop) in runs.items():
+        res = simulate(case, profile, progress=False, stop_time=stop)
+        for name in ("e_x", "e_y", "min_film", "power_loss", "time"):
+            out[f"{key}_{name}"] = np.asarray(getattr(res, name))
+        out[f"{key}_counts"] = np.array([res.steps, res.newton_iterations, res.factorizations])
+    np.savez(path, **out)
+    print(f"wrote {path}: {', '.join(sorted(out))}")
+
+
+def same_runs(a: str, b: str) -> None:
+    """Whether two ``--dump`` files hold the same numbers, to the bit."""
+    import numpy as np
+
+    with np.load(a) as x, np.load(b) as y:
+        differ = [k for k in x.files if not np.array_equal(x[k], y[k], equal_nan=True)]
+        missing = sorted(set(x.files) ^ set(y.files))
+    print("the same to the bit" if not differ and not missing else f"differ: {differ + missing}")
+
+
 if __name__ == "__main__":
-    if "--floor" in sys.argv:
+    if "--dump" in sys.argv:
+        dump_runs(sys.argv[sys.argv.index("--dump") + 1])
+    elif "--same" in sys.argv:
+        i = sys.argv.index("--same")
+        same_runs(sys.argv[i + 1], sys.argv[i + 2])
+    elif "--floor" in sys.argv:
         compiled_floor()
     elif "--profile" in sys.argv:
         step_profile()

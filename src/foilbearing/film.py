@@ -333,17 +333,31 @@ def film_model(case: Case, n_theta: int | None = None, n_z: int | None = None) -
     )
 
 
-def drag_torque(case: Case, g: FilmGrid, P: FloatArray, H: FloatArray, omega: float) -> float:
+def drag_torque(
+    case: Case,
+    g: FilmGrid,
+    P: FloatArray,
+    H: FloatArray,
+    omega: float,
+    scales: Scales | None = None,
+) -> float:
     """Viscous torque on the journal, N·m (beyond the paper).
 
     Shear on the journal surface from the Couette-Poiseuille profile,
     τ = μ ω R/h + (h/(2R)) ∂p/∂θ, integrated over the full surface:
     T = R³ ∫∫ [μ ω R/(C H) + (C H p_a/(2R)) ∂P/∂θ] dθ dZ, its scales (μ ω R/C,
-    p_a C/(2R), R³) taken from :class:`~foilbearing.bearing_system.Scales`. For a
-    concentric rigid journal this is Petroff's 2π μ ω R³ L / C.
+    p_a C/(2R), R³) taken from :class:`~foilbearing.bearing_system.Scales` (the case's,
+    or ``scales`` where the caller holds them: an orbit evaluates the torque every
+    millisecond). For a concentric rigid journal this is Petroff's 2π μ ω R³ L / C.
     """
-    scales = Scales.from_parts(case.bearing, case.gas)
-    dp = (np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)) / (2.0 * g.d_theta)
+    if scales is None:
+        scales = Scales.from_parts(case.bearing, case.gas)
+    # ∂P/∂θ by central differences, periodic in θ (the rows shifted by one each way).
+    dp = np.empty_like(P)
+    np.subtract(P[2:], P[:-2], out=dp[1:-1])
+    np.subtract(P[1:2], P[-1:], out=dp[:1])
+    np.subtract(P[:1], P[-2:-1], out=dp[-1:])
+    dp /= 2.0 * g.d_theta
     couette = scales.couette_shear(omega) / H
     poiseuille = scales.pressure_shear * H * dp
     if g.axial_order == 2:

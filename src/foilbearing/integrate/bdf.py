@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-__all__ = ["bdf_error", "bdf_setup"]
+__all__ = ["bdf_error", "bdf_setup", "push_history"]
 
 FloatArray = NDArray[np.float64]
 Group = tuple[Any, ...]
@@ -126,3 +126,25 @@ def bdf_error(
         if e > err:
             err = e
     return err * scale / (c0 * span + 1.0)
+
+
+@njit(cache=True, nogil=True)
+def push_history(
+    times: FloatArray,
+    ys: FloatArray,
+    qs: FloatArray,
+    t_new: float,
+    y_new: FloatArray,
+    q_new: FloatArray,
+) -> None:
+    """Make the accepted state (t_new, y_new, q_new) the newest row of the history, in
+    place: each row moves one older and the oldest is dropped (rows newest first, as
+    :func:`bdf_setup` reads them). A copy without NumPy's temporaries for the overlapping
+    slices (3-4 % of a smooth orbit's step)."""
+    for j in range(times.shape[0] - 1, 0, -1):
+        times[j] = times[j - 1]
+        ys[j, :] = ys[j - 1, :]
+        qs[j, :] = qs[j - 1, :]
+    times[0] = t_new
+    ys[0, :] = y_new
+    qs[0, :] = q_new

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from foilbearing.integrate.bdf import bdf_error, bdf_setup
+from foilbearing.integrate.bdf import bdf_error, bdf_setup, push_history
 from foilbearing.integrate.events import Event, Status, StepCollapsed
 from foilbearing.integrate.newton import Factorize, NewtonRule, Switching, solve_step
 
@@ -340,9 +340,7 @@ def integrate(
                 switching.accepted(lu)
             if newton.refresh_after is not None and its > newton.refresh_after:
                 lu = None  # a slow step: the next one takes a fresh factor at its predictor
-            # Shift the history by one (rows are reused: no allocation).
-            times[1:], ys[1:], qs[1:] = times[:-1], ys[:-1], qs[:-1]
-            times[0], ys[0], qs[0] = t_new, y_new, q_new
+            push_history(times, ys, qs, t_new, y_new, q_new)  # rows reused: no allocation
             count = min(count + 1, depth)
             st.t, st.y = t_new, ys[0].copy()
             if control is not None:

@@ -148,4 +148,8 @@ class DisturbanceForce:
 
     def __call__(self, t: float) -> FloatArray:
         """Force (F_X, F_Y) at time t (s), N."""
-        return np.array(multisine(self._omega, self.phases, self.amplitude, t, self._terms))
+        return np.array(self.components(t))
+
+    def components(self, t: float) -> tuple[float, float]:
+        """F_X and F_Y at time t (s), N, as two floats (the orbit's inputs at each step)."""
+        return multisine(self._omega, self.phases, self.amplitude, t, self._terms)

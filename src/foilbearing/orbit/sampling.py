@@ -8,6 +8,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from foilbearing.bearing_system import Scales
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.control import SpeedProfile
@@ -80,6 +81,7 @@ class Samples:
         self.next_power = 0.0
         #: Whether the power's evaluations go on from a stopped run's (:meth:`from_result`).
         self.resumed_power = False
+        self._scales: Scales | None = None  # the case's, for the torque (set at first use)
 
     def add(
         self,
@@ -111,7 +113,9 @@ class Samples:
             P = sys_.split(y)[0]
             H = sys_.film(y, inp.preload)[0]
             self.power_t.append(t)
-            self.power.append(drag_torque(case, sys_.grid, P, H, w) * w)
+            if self._scales is None:
+                self._scales = Scales.from_parts(case.bearing, case.gas)
+            self.power.append(drag_torque(case, sys_.grid, P, H, w, self._scales) * w)
             self.next_power = t + POWER_INTERVAL
 
     def checkpoint(self) -> dict[str, float]:

@@ -93,14 +93,20 @@ class OrbitSimulation:
         d = case.disturbance
         self.disturbance = None if d is None or d.force_rms == 0.0 else DisturbanceForce(d)
         self._atol: FloatArray | None = None
+        self._fixed_volts: FloatArray | None = None  # the case's voltages without a program
 
     # ------------------------------------------------------------------ inputs
     def volts(self, t: float) -> FloatArray:
         """Actuator voltages at t (V)."""
         if self.case.actuators is None:
             return np.zeros(0)
-        if self.voltage is None:
-            return np.asarray(self.case.actuators.voltages, float)
+        if self.voltage is None:  # the case's, held: one read-only array for every step
+            fixed = self._fixed_volts
+            if fixed is None:
+                fixed = np.array(self.case.actuators.voltages, float)
+                fixed.flags.writeable = False
+                self._fixed_volts = fixed
+            return fixed
         v = np.asarray(self.voltage(t), float)
         if v.shape == (self.n_act,):
             return v.copy()
@@ -145,9 +151,11 @@ class OrbitSimulation:
         cos_phi, sin_phi = math.cos(phi), math.sin(phi)
         fx = case.operation.load / m + u * (w * w * cos_phi + wd * sin_phi)
         fy = u * (w * w * sin_phi - wd * cos_phi)
-        force = np.array([fx / c, fy / c])
         if imbalance and self.disturbance is not None:
-            force += self.disturbance(t) / (m * c)
+            dx, dy = self.disturbance.components(t)
+            force = np.array([fx / c + dx / (m * c), fy / c + dy / (m * c)])
+        else:
+            force = np.array([fx / c, fy / c])
         return Inputs(self._lambda_per_speed * w, w, self.preload_at(t, volts), force)
 
     # ------------------------------------------------------------ start state
