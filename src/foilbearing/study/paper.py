@@ -291,7 +291,13 @@ def _paper_comparison(
         force = 0.0 if case.disturbance is None else case.disturbance.force_rms
         act = case.actuators
         own = None if act is None else f"{act.preload_response} + {act.dynamics}"
-        rows += orbit_comparison(results["orbits"]["runs"], linear, force, own)
+        # The partner on the orbits' grid, with its error (foilbearing.study.converged).
+        partner_texts = {
+            v: e["onset_text_krpm"]
+            for v, e in (onset_errors or {}).get(partner, {}).items()
+            if e.get("refined_grid")
+        }
+        rows += orbit_comparison(results["orbits"]["runs"], linear, force, own, partner_texts)
         if PAPER_READING_KEY in results and onsets is not None:
             held = onsets.get("C-GFB, lobe+held", {})
             lin = {v: r.onset_speed and r.onset_speed * 30.0 / math.pi for v, r in held.items()}
@@ -476,12 +482,13 @@ def _stability_stage(
         paper_reading = case.with_actuator_reading("lobe", "held")
         onsets["C-GFB, lobe+held"] = onsets_per_voltage(paper_reading, PAPER_VOLTAGES, scan)
     # What the study publishes, with its error: the case's reading, its shimmed twin (the
-    # paper's comparison) and the paper's reading; kind → (case, shimmed).
-    published = {"C-GFB": (case, False), "shimmed": (case, True)} | (
-        {"C-GFB, lobe+held": (case.with_actuator_reading("lobe", "held"), False)}
-        if case.actuators is not None
-        else {}
-    )
+    # paper's comparison), the orbits' linear partner on their own grid and the paper's
+    # reading; kind → (case, shimmed).
+    published = {"C-GFB": (case, False), "shimmed": (case, True)}
+    if case.grid.orbit_is_own:
+        published["C-GFB, orbit grid"] = (case.orbit_case(), False)
+    if case.actuators is not None:
+        published["C-GFB, lobe+held"] = (case.with_actuator_reading("lobe", "held"), False)
     errors: dict[str, dict[float, dict[str, Any]]] = {}
     with worker_pool(min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
         for kind, (reading, shim) in published.items():

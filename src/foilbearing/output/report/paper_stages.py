@@ -188,7 +188,15 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         ),
     ]
     if others["orbit_grid"]:
-        cols.append(("C-GFB on the orbits' grid (krpm)", onset_of("orbit_grid"), ".1f"))
+        cols.append(
+            (
+                "C-GFB on the orbits' grid (krpm)",
+                (lambda r: published(r["orbit_grid"], "onset_text_krpm"))
+                if errors
+                else onset_of("orbit_grid"),
+                "" if errors else ".1f",
+            )
+        )
     if others["paper_reading"]:
         cols += [
             (
@@ -236,8 +244,10 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             " The C-GFB onsets are given with their estimated discretisation error, on the "
             "case's grid and at the published resolution"
             f"{on_refined} (the grid refined by 2, the lift-off smoothing κ ≤ 0.02, where it "
-            "moves no onset by more than 0.23 %; docs/lift-off.md), the paper's reading at "
-            "the latter; the other columns are on the case's grid, 0.5-2 % from converged."
+            "moves no onset by more than 0.23 %; docs/lift-off.md), the shimmed GFB and the "
+            "paper's reading at the latter, the orbits' partner on their own grid; the "
+            "suction-retained columns are on the case's grid without an error (0.5-2 % from "
+            "converged where measured, under lift-off)."
             if errors
             else ""
         )
