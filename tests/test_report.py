@@ -361,7 +361,8 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
     onsets = [e["onset_speed_rpm"] for e in summary["stability"]["C-GFB"]]
     assert all(o is not None and o > 5000 for o in onsets)
     # the published onsets carry their error, printed to the digits it supports (issue 49)
-    for kind in ("C-GFB", "shimmed", "C-GFB, orbit grid", "C-GFB, lobe+held"):
+    kinds = ("C-GFB", "shimmed", "C-GFB, suction retained", "shimmed, suction retained")
+    for kind in (*kinds, "C-GFB, orbit grid", "C-GFB, lobe+held"):
         for e in summary["stability"][kind]:
             # the grid refined by 2: the case's 96 × 12, the orbits' own 96 × 4
             assert e["refined_grid"] == ([192, 8] if kind == "C-GFB, orbit grid" else [192, 24])

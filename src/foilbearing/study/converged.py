@@ -170,7 +170,9 @@ def refine_onset(case: Case, coarse_speed: float, scan: Sequence[float]) -> dict
         return {"message": f"no onset on the ×2 grid: {on.message}"}
     kappa = fine.grid.lift_off_smoothing
     same_rpm = None
-    if kappa == case.grid.lift_off_smoothing:
+    lifts_off = case.foil is not None and case.foil.lift_off
+    if kappa == case.grid.lift_off_smoothing or not lifts_off:
+        # κ is the case's, or does not enter (no lifted-off edge: the suction retained)
         same_rpm = coarse_speed / RPM
     else:
         same_case = replace(case, grid=replace(case.grid, lift_off_smoothing=kappa))

@@ -482,9 +482,13 @@ def _stability_stage(
         paper_reading = case.with_actuator_reading("lobe", "held")
         onsets["C-GFB, lobe+held"] = onsets_per_voltage(paper_reading, PAPER_VOLTAGES, scan)
     # What the study publishes, with its error: the case's reading, its shimmed twin (the
-    # paper's comparison), the orbits' linear partner on their own grid and the paper's
-    # reading; kind → (case, shimmed).
+    # paper's comparison), both with the suction retained, the orbits' linear partner on
+    # their own grid and the paper's reading; kind → (case, shimmed).
     published = {"C-GFB": (case, False), "shimmed": (case, True)}
+    if retained:
+        kept = case.with_subambient("retained")
+        published["C-GFB, suction retained"] = (kept, False)
+        published["shimmed, suction retained"] = (kept, True)
     if case.grid.orbit_is_own:
         published["C-GFB, orbit grid"] = (case.orbit_case(), False)
     if case.actuators is not None:

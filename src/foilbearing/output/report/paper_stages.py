@@ -218,8 +218,20 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         ]
     if others["kept"]:
         cols += [
-            ("C-GFB, suction retained (krpm)", onset_of("kept"), ".1f"),
-            ("shimmed, suction retained (krpm)", onset_of("shim_kept"), ".1f"),
+            (
+                f"C-GFB, suction retained (krpm{on_refined})",
+                (lambda r: published(r["kept"], "onset_refined_text_krpm"))
+                if errors
+                else onset_of("kept"),
+                "" if errors else ".1f",
+            ),
+            (
+                f"shimmed, suction retained (krpm{on_refined})",
+                (lambda r: published(r["shim_kept"], "onset_refined_text_krpm"))
+                if errors
+                else onset_of("shim_kept"),
+                "" if errors else ".1f",
+            ),
         ]
     note = (
         '<p class="note">Linear onset of instability (rigid rotor, voltage held from the '
@@ -244,10 +256,9 @@ def _stability(d: dict[str, Any], case: dict[str, Any]) -> str:
             " The C-GFB onsets are given with their estimated discretisation error, on the "
             "case's grid and at the published resolution"
             f"{on_refined} (the grid refined by 2, the lift-off smoothing κ ≤ 0.02, where it "
-            "moves no onset by more than 0.23 %; docs/lift-off.md), the shimmed GFB and the "
-            "paper's reading at the latter, the orbits' partner on their own grid; the "
-            "suction-retained columns are on the case's grid without an error (0.5-2 % from "
-            "converged where measured, under lift-off)."
+            "moves no onset by more than 0.23 %; docs/lift-off.md), the shimmed GFB, the "
+            "suction-retained columns and the paper's reading at the latter, the orbits' "
+            "partner on their own grid."
             if errors
             else ""
         )
