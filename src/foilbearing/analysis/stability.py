@@ -34,6 +34,7 @@ from foilbearing.units import as_si, as_si_array
 __all__ = [
     "OnsetResult",
     "WhirlMode",
+    "onset_at_voltage",
     "onset_speed",
     "onsets_per_voltage",
     "stability_map",
@@ -320,6 +321,16 @@ def onset_speed(
     )
 
 
+def onset_at_voltage(
+    case: Case, volt: float, speeds: Sequence[float], shimmed: bool = False
+) -> OnsetResult:
+    """The onset of ``case`` with every actuator at ``volt`` (V), or of its shimmed twin
+    (shims of that voltage's base preload), on the scan ``speeds`` (rad/s) of
+    :func:`onset_speed`: one entry of :func:`onsets_per_voltage`, a job for a worker."""
+    at_volt = case.with_voltages(float(volt))
+    return onset_speed(at_volt.shimmed() if shimmed else at_volt, speeds)
+
+
 def onsets_per_voltage(
     case: Case,
     voltages: Sequence[float],
@@ -346,8 +357,7 @@ def onsets_per_voltage(
         raise InputError("the onset over voltages needs a case with [actuators]")
     out: dict[float, OnsetResult] = {}
     for volt in voltages:
-        c = case.with_voltages(float(volt))
-        out[float(volt)] = onset_speed(c.shimmed() if shimmed else c, speeds)
+        out[float(volt)] = onset_at_voltage(case, volt, speeds, shimmed)
         if progress is not None:
             progress(f"{volt:g} V: {out[float(volt)].message}")
     return out

@@ -442,10 +442,11 @@ def _stability_stage(
 
     from foilbearing.analysis.coefficients import force_coefficients
     from foilbearing.analysis.equilibrium import solve_equilibrium
-    from foilbearing.analysis.stability import onsets_per_voltage, stability_map
+    from foilbearing.analysis.stability import stability_map
+    from foilbearing.errors import InputError
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
-    from foilbearing.study.converged import published_onsets
+    from foilbearing.study.converged import onset_table
     from foilbearing.study.queue import worker_pool
     from foilbearing.study.static import PAPER_VOLTAGES
 
@@ -457,54 +458,24 @@ def _stability_stage(
     results["coefficients"] = fc.headline() | {"figures": [str(fig)]}
     stage("linear stability: onset speed per voltage, C-GFB and shimmed GFB")
     scan = [s * rpm for s in range(5_000, 150_001, 2_500)]
-    onsets: dict[str, dict[float, Any]] = {"C-GFB": {}, "shimmed": {}}
-    # Both film models where the case has lift-off: the suction-retained one beside it
-    # shows what relieving the sub-ambient film does to the onset (docs/model.md §3).
-    retained = case.foil is not None and case.foil.lift_off
-    if retained:
-        onsets |= {"C-GFB, suction retained": {}, "shimmed, suction retained": {}}
-    onsets["C-GFB"] = onsets_per_voltage(
-        case, PAPER_VOLTAGES, scan, progress=lambda line: stage(f"  C-GFB at {line}")
-    )
-    onsets["shimmed"] = onsets_per_voltage(case, PAPER_VOLTAGES, scan, shimmed=True)
-    if retained:
+    if case.actuators is None:
+        raise InputError("the onset over voltages needs a case with [actuators]")
+    # Every onset the study prints, each with its error (foilbearing.study.converged): the
+    # case's reading and its shimmed twin (the paper's comparison); where the case has
+    # lift-off, both with the suction retained, to show what relieving the sub-ambient film
+    # does (docs/model.md §3); the orbits' linear partner on their own grid, beside which
+    # their readouts are set; and the paper's reading of the actuator (lobes lowered,
+    # stingers held; docs/model.md §3.8). Kind → (case, shimmed).
+    kinds: dict[str, tuple[Case, bool]] = {"C-GFB": (case, False), "shimmed": (case, True)}
+    if case.foil is not None and case.foil.lift_off:
         kept = case.with_subambient("retained")
-        onsets["C-GFB, suction retained"] = onsets_per_voltage(kept, PAPER_VOLTAGES, scan)
-        onsets["shimmed, suction retained"] = onsets_per_voltage(
-            kept, PAPER_VOLTAGES, scan, shimmed=True
-        )
+        kinds["C-GFB, suction retained"] = (kept, False)
+        kinds["shimmed, suction retained"] = (kept, True)
     if case.grid.orbit_is_own:
-        # The orbits' partner on their own grid: their readouts are set beside it.
-        onsets["C-GFB, orbit grid"] = onsets_per_voltage(case.orbit_case(), PAPER_VOLTAGES, scan)
-    if case.actuators is not None:
-        # The paper's reading of the actuator (lobes lowered, stingers held; docs/model.md
-        # §3.8) beside the case's own.
-        paper_reading = case.with_actuator_reading("lobe", "held")
-        onsets["C-GFB, lobe+held"] = onsets_per_voltage(paper_reading, PAPER_VOLTAGES, scan)
-    # What the study publishes, with its error: the case's reading, its shimmed twin (the
-    # paper's comparison), both with the suction retained, the orbits' linear partner on
-    # their own grid and the paper's reading; kind → (case, shimmed).
-    published = {"C-GFB": (case, False), "shimmed": (case, True)}
-    if retained:
-        kept = case.with_subambient("retained")
-        published["C-GFB, suction retained"] = (kept, False)
-        published["shimmed, suction retained"] = (kept, True)
-    if case.grid.orbit_is_own:
-        published["C-GFB, orbit grid"] = (case.orbit_case(), False)
-    if case.actuators is not None:
-        published["C-GFB, lobe+held"] = (case.with_actuator_reading("lobe", "held"), False)
-    errors: dict[str, dict[float, dict[str, Any]]] = {}
+        kinds["C-GFB, orbit grid"] = (case.orbit_case(), False)
+    kinds["C-GFB, lobe+held"] = (case.with_actuator_reading("lobe", "held"), False)
     with worker_pool(min(os.cpu_count() or 1, len(PAPER_VOLTAGES))) as pool:
-        for kind, (reading, shim) in published.items():
-            stage(
-                f"  {kind}: the onsets at the published resolution (the grid refined by 2, "
-                "κ ≤ 0.02) and on the case's grid at its κ"
-            )
-
-            def line(text: str, kind: str = kind) -> None:
-                stage(f"    {kind} at {text}")
-
-            errors[kind] = published_onsets(reading, onsets[kind], scan, line, pool, shim)
+        onsets, errors = onset_table(kinds, PAPER_VOLTAGES, scan, pool, stage)
     ds = stability_map(case, scan[: len(scan) // 2], PAPER_VOLTAGES)
     points = [onsets["C-GFB"][v].onset_speed for v in PAPER_VOLTAGES]
     fig = save_figure(
