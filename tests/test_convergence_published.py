@@ -159,3 +159,24 @@ def test_the_shimmed_twin_is_refined_as_itself(monkeypatch: pytest.MonkeyPatch) 
     twin = default_case().with_voltages(150.0).shimmed()
     assert seen and seen[0] == published_case(twin)
     assert seen[0] != published_case(default_case().with_voltages(150.0))
+
+
+def test_the_study_s_onset_table_is_each_kind_solved_alone() -> None:
+    """``onset_table`` (the study's table, every solve on the workers at once) gives each
+    kind the onsets and errors that ``onsets_per_voltage`` and ``published_onsets`` give it
+    alone: the shimmed twin as the shimmed twin, each voltage as itself."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from foilbearing.study.converged import onset_table
+
+    case = default_case()
+    kinds = {"C-GFB": (case, False), "shimmed": (case, True)}
+    lines: list[str] = []
+    with ThreadPoolExecutor(2) as pool:
+        onsets, errors = onset_table(kinds, [150.0], STUDY_SCAN, pool, lines.append)
+    for kind, (c, shim) in kinds.items():
+        alone = onsets_per_voltage(c, [150.0], STUDY_SCAN, shimmed=shim)
+        assert onsets[kind][150.0].onset_speed == alone[150.0].onset_speed
+        assert errors[kind] == published_onsets(c, alone, STUDY_SCAN, shimmed=shim)
+    assert onsets["shimmed"][150.0].onset_speed > 1.3 * onsets["C-GFB"][150.0].onset_speed
+    assert any(line.startswith("    shimmed at 150 V: ") for line in lines)
