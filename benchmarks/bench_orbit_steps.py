@@ -46,7 +46,7 @@ from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 
-from foilbearing.case import default_case
+from foilbearing.case import Case, default_case
 from foilbearing.control import constant_speed
 from foilbearing.orbit import OrbitSettings, simulate
 
@@ -56,16 +56,38 @@ from bench_orbit import (
 )
 
 
-def step_costs() -> None:
-    """ms a step on a smooth and a large orbit, best of 3 (0.05 s each, after a warm-up)."""
+def _step_orbits() -> dict[str, tuple[Case, float]]:
+    """The smooth and the large orbit of ``--steps`` and ``--floor``: label → (case, rpm)."""
     base = default_case()
-    runs = {
-        "C-GFB, 0 V, 1 g·mm, 30 krpm": (
+    return {
+        "C-GFB, 0 V, 1 g·mm, 30 krpm (smooth)": (
             replace(base, rotor=replace(base.rotor, imbalance=1e-6)),
             30e3,
         ),
-        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm": (base.with_voltages(150.0).shimmed(), 50e3),
+        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm (large)": (
+            base.with_voltages(150.0).shimmed(),
+            50e3,
+        ),
     }
+
+
+@contextmanager
+def _swapped(replacements: list[tuple[object, str, object]]) -> Iterator[None]:
+    """Set each ``(module, name, value)`` while the block runs, then put the old back."""
+    saved = [(module, name, getattr(module, name)) for module, name, _ in replacements]
+    for module, name, value in replacements:
+        setattr(module, name, value)
+    try:
+        yield
+    finally:
+        for module, name, value in saved:
+            setattr(module, name, value)
+
+
+def step_costs() -> None:
+    """ms a step on a smooth and a large orbit, best of 3 (0.05 s each, after a warm-up)."""
+    base = default_case()
+    runs = _step_orbits()
     print(
         f"cost of a step, 0.05 s of each orbit, orbit grid {base.grid.orbit_label}, default "
         "settings, best of 3:"
@@ -204,8 +226,6 @@ def _kernels_seen_by_cprofile() -> Iterator[None]:
     import foilbearing.integrate.integrator as stepper_module
     from foilbearing.reynolds import _kernels
 
-    saved: list[tuple[object, str, object]] = []
-
     def wrapped(name: str, kernel: Callable[..., object]) -> Callable[..., object]:
         def call(*args: object) -> object:
             return kernel(*args)
@@ -213,17 +233,15 @@ def _kernels_seen_by_cprofile() -> Iterator[None]:
         call.__code__ = call.__code__.replace(co_name=name, co_qualname=name)
         return call
 
-    for module in (_kernels, stepper_module):
-        for name in _PROFILED_KERNELS:
-            if hasattr(module, name):
-                kernel = getattr(module, name)
-                saved.append((module, name, kernel))
-                setattr(module, name, wrapped(name, kernel))
-    try:
+    with _swapped(
+        [
+            (module, name, wrapped(name, getattr(module, name)))
+            for module in (_kernels, stepper_module)
+            for name in _PROFILED_KERNELS
+            if hasattr(module, name)
+        ]
+    ):
         yield
-    finally:
-        for module, name, kernel in saved:
-            setattr(module, name, kernel)
 
 
 def step_profile() -> None:
@@ -276,7 +294,6 @@ def _compiled_calls_timed(spent: list[float]) -> Iterator[None]:
     from numba.core.dispatcher import Dispatcher
 
     clock = time.perf_counter
-    saved: list[tuple[object, str, object]] = []
 
     def timed(kernel: Callable[..., object]) -> Callable[..., object]:
         def call(*args: object, **kwargs: object) -> object:
@@ -288,31 +305,22 @@ def _compiled_calls_timed(spent: list[float]) -> Iterator[None]:
 
         return call
 
-    for module in [m for n, m in sys.modules.items() if n.startswith("foilbearing")]:
-        for name, value in list(vars(module).items()):
-            if isinstance(value, Dispatcher):
-                saved.append((module, name, value))
-                setattr(module, name, timed(value))
-    try:
+    modules = [m for n, m in sys.modules.items() if n.startswith("foilbearing")]
+    with _swapped(
+        [
+            (module, name, timed(value))
+            for module in modules
+            for name, value in list(vars(module).items())
+            if isinstance(value, Dispatcher)
+        ]
+    ):
         yield
-    finally:
-        for module, name, kernel in saved:
-            setattr(module, name, kernel)
 
 
 def compiled_floor() -> None:
     """The step's wall time against the time inside its compiled kernels (the floor)."""
     base = default_case()
-    runs = {
-        "C-GFB, 0 V, 1 g·mm, 30 krpm (smooth)": (
-            replace(base, rotor=replace(base.rotor, imbalance=1e-6)),
-            30e3,
-        ),
-        "shimmed GFB, 150 V, 8.5 g·mm, 50 krpm (large)": (
-            base.with_voltages(150.0).shimmed(),
-            50e3,
-        ),
-    }
+    runs = _step_orbits()
     print(
         f"the floor of a step, 0.1 s of each orbit, orbit grid {base.grid.orbit_label}, default "
         "settings: ms a step (best of 3) = compiled kernels + the Python around them"
@@ -344,13 +352,10 @@ def dump_runs(path: str) -> None:
     from foilbearing.control import linear_ramp
 
     base = default_case()
+    (smooth, smooth_rpm), (large, large_rpm) = _step_orbits().values()
     runs = {
-        "smooth": (
-            replace(base, rotor=replace(base.rotor, imbalance=1e-6)),
-            constant_speed(30e3 * RPM, 0.05),
-            None,
-        ),
-        "large": (base.with_voltages(150.0).shimmed(), constant_speed(50e3 * RPM, 0.05), None),
+        "smooth": (smooth, constant_speed(smooth_rpm * RPM, 0.05), None),
+        "large": (large, constant_speed(large_rpm * RPM, 0.05), None),
         "ramp": (
             base.with_actuator_reading("lobe", "held").with_voltages(100.0),
             linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0),

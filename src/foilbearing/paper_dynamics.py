@@ -45,9 +45,9 @@ def stability_comparison(
     """Linear onset speeds beside the paper's nonlinear orbit observations (Figs. 13-15).
 
     ``errors`` (kind → voltage → :func:`~foilbearing.study.converged.published_onsets`'
-    entry): where given, the C-GFB onset, its shimmed twin and the paper's reading (lobe +
-    held) are printed at the published resolution (the grid refined by 2, κ ≤ 0.02) with their errors, and the
-    case's grid value beside the first.
+    entry): where given, each kind (the C-GFB, its shimmed twin, both with the suction
+    retained, the paper's reading, lobe + held) is printed at the published resolution (the
+    grid refined by 2, κ ≤ 0.02) with its error, and the C-GFB's grid value beside it.
     """
     errors = errors or {}
     why = {

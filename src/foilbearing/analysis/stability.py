@@ -34,6 +34,7 @@ from foilbearing.units import as_si, as_si_array
 __all__ = [
     "OnsetResult",
     "WhirlMode",
+    "case_at_voltage",
     "onset_at_voltage",
     "onset_speed",
     "onsets_per_voltage",
@@ -321,14 +322,19 @@ def onset_speed(
     )
 
 
+def case_at_voltage(case: Case, volt: float, shimmed: bool = False) -> Case:
+    """``case`` with every actuator at ``volt`` (V), or its shimmed twin there (shims of
+    that voltage's base preload)."""
+    at_volt = case.with_voltages(float(volt))
+    return at_volt.shimmed() if shimmed else at_volt
+
+
 def onset_at_voltage(
     case: Case, volt: float, speeds: Sequence[float], shimmed: bool = False
 ) -> OnsetResult:
-    """The onset of ``case`` with every actuator at ``volt`` (V), or of its shimmed twin
-    (shims of that voltage's base preload), on the scan ``speeds`` (rad/s) of
+    """The onset of :func:`case_at_voltage` on the scan ``speeds`` (rad/s) of
     :func:`onset_speed`: one entry of :func:`onsets_per_voltage`, a job for a worker."""
-    at_volt = case.with_voltages(float(volt))
-    return onset_speed(at_volt.shimmed() if shimmed else at_volt, speeds)
+    return onset_speed(case_at_voltage(case, volt, shimmed), speeds)
 
 
 def onsets_per_voltage(

@@ -89,24 +89,21 @@ class OrbitSimulation:
         self.static_preload = self.model.preload if act is None else None
         self._preload_cache: tuple[bytes, FloatArray] | None = None
         self._lambda_per_speed = self.bearing.scales.lambda_per_speed  # Λ ∝ ω
+        # The case's voltages, held where no program sets them: one read-only array a run.
+        self._fixed_volts = np.array(case.actuators.voltages if case.actuators else (), float)
+        self._fixed_volts.flags.writeable = False
         self.held = HeldStingers(case, speed.omega, self.volts, speed.duration) if held else None
         d = case.disturbance
         self.disturbance = None if d is None or d.force_rms == 0.0 else DisturbanceForce(d)
         self._atol: FloatArray | None = None
-        self._fixed_volts: FloatArray | None = None  # the case's voltages without a program
 
     # ------------------------------------------------------------------ inputs
     def volts(self, t: float) -> FloatArray:
         """Actuator voltages at t (V)."""
         if self.case.actuators is None:
             return np.zeros(0)
-        if self.voltage is None:  # the case's, held: one read-only array for every step
-            fixed = self._fixed_volts
-            if fixed is None:
-                fixed = np.array(self.case.actuators.voltages, float)
-                fixed.flags.writeable = False
-                self._fixed_volts = fixed
-            return fixed
+        if self.voltage is None:
+            return self._fixed_volts
         v = np.asarray(self.voltage(t), float)
         if v.shape == (self.n_act,):
             return v.copy()

@@ -1,9 +1,10 @@
 """The study's published linear onsets with their discretisation error (issue 49).
 
 The study solves its onset table on the case's grid (96 × 12 at κ = 0.1 on the built-in
-case). Each onset it publishes (the default reading, its shimmed twin and the paper's
-reading, lobe + held) is solved again at the *published resolution*: the grid refined by 2 in θ and Z, the axial
-order held (:func:`foilbearing.check.refined`), and the lift-off smoothing at
+case). Each onset it prints (:func:`onset_table`: the default reading, its shimmed twin,
+both with the suction retained, the orbits' partner on their own grid and the paper's
+reading, lobe + held) is solved again at the *published resolution*: the grid refined by 2
+in θ and Z, the axial order held (:func:`foilbearing.check.refined`), and the lift-off smoothing at
 :data:`PUBLISHED_KAPPA` (or the case's own κ where that is smaller), where κ moves no
 published onset by more than 0.23 % (docs/lift-off.md, "Choosing κ for the published
 onsets, measured"). It is also solved on the case's grid at that κ, so that the two grids
@@ -240,12 +241,13 @@ def _submit(
 ) -> dict[float, Any]:
     """:func:`refine_onset` of each coarse onset: submitted to ``pool`` (its futures), or
     its arguments to run here (no pool)."""
+    from foilbearing.analysis.stability import case_at_voltage
+
     jobs: dict[float, Any] = {}
     for volt, res in coarse.items():
         if res.onset_speed is None:
             continue
-        at_volt = case.with_voltages(float(volt))
-        args = (at_volt.shimmed() if shimmed else at_volt, res.onset_speed, list(scan))
+        args = (case_at_voltage(case, volt, shimmed), res.onset_speed, list(scan))
         jobs[volt] = pool.submit(refine_onset, *args) if pool is not None else args
     return jobs
 
@@ -301,7 +303,8 @@ def onset_table(
 
     All the coarse onsets are submitted first, and each kind's refinements as soon as its
     coarse onsets are in, so that both cores stay busy to the last solve (kind by kind,
-    each kind's slowest solve left a core idle: 35 s for six kinds instead of about 25).
+    each kind's slowest solve left a core idle: the study's stability stage took 51.6 s
+    that way on 2 cores, 36.5 s so).
 
     Parameters
     ----------
