@@ -120,6 +120,20 @@ def test_the_branch_direction_gives_the_hopf_type(l3: float, kind: str, side: in
     assert branch.folds == []
 
 
+def test_a_state_the_flow_never_moves_stays_put_on_the_branch() -> None:
+    """A coordinate with ż = 0 (the foil of a bearing without one: the state carries it,
+    nothing moves it) makes the shooting system exactly singular; it is left where it is,
+    and the branch is the normal form's, r = √(μ) to 1e-6, with z = 0.3 throughout."""
+    flow = normal_form(-1.0, extra=np.array([0.0]))
+    rest = np.array([0.0, 0.0, 0.3])
+    branch = hopf_branch(
+        flow, _hopf(3), lambda mu: rest, amplitude=0.02, steps=4, ds=0.5, p_scale=0.01
+    )
+    assert branch.bifurcation_type == "supercritical"
+    np.testing.assert_allclose(branch.amplitudes, np.sqrt(branch.parameters), rtol=1e-6)
+    assert all(o.state[2] == 0.3 for o in branch.orbits)
+
+
 def test_the_subcritical_branch_turns_at_its_fold_and_regains_stability() -> None:
     """ṙ = μr + r³ − r⁵: the branch leaves μ = 0 backwards (unstable), turns at the fold
     μ = −1/4 (found within the branch's spacing, 0.01), and comes back stable on the large

@@ -291,3 +291,29 @@ def test_a_bearing_without_actuators_shows_nothing_of_actuators(
         assert name not in caption and len(caption) > 30, caption
     hashes = image_hashes(text)
     assert len(set(hashes)) == len(hashes) == len(captions)
+
+
+def test_a_divergence_says_which_readout_set_it_and_whether_it_touched() -> None:
+    """The divergence speed is the first of two readouts (signals.divergence): a row that
+    calls it contact must come from a contact; an orbit over 0.9 C says so, and says
+    whether and when the run touched afterwards, or that it never did."""
+    from foilbearing.paper_dynamics import orbit_comparison
+
+    linear = {0.0: 44_200.0, 50.0: 33_400.0, 150.0: 79_700.0}  # the paper's reading
+    ramp = [6.0, 6.5]
+    runs = [
+        _run(0.0, "1 g·mm", 1.0, None, 52_700.0, divergence_by="contact",
+             contact_speed_rpm=52_700.0),
+        _run(50.0, "1 g·mm", 1.0, ramp, 39_100.0, divergence_by="orbit radius",
+             contact_speed_rpm=50_800.0, contact_after_large_orbit=True),
+        _run(150.0, "1 g·mm", 1.0, ramp, 89_980.0, divergence_by="orbit radius",
+             contact_speed_rpm=None, end_speed_rpm=90_000.0),
+    ]  # fmt: skip
+    touched, large, never = orbit_comparison(runs, linear, 0.01)[:3]
+    assert "diverges at 52.7 krpm (contact)" in touched.ours
+    assert "diverges at 52.7 krpm (contact)" in touched.note
+    sustained = "diverges at 39.1 krpm (orbit radius over 0.9 C; contact at 50.8 krpm after a"
+    assert sustained in large.ours and sustained in large.note
+    assert "no contact up to 90.0 krpm" in never.ours
+    assert "contact at" not in never.deviation.replace("no contact", "")
+    assert "ours diverges at 90.0 krpm (orbit radius over 0.9 C" in never.deviation

@@ -180,7 +180,7 @@ def orbit_comparison(
             )
         div = run.get("divergence_speed_rpm")
         parts.append(
-            f"diverges at {div / 1e3:.1f} krpm"
+            _diverges(run)
             if div
             else f"no divergence up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
         )
@@ -278,9 +278,7 @@ def _orbit_deviation(run: dict[str, Any]) -> str:
             text += f"; whip {_dev(ours_whip, whip)}"
         return text
     if div:
-        return (
-            f"contradicts: paper no divergence up to 90 krpm; ours contact at {div / 1e3:.1f} krpm"
-        )
+        return f"contradicts: paper no divergence up to 90 krpm; ours {_diverges(run)}"
     parts = ["agrees: no divergence up to 90 krpm"]
     onset = run.get("onset_after_control_rpm") or run.get("onset_speed_rpm")
     if whip_onset is not None and onset:
@@ -322,8 +320,9 @@ def _orbit_why(run: dict[str, Any], lin: float | None, disturbance_rms: float) -
             if t_contact < 1.0
             else ""
         )
+        event = "an orbit over 0.9 C" if run.get("divergence_by") == "orbit radius" else "contact"
         return (
-            f"contact {t_contact - ramp[1]:.2f} s after the ramp ended at "
+            f"{event} {t_contact - ramp[1]:.2f} s after the ramp ended at "
             f"{ramp_end / 1e3:.1f} krpm, far below the linear onset ({lin / 1e3:.1f} krpm): "
             f"the {imb:g} g·mm imbalance orbit meets the film the rising preload lobes "
             f"narrow, a forced contact, not a whirl{short}",
@@ -331,7 +330,7 @@ def _orbit_why(run: dict[str, Any], lin: float | None, disturbance_rms: float) -
         )
     if lin is not None and div < 0.95 * lin:
         return (
-            f"contact at {div / 1e3:.1f} krpm, {100 * (1 - div / lin):.0f} % below "
+            f"{_diverges(run)}, {100 * (1 - div / lin):.0f} % below "
             f"the linear onset ({lin / 1e3:.1f} krpm): forced by the {imb:g} g·mm imbalance "
             "response (our reading of the paper's '8.5 g'), not a whirl",
             DEFAULT_CASE,
@@ -343,9 +342,27 @@ def _orbit_why(run: dict[str, Any], lin: float | None, disturbance_rms: float) -
             else "from a numerical seed"
         )
         return (
-            f"a whirl past the linear onset ({lin / 1e3:.1f} krpm) grows {seed} to contact "
-            f"at {div / 1e3:.1f} krpm; the paper's run "
+            f"a whirl past the linear onset ({lin / 1e3:.1f} krpm) grows {seed} and "
+            f"{_diverges(run)}; the paper's run "
             + (f"diverged at {paper_div:g} krpm" if paper_div else "stayed bounded to 90 krpm"),
             LIMIT_CYCLES if v in (100.0, 150.0) else PROTOCOL,
         )
-    return f"contact at {div / 1e3:.1f} krpm, no linear onset to set it against", PROTOCOL
+    return f"{_diverges(run)}, no linear onset to set it against", PROTOCOL
+
+
+def _diverges(run: dict[str, Any]) -> str:
+    """How a run diverged, by the readout that set its divergence speed
+    (:func:`foilbearing.signals.divergence`): contact, or an orbit of radius over 0.9 C
+    and then contact (after a sustained large orbit, when it was one), or none to the end."""
+    div = run["divergence_speed_rpm"] / 1e3
+    if run.get("divergence_by") != "orbit radius":
+        return f"diverges at {div:.1f} krpm (contact)"
+    contact = run.get("contact_speed_rpm")
+    if contact is None:
+        end = (run.get("end_speed_rpm") or 0.0) / 1e3
+        then = f"no contact up to {end:.1f} krpm"
+    elif run.get("contact_after_large_orbit"):
+        then = f"contact at {contact / 1e3:.1f} krpm after a sustained large orbit"
+    else:
+        then = f"contact at {contact / 1e3:.1f} krpm"
+    return f"diverges at {div:.1f} krpm (orbit radius over 0.9 C; {then})"

@@ -197,7 +197,21 @@ def bordered_solve(
         mat = np.block(
             [[flow.apply_block(y0, period, p, np.eye(n), end) - np.eye(n), cols], [rows, corner]]
         )
-        x = np.asarray(np.linalg.solve(mat, rhs), float)
+        # A state the flow leaves where it is, whatever the start and the parameter (the
+        # foil's of a bearing without one): its row of [M − I, C] and its residual are
+        # zero, and nothing fixes its correction. It stays put (correction 0): its row
+        # and column leave the system, which is otherwise singular (exactly or to
+        # round-off, as the platform's BLAS decides).
+        keep = np.ones(n + k, dtype=bool)
+        keep[:n] = np.any(mat[:n] != 0.0, axis=1) | (rhs[:n] != 0.0)
+        x = np.zeros(n + k)
+        try:
+            x[keep] = np.linalg.solve(mat[np.ix_(keep, keep)], rhs[keep])
+        except np.linalg.LinAlgError as exc:
+            raise ShootingError(
+                f"the shooting system is singular at T = {period:.6g} s ({exc}): the orbit "
+                "is not isolated there; try a smaller continuation step or another amplitude"
+            ) from exc
         return np.concatenate([x[:n], x[n:] * col_scale])
     op = LinearOperator((n + k, n + k), matvec=matvec)
     rtol = flow.krylov_rtol
