@@ -296,14 +296,18 @@ def test_a_bearing_without_actuators_shows_nothing_of_actuators(
 def test_a_divergence_says_which_readout_set_it_and_whether_it_touched() -> None:
     """The divergence speed is the first of two readouts (signals.divergence): a row that
     calls it contact must come from a contact; an orbit over 0.9 C says so, and says
-    whether and when the run touched afterwards, or that it never did."""
+    whether and when the run touched afterwards, or that it never did. A 0 V run repeated
+    over the disturbance's seeds gives its onset and its divergence as ranges."""
     from foilbearing.paper_dynamics import orbit_comparison
 
     linear = {0.0: 44_200.0, 50.0: 33_400.0, 150.0: 79_700.0}  # the paper's reading
     ramp = [6.0, 6.5]
     runs = [
         _run(0.0, "1 g·mm", 1.0, None, 52_700.0, divergence_by="contact",
-             contact_speed_rpm=52_700.0),
+             contact_speed_rpm=52_700.0, subsync_onset_seeds={
+                 "seeds": [1, 2, 3], "onset_speed_rpm": [47_900.0, None, 44_500.0],
+                 "range_rpm": [44_500.0, 47_900.0],
+                 "divergence_speed_rpm": [52_700.0, 53_400.0, 52_100.0]}),
         _run(50.0, "1 g·mm", 1.0, ramp, 39_100.0, divergence_by="orbit radius",
              contact_speed_rpm=50_800.0, contact_after_large_orbit=True),
         _run(150.0, "1 g·mm", 1.0, ramp, 89_980.0, divergence_by="orbit radius",
@@ -312,6 +316,8 @@ def test_a_divergence_says_which_readout_set_it_and_whether_it_touched() -> None
     touched, large, never = orbit_comparison(runs, linear, 0.01)[:3]
     assert "diverges at 52.7 krpm (contact)" in touched.ours
     assert "diverges at 52.7 krpm (contact)" in touched.note
+    assert "sub-synchronous onset 44.5-47.9 krpm over 3 seeds" in touched.ours
+    assert "divergence 52.1-53.4 krpm over 3 seeds" in touched.ours
     sustained = "diverges at 39.1 krpm (orbit radius over 0.9 C; contact at 50.8 krpm after a"
     assert sustained in large.ours and sustained in large.note
     assert "no contact up to 90.0 krpm" in never.ours

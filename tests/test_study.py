@@ -62,6 +62,7 @@ def test_the_studys_optional_stages_are_on_by_default_and_each_can_be_skipped() 
     parse = _parser().parse_args
     default = parse(["study"])
     assert (default.bifurcation, default.paper_reading) == ("full", "full")
+    assert default.seeds == 3  # the 0 V speed-ups' readouts as ranges over seeds (issue 49)
     assert parse(["study", "--paper-reading"]).paper_reading == "full"
     skipped = parse(["study", "--paper-reading", "none", "--bifurcation", "none"])
     assert (skipped.bifurcation, skipped.paper_reading) == ("none", "none")

@@ -178,6 +178,17 @@ def orbit_comparison(
                 f"sub-synchronous onset {lo / 1e3:.1f}-{hi / 1e3:.1f} krpm over "
                 f"{len(seeds['seeds'])} seeds of the disturbance"
             )
+        diverged = [d for d in seeds.get("divergence_speed_rpm") or [] if d is not None]
+        if len(diverged) > 1:
+            parts.append(
+                f"divergence {min(diverged) / 1e3:.1f}-{max(diverged) / 1e3:.1f} krpm over "
+                f"{len(diverged)} seeds"
+                + (
+                    f" ({len(seeds['seeds']) - len(diverged)} without one)"
+                    if len(diverged) < len(seeds["seeds"])
+                    else ""
+                )
+            )
         div = run.get("divergence_speed_rpm")
         parts.append(
             _diverges(run)

@@ -66,11 +66,12 @@ def register(sub: Any) -> argparse.ArgumentParser:
     study.add_argument(
         "--seeds",
         type=int,
-        default=1,
+        default=3,
         metavar="N",
-        help="each 0 V speed-up over N seeds of the case's disturbance, its sub-synchronous "
-        "onset given as a range over them (default 1: the case's seed alone; each further "
-        "seed adds a speed-up per 0 V run: about 27 s of CPU on the paper's case)",
+        help="each 0 V speed-up over N seeds of the case's disturbance (the case's and the "
+        "next N - 1), its sub-synchronous onset and divergence given as ranges over them "
+        "(default 3; 1: the case's seed alone; each further seed adds a speed-up per 0 V "
+        "run, about 50 s of CPU on the paper's case)",
     )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=cmd_study)

@@ -337,6 +337,21 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
         ivs = r.get("subsync_intervals_rpm_Hz") or []
         return "; ".join(f"{a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz" for a, b, f in ivs)
 
+    def over_seeds(key: str) -> Callable[[dict[str, Any]], str | None]:
+        """A 0 V run's readout over the disturbance's seeds: "lo-hi (n seeds)"."""
+
+        def get(r: dict[str, Any]) -> str | None:
+            seeds = r.get("subsync_onset_seeds") or {}
+            found = [x for x in seeds.get(key) or [] if x is not None]
+            if len(seeds.get("seeds") or []) < 2 or not found:
+                return None
+            return (
+                f"{min(found) / 1e3:.1f}-{max(found) / 1e3:.1f} "
+                f"({len(found)} of {len(seeds['seeds'])} seeds)"
+            )
+
+        return get
+
     def run(r: dict[str, Any]) -> str | None:
         described = r.get("description")
         volts = r.get("voltage_V")
@@ -345,9 +360,11 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
     cols: list[Column] = [
         ("run", run, ""),
         ("sub-sync onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("onset over the seeds (krpm)", over_seeds("onset_speed_rpm"), ""),
         ("whip (Hz)", _key("whip_frequency_Hz"), ".0f"),
         ("sub-synchronous intervals", lambda r: intervals(r) or None, ""),
         ("divergence (krpm)", _krpm("divergence_speed_rpm"), ".1f"),
+        ("divergence over the seeds (krpm)", over_seeds("divergence_speed_rpm"), ""),
         ("max sub-sync amplitude (µm)", _key("max_subsync_amplitude_um"), ".1f"),
         ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
         ("wall time (s)", _key("wall_time_s"), ".0f"),
