@@ -103,7 +103,8 @@ def test_the_case_s_grid_onset_and_its_refinement_differ_by_less_than_its_error(
 
 @pytest.mark.slow
 def test_the_published_onset_and_its_refinement_differ_by_less_than_its_error() -> None:
-    """About a minute: one onset on 384 × 48, in a bracket of ±1 % (issue 49)."""
+    """About 30 s: one onset on 384 × 48, in a bracket of ±1 % (issue 49), its first
+    equilibrium started from the coarser grids'."""
     case = default_case()
     coarse = onsets_per_voltage(case, [150.0], STUDY_SCAN)
     entry = published_onsets(case, coarse, STUDY_SCAN)[150.0]

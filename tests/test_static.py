@@ -218,6 +218,26 @@ def test_equilibrium_grid_convergence() -> None:
     assert d2 / ecc[2] < 5e-3  # the default grid is within 0.5 % of the finest
 
 
+def test_a_fine_grid_started_from_the_coarser_one_finds_the_same_equilibrium(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Grid sequencing (a cold start on 192 × 24 from the 96 × 12 equilibrium, its
+    pressures repeated 2 × 2) and the start from the centre are two routes to one
+    equilibrium: the same ε to 1e-9 of C, in under half the Newton iterations on the fine
+    grid (11 against 40 at 50 krpm, 150 V; 12 against 239 on 384 × 48 near the onset)."""
+    import foilbearing.analysis.equilibrium as equilibrium
+
+    case = default_case().with_voltages(150.0)
+    fine = replace(case, grid=replace(case.grid, n_theta=192, n_z=24))
+    sequenced = solve_equilibrium(fine, speed=50e3 * RPM)
+    monkeypatch.setattr(equilibrium, "SEQUENCE_ABOVE_CELLS", 10**9)
+    centred = solve_equilibrium(fine, speed=50e3 * RPM)
+    assert sequenced.converged and centred.converged
+    assert abs(sequenced.eps_x - centred.eps_x) < 1e-9
+    assert abs(sequenced.eps_y - centred.eps_y) < 1e-9
+    assert 2 * sequenced.iterations < centred.iterations
+
+
 def test_bad_inputs() -> None:
     case = default_case()
     with pytest.raises(InputError, match="speed"):
