@@ -2,7 +2,7 @@
 behave, and where its time goes. Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit_steps.py [--steps] [--newton] [--refresh]
-     [--readings] [--profile] [--floor] [--dump FILE] [--same A B]
+     [--readings] [--profile] [--floor] [--pieces] [--dump FILE] [--same A B]
 
 
 - ``--steps`` (the default): the cost of a step on a smooth orbit (C-GFB, 0 V, 1 g·mm, 30 krpm: the kind
@@ -24,6 +24,9 @@ docs/development/orbit-performance.md.
   iterations and factorisations per step, best of 3 (about 1 minute).
 - ``--profile``: where a step's time goes, per compiled kernel and in Python (cProfile of
   0.05 s of the full speed-up's orbit at 50 krpm; about 10 s).
+- ``--pieces``: µs of the pieces of a step on the same two orbits (the BDF residual, the
+  solve with a factor, a factorisation), each timed on the last call of 10 ms of the
+  orbit (about 30 s).
 - ``--dump FILE``: e_X, e_Y, the minimum film, the power loss, the sample times and the
   counts of three short runs (the two orbits of ``--steps`` for 0.05 s, 0.3 s of the
   paper's speed-up under lobe + held at 100 V) into FILE (.npz); ``--same A B`` says
@@ -71,6 +74,14 @@ def _step_orbits() -> dict[str, tuple[Case, float]]:
     }
 
 
+def _warmed_step_orbits() -> Iterator[tuple[str, Case, float]]:
+    """``(label, case, rpm)`` of the orbits of ``_step_orbits``, each after a 2 ms run that
+    compiles and warms up its kernels."""
+    for name, (case, rpm) in _step_orbits().items():
+        simulate(case, constant_speed(rpm * RPM, 2e-3), progress=False)
+        yield name, case, rpm
+
+
 @contextmanager
 def _swapped(replacements: list[tuple[object, str, object]]) -> Iterator[None]:
     """Set each ``(module, name, value)`` while the block runs, then put the old back."""
@@ -86,14 +97,11 @@ def _swapped(replacements: list[tuple[object, str, object]]) -> Iterator[None]:
 
 def step_costs() -> None:
     """ms a step on a smooth and a large orbit, best of 3 (0.05 s each, after a warm-up)."""
-    base = default_case()
-    runs = _step_orbits()
     print(
-        f"cost of a step, 0.05 s of each orbit, orbit grid {base.grid.orbit_label}, default "
-        "settings, best of 3:"
+        f"cost of a step, 0.05 s of each orbit, orbit grid {default_case().grid.orbit_label}, "
+        "default settings, best of 3:"
     )
-    for name, (case, rpm) in runs.items():
-        simulate(case, constant_speed(rpm * RPM, 2e-3))  # compile, warm up
+    for name, case, rpm in _warmed_step_orbits():
         costs = []
         for _ in range(3):
             res = simulate(case, constant_speed(rpm * RPM, 0.05))
@@ -319,14 +327,11 @@ def _compiled_calls_timed(spent: list[float]) -> Iterator[None]:
 
 def compiled_floor() -> None:
     """The step's wall time against the time inside its compiled kernels (the floor)."""
-    base = default_case()
-    runs = _step_orbits()
     print(
-        f"the floor of a step, 0.1 s of each orbit, orbit grid {base.grid.orbit_label}, default "
-        "settings: ms a step (best of 3) = compiled kernels + the Python around them"
+        f"the floor of a step, 0.1 s of each orbit, orbit grid {default_case().grid.orbit_label}, "
+        "default settings: ms a step (best of 3) = compiled kernels + the Python around them"
     )
-    for name, (case, rpm) in runs.items():
-        simulate(case, constant_speed(rpm * RPM, 2e-3), progress=False)  # compile, warm up
+    for name, case, rpm in _warmed_step_orbits():
         plain = min(
             (simulate(case, constant_speed(rpm * RPM, 0.1), progress=False) for _ in range(3)),
             key=lambda r: r.wall_time,
@@ -343,6 +348,70 @@ def compiled_floor() -> None:
             f"{plain.factorizations / plain.steps:.3f} factorisations a step; a compiled "
             f"step loop could take it to {compiled:.3f} ms at best ({step / compiled:.2f} times)"
         )
+
+
+def piece_costs() -> None:
+    """µs of each piece of a step on the orbits of ``--steps`` (:func:`_pieces`)."""
+    print("the pieces of a step, µs (the orbits' grid, default settings):")
+    for name, case, rpm in _warmed_step_orbits():
+        r, s_, f = _pieces(case, rpm)
+        print(f"  {name}: residual {r:.1f}, solve {s_:.1f}, factorisation {f:.1f}")
+
+
+def _pieces(case: Case, rpm: float) -> tuple[float, float, float]:
+    """The BDF residual and the solve with a factor (compiled loops of 2000 calls) and a
+    whole factorisation (``TransientSystem.factorize`` from Python, 300 calls), µs, best
+    of 3, each on the last Newton call and factorisation of 10 ms of the orbit."""
+    import copy
+    import time
+
+    from numba import njit
+
+    from foilbearing.reynolds import _kernels as kern
+    from foilbearing.reynolds import transient, transient_factor
+
+    @njit
+    def residuals(count, y, step, model, lift_state, film, res, g, slack):  # type: ignore[no-untyped-def]
+        for _ in range(count):
+            kern.transient_residual(y, step, model, lift_state, film, res, g, slack)
+
+    @njit
+    def solves(count, g, factor, model, pattern, work, dy):  # type: ignore[no-untyped-def]
+        for _ in range(count):
+            kern.transient_solve(g, factor, model, pattern, work, dy)
+
+    def best(call: Callable[[], object], count: int) -> float:
+        spans = []
+        for _ in range(3):
+            t = time.perf_counter()
+            call()
+            spans.append((time.perf_counter() - t) / count)
+        return 1e6 * min(spans)
+
+    seen: dict[str, object] = {}
+    solve, factorize = kern.transient_newton_solve, transient.TransientSystem.factorize
+
+    def newton(*args: object) -> object:
+        seen["newton"] = copy.deepcopy(args)
+        return solve(*args)  # type: ignore[operator]
+
+    def factor(self: object, *args: object) -> object:
+        seen["factor"] = (self, copy.deepcopy(args))
+        return factorize(self, *args)  # type: ignore[arg-type]
+
+    with _swapped([(transient_factor.kern, "transient_newton_solve", newton),
+                   (transient.TransientSystem, "factorize", factor)]):  # fmt: skip
+        simulate(case, constant_speed(rpm * RPM, 0.01), progress=False)
+    y, step, model, pattern, fac, buf, *_ = seen["newton"]  # type: ignore[misc]
+    film, res, g, slack, work, dy, _q = buf
+    residuals(1, y, step, model, fac[9], film, res, g, slack)  # compile
+    solves(1, g, fac, model, pattern, work, dy)
+    system, args = seen["factor"]  # type: ignore[misc]
+    return (
+        best(lambda: residuals(2000, y, step, model, fac[9], film, res, g, slack), 2000),
+        best(lambda: solves(2000, g, fac, model, pattern, work, dy), 2000),
+        best(lambda: [system.factorize(*args) for _ in range(300)], 300),
+    )
 
 
 def dump_runs(path: str) -> None:
@@ -388,6 +457,8 @@ if __name__ == "__main__":
     elif "--same" in sys.argv:
         i = sys.argv.index("--same")
         same_runs(sys.argv[i + 1], sys.argv[i + 2])
+    elif "--pieces" in sys.argv:
+        piece_costs()
     elif "--floor" in sys.argv:
         compiled_floor()
     elif "--profile" in sys.argv:

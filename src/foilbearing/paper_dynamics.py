@@ -322,18 +322,18 @@ def _orbit_why(run: dict[str, Any], lin: float | None, disturbance_rms: float) -
             + ", as past a supercritical Hopf bifurcation",
             LIMIT_CYCLES,
         )
-    t_contact = (div - _START_RPM) / _RPM_PER_S
-    if ramp is not None and lin is not None and div < 0.95 * lin and ramp[1] < t_contact:
+    t_div = (div - _START_RPM) / _RPM_PER_S
+    if ramp is not None and lin is not None and div < 0.95 * lin and ramp[1] < t_div:
         ramp_end = _START_RPM + ramp[1] * _RPM_PER_S
         short = (
-            f"; {t_contact:.2f} s long, under the 1 s a sub-synchronous reading needs, it "
+            f"; {t_div:.2f} s long, under the 1 s a sub-synchronous reading needs, it "
             "has no Fig. 15 curve"
-            if t_contact < 1.0
+            if t_div < 1.0
             else ""
         )
         event = "an orbit over 0.9 C" if run.get("divergence_by") == "orbit radius" else "contact"
         return (
-            f"{event} {t_contact - ramp[1]:.2f} s after the ramp ended at "
+            f"{event} {t_div - ramp[1]:.2f} s after the ramp ended at "
             f"{ramp_end / 1e3:.1f} krpm, far below the linear onset ({lin / 1e3:.1f} krpm): "
             f"the {imb:g} g·mm imbalance orbit meets the film the rising preload lobes "
             f"narrow, a forced contact, not a whirl{short}",

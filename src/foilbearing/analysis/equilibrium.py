@@ -296,7 +296,8 @@ def solve_equilibrium(
 #: A cold start on a grid of more cells than this starts from the equilibrium of the grid
 #: coarsened by 2 in both directions (itself found the same way), its pressures repeated
 #: on the finer cells: grid sequencing. On 384 × 48 (the published onset's refinement)
-#: 12 Newton iterations and 1.6 s instead of 239 and 40 s from the centre (load
+#: 12 Newton iterations and 2.2 s (the coarser solves included) instead of 239 and 40 s
+#: from the centre (load
 #: continuation), the same equilibrium; the case's own 96 × 12 and coarser grids start
 #: from the centre as before.
 SEQUENCE_ABOVE_CELLS = 96 * 12
