@@ -8,7 +8,7 @@ The default reading (local + compliant) and the paper's (lobe + held) at 0/50/10
 each onset by :func:`foilbearing.check.onset_near` in a ±8 % bracket around the 192 × 24
 κ = 0.1 onset of docs/lift-off.md (the full scan, 20-100 krpm every 4 krpm, where it is
 not inside), Brent to 1e-4. ``--factors 4`` adds 384 × 48 (about a minute or two an
-onset). κ's effect on a grid is f(κ) − f(0) there. About 2 minutes for the defaults on an
+onset). κ's effect on a grid is f(κ) − f(0) there; each onset with its whirl frequency. About 2 minutes for the defaults on an
 idle core. The figures and the choice they support: docs/lift-off.md, "Choosing κ for
 the published onsets". ``--shimmed``: the shimmed GFB at the four voltages instead (its
 brackets around its 96 × 12, κ = 0.1 onsets), for the errors of the study's shimmed column.
@@ -51,7 +51,7 @@ def main() -> None:
     kappas = [float(k) for k in args.kappas.split(",")]
     factors = [int(f) for f in args.factors.split(",")]
     scan = [s * 1e3 * RPM for s in range(20, 101, 4)]
-    print("onset (krpm) [CPU s]; effect = f(κ) − f(0) on the same grid")
+    print("onset (krpm) at its whirl frequency [CPU s]; effect = f(κ) − f(0) on the same grid")
     runs = (
         {("shimmed", "GFB", v): near for v, near in NEAR_SHIMMED.items()} if args.shimmed else NEAR
     )
@@ -78,7 +78,8 @@ def main() -> None:
                     if value is not None and sharp and kappa
                     else ""
                 )
-                shown = "none" if value is None else f"{value:.3f}"
+                whirl = (on.whirl_frequency or 0.0) / (2 * math.pi)
+                shown = "none" if value is None else f"{value:.3f} at {whirl:.3f} Hz"
                 cells.append(f"κ {kappa:g}: {shown}{effect} [{cpu:.0f}]")
             grid = f"{96 * f} × {12 * f}"
             print(f"{response}+{dynamics} {volts:3d} V {grid}: " + " | ".join(cells), flush=True)

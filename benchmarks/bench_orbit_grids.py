@@ -2,7 +2,7 @@
 costs on it. Prints its figures.
 
 Run: .venv/bin/python benchmarks/bench_orbit_grids.py [--grid] [--axial-order]
-     [--orbit-grid G ...] [--seeds S,S,... [--run K] G ...]
+     [--orbit-grid G ...] [--seeds S,S,... [--run K] [--stop T] G ...]
 
 
 - ``--grid`` (the default): the grid the orbit needs: cost per step of the full speed-up's orbit (shimmed GFB,
@@ -17,6 +17,9 @@ Run: .venv/bin/python benchmarks/bench_orbit_grids.py [--grid] [--axial-order]
   1 g·mm speed-up (``--run 0``: 0 V, 8.5 g·mm; 2: the 150 V ramp) under each seed of the
   case's disturbance on each orbit grid: onset, whip and divergence, their spread over the
   seeds and each grid's means against the first grid's (two runs at a time, about 1 minute
+  a run on 96 θ cells; ``--stop T``: each run stopped at T s, e.g. 11 s (55.5 krpm) past
+  the 1 g·mm divergence, where a finer grid's whirl can circle at about 1.5 C for minutes of
+  CPU without touching: 4 minutes a run on 384 θ cells with ``--stop 11``;
   a run).
 - ``--axial-order``: route 2 of issue 30 built (``[grid] axial_order = 4``): the cost per step
   of a smooth and a large orbit on 96 x 12 (order 2) and 96 x 4, 6, 8 (order 4), and the
@@ -50,9 +53,10 @@ from bench_orbit import (
 
 
 def _grid_readout_run(
-    job: tuple[int, OrbitGrid] | tuple[int, OrbitGrid, int],
-) -> tuple[tuple[int, OrbitGrid] | tuple[int, OrbitGrid, int], dict]:
-    """One paper speed-up on an orbit grid (and, as a third item, the disturbance's seed)."""
+    job: tuple,
+) -> tuple[tuple, dict]:
+    """One paper speed-up on an orbit grid (and, as a third item, the disturbance's seed; as
+    a fourth, the time it stops at, s, None for the profile's end)."""
     from foilbearing.case import Grid
     from foilbearing.orbit.analysis import analyse_orbit
     from foilbearing.signals import subsynchronous_amplitude
@@ -60,7 +64,7 @@ def _grid_readout_run(
     k, (n_theta, n_z, order, kappa) = job[0], job[1]
     _label, imbalance, ramp = READOUT_RUNS[k]
     base = default_case()
-    if len(job) == 3 and base.disturbance is not None:
+    if len(job) >= 3 and base.disturbance is not None:
         base = replace(base, disturbance=replace(base.disturbance, seed=job[2]))
     grid = Grid(
         base.grid.n_theta,
@@ -72,7 +76,8 @@ def _grid_readout_run(
     )
     case = replace(base, rotor=replace(base.rotor, imbalance=imbalance), grid=grid)
     program = None if ramp is None else voltage_ramp(*ramp)
-    res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), program)
+    stop = job[3] if len(job) == 4 else None
+    res = simulate(case, linear_ramp(3e3 * RPM, 90e3 * RPM, 500.0), program, stop_time=stop)
     head = analyse_orbit(res).headline(res)
     sub = subsynchronous_amplitude(res.time, res.e_x, res.speed, res.phase)
     one_x = {
@@ -126,7 +131,9 @@ def orbit_grid_readouts(grids: list[OrbitGrid]) -> None:
             print(f"    {_grid_label(g)} ({head['wall']:.0f} s): " + ", ".join(parts))
 
 
-def seed_readouts(seeds: list[int], grids: list[OrbitGrid], k: int = 1) -> None:
+def seed_readouts(
+    seeds: list[int], grids: list[OrbitGrid], k: int = 1, stop: float | None = None
+) -> None:
     """One paper speed-up (default: 0 V, 1 g·mm) under several seeds of the case's
     disturbance on each orbit grid: how far its readings move with the random force alone,
     against how far they move with the grid."""
@@ -136,14 +143,14 @@ def seed_readouts(seeds: list[int], grids: list[OrbitGrid], k: int = 1) -> None:
         f"{READOUT_RUNS[k][0]} speed-up (3-90 krpm, 500 rad/s²) under the disturbance seeds "
         f"{', '.join(map(str, seeds))}, on each orbit grid; two runs at a time"
     )
-    jobs = [(k, g, seed) for g in grids for seed in seeds]
+    jobs = [(k, g, seed, stop) for g in grids for seed in seeds]
     keys = (
         ("onset_speed_rpm", "onset"),
         ("whip_frequency_Hz", "whip"),
         ("divergence_speed_rpm", "divergence/contact"),
     )
     with ProcessPoolExecutor(max_workers=2) as pool:
-        out = {job[1:]: head for job, head in pool.map(_grid_readout_run, jobs)}
+        out = {job[1:3]: head for job, head in pool.map(_grid_readout_run, jobs)}
     means: dict[OrbitGrid, dict[str, float]] = {}
     for g in grids:
         print(f"  {_grid_label(g)}:")
@@ -263,9 +270,13 @@ if __name__ == "__main__":
         if "--run" in sys.argv:
             run_k = int(sys.argv[sys.argv.index("--run") + 1])
             del sys.argv[sys.argv.index("--run") : sys.argv.index("--run") + 2]
+        stop = None
+        if "--stop" in sys.argv:
+            stop = float(sys.argv[sys.argv.index("--stop") + 1])
+            del sys.argv[sys.argv.index("--stop") : sys.argv.index("--stop") + 2]
         at = sys.argv.index("--seeds")
         seeds = [int(x) for x in sys.argv[at + 1].split(",")]
-        seed_readouts(seeds, [_orbit_grid(g) for g in sys.argv[at + 2 :]], run_k)
+        seed_readouts(seeds, [_orbit_grid(g) for g in sys.argv[at + 2 :]], run_k, stop)
     elif "--orbit-grid" in sys.argv:
         names = sys.argv[sys.argv.index("--orbit-grid") + 1 :]
         orbit_grid_readouts([_orbit_grid(g) for g in names])

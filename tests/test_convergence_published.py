@@ -30,6 +30,7 @@ from foilbearing.study.converged import (
     onset_errors,
     published_case,
     published_onsets,
+    whirl_error,
     with_error,
 )
 
@@ -71,6 +72,15 @@ def test_the_published_error_is_the_two_level_estimate_or_the_floor() -> None:
     got = onset_errors(69.837, 71.251, None)
     assert got["refined_error"] == pytest.approx(1.414)
     assert got["kappa_effect"] is None
+
+
+def test_the_whirl_frequency_error_is_the_two_grid_difference_or_the_floor() -> None:
+    """The study's 50 V and 0 V whirl frequencies (Hz), 96 × 12 at κ 0.1 against 192 × 24 at
+    κ 0.02: where they differ by 1 %, that is the error; where they agree to 0.02 %, the
+    floor the onsets' 384 × 48 refinement measured."""
+    assert whirl_error(91.77, 92.72) == pytest.approx(0.95)
+    assert whirl_error(60.56, 60.55) == pytest.approx(RESIDUAL_FLOOR * 60.55)
+    assert with_error(92.72, whirl_error(91.77, 92.72)) == "92.7 ± 1.0"
 
 
 def test_the_published_resolution_refines_the_grid_and_caps_the_smoothing() -> None:
@@ -119,6 +129,9 @@ def test_the_published_onset_and_its_refinement_differ_by_less_than_its_error() 
     # the two-level estimate alone would not have covered it: the floor is what does
     two_level = abs(entry["onset_same_kappa_rpm"] - entry["onset_refined_rpm"]) / 1e3
     assert two_level < abs(published - finer_krpm)
+    # the whirl frequency printed with the onset holds on 384 × 48 too
+    whirl, whirl_error = (float(x) for x in entry["whirl_refined_text_Hz"].split(" ± "))
+    assert abs(whirl - on.whirl_frequency / (2 * math.pi)) < whirl_error
 
 
 def test_an_onset_the_refined_grid_cannot_solve_stays_published_without_an_error(

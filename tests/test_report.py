@@ -375,6 +375,12 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
             value, err = e["onset_refined_text_krpm"].split(" ± ")
             assert float(err) * 1e3 >= e["onset_refined_error_rpm"]
             assert e["onset_refined_error_rpm"] >= 0.007 * e["onset_refined_rpm"] * (1 - 1e-12)
+            # its whirl frequency too, never below the same floor
+            value, err = e["whirl_refined_text_Hz"].split(" ± ")
+            assert float(err) >= e["whirl_refined_error_Hz"]
+            assert e["whirl_refined_error_Hz"] >= 0.007 * e["whirl_frequency_refined_Hz"] * (
+                1 - 1e-12
+            )
     assert "±" in (study_out / "report.html").read_text(encoding="utf-8")
 
 

@@ -297,6 +297,30 @@ def test_onset_hysteresis_sustain_and_interpolation_on_known_windows() -> None:
     assert short.onset_speed_rpm is None
 
 
+def test_the_whirl_frequency_is_read_before_the_divergence() -> None:
+    """A whirl at 60-62 Hz that passes 0.9 C and jumps to a large orbit at 235 Hz before
+    touching: over the whole interval the median is the large orbit's (which the θ grid
+    decides); read up to the divergence it is the whirl's. An interval that begins after
+    the divergence keeps its own frequency; a divergence before the first
+    interval's first window leaves the interval's median as it was."""
+    sub = _windows(
+        [0.2, 1.5, 2.0, 3.0, 20.0, 40.0, 40.0, 40.0, 0.2, 0.2, 9.0, 9.0, 9.0],
+        [math.nan, 60.0, 61.0, 62.0, 235.0, 235.0, 236.0, 236.0, math.nan, math.nan,
+         240.0, 240.0, 240.0],
+    )  # fmt: skip
+    whole = onset(sub, threshold=1e-6, sustain_s=0.5)
+    assert whole.whirl_frequency_hz == 235.0  # the large orbit's, four windows of seven
+    # diverged between the windows at 0.75 s and 1.0 s
+    read = onset(sub, threshold=1e-6, sustain_s=0.5, diverged_s=0.9)
+    assert read.whirl_frequency_hz == 61.0
+    assert read.onset_speed_rpm == whole.onset_speed_rpm
+    assert [iv[:2] for iv in read.intervals] == [iv[:2] for iv in whole.intervals]
+    assert read.intervals[1][2] == whole.intervals[1][2] == 240.0
+    # a divergence before the interval's first window (a contact at 0.1 s) changes nothing
+    early = onset(sub, threshold=1e-6, sustain_s=0.5, diverged_s=0.1)
+    assert early.intervals == whole.intervals and early.whirl_frequency_hz == 235.0
+
+
 def test_onset_rejects_bad_levels_in_one_line() -> None:
     sub = _windows([0.2, 1.5, 1.5, 1.5, 0.2])
     assert onset(sub, threshold=1e-6, release=1.0).onset_speed_rpm is not None

@@ -170,3 +170,85 @@ def test_the_0v_speed_ups_over_seeds_of_the_disturbance(tmp_path: Path, capsys) 
     assert main(["study", "--seeds", "0", "--out", str(tmp_path / "s")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--seeds 0: allowed 1 to 20" in err[0]
+
+
+def test_the_0v_speed_ups_again_on_twice_the_theta_cells(tmp_path: Path, capsys) -> None:
+    """``--theta-refine N`` (issue 49): each 0 V run of the protocol runs again on its orbit
+    grid with N times the θ cells (the axial cells held); the two are one orbit to within a
+    few per cent of its peak-to-peak (32 and 64 θ cells, stopped at 0.02 s: the plumbing and
+    the grid's first effect, not the readouts), and the 0 V headline carries the readouts on
+    the finer grid with each one's error. --theta-refine 5 is a one-line error."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from foilbearing.case import Grid, default_case
+    from foilbearing.cli.main import main
+    from foilbearing.orbit.netcdf import load_orbit
+    from foilbearing.study.orbits import paper_orbit_runs
+
+    case = replace(
+        default_case(),
+        grid=Grid(
+            n_theta=32, n_z=4, lift_off_smoothing=0.0, orbit_n_z=None, orbit_axial_order=None
+        ),
+    ).with_actuator_reading("lobe", "held")
+    out = paper_orbit_runs(case, tmp_path, lambda _: None, workers=2, stop_time=0.02,
+                           theta_refine=2)  # fmt: skip
+    zero = out["runs"][0]
+    finer = zero["theta_refined"]
+    assert finer["grid"] == [64, 4] and zero["grid"] == [32, 4]
+    assert all("theta_refined" not in h for h in out["runs"][1:])  # 0 V runs only
+    coarse = load_orbit(Path(zero["netcdf"]))[0]
+    fine = load_orbit(tmp_path / f"orbit_{zero['label']}_theta2x.nc")[0]
+    assert np.array_equal(fine.time, coarse.time)
+    gap = np.abs(fine.e_x - coarse.e_x).max()
+    assert 0.0 < gap < 0.05 * np.ptp(coarse.e_x)
+    assert finer["text"] is None  # nothing to read in 0.02 s, on either grid
+    assert set(finer["errors"].values()) == {None}
+
+    assert main(["study", "--theta-refine", "5", "--out", str(tmp_path / "s")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--theta-refine 5: allowed 1 to 4" in err[0]
+
+
+def test_a_readout_error_is_the_two_grid_difference_or_its_floor() -> None:
+    """The error of each speed-up readout (:func:`readout_errors`): the difference to the
+    run on twice the θ cells at order 1, never below the floor measured from 192 to 384 θ
+    cells; a readout one grid lacks is said, with no error."""
+    from foilbearing.study.orbits import READOUT_FLOOR, readout_errors
+
+    coarse = {"onset_speed_rpm": 47_470.0, "whip_frequency_Hz": 62.9,
+              "divergence_speed_rpm": 52_674.0, "grid": [96, 4]}  # fmt: skip
+    fine = {"onset_speed_rpm": 47_856.0, "whip_frequency_Hz": 62.9,
+            "divergence_speed_rpm": None, "grid": [192, 4]}  # fmt: skip
+    got = readout_errors(coarse, fine, 2)
+    onset_error = max(386.0, READOUT_FLOOR["onset_speed_rpm"] * 47_470.0)
+    assert got["errors"]["onset_speed_rpm"] == pytest.approx(onset_error)
+    assert got["errors"]["whip_frequency_Hz"] == pytest.approx(
+        READOUT_FLOOR["whip_frequency_Hz"] * 62.9
+    )
+    assert got["errors"]["divergence_speed_rpm"] is None
+    assert got["onset_speed_rpm"] == 47_856.0 and got["grid"] == [192, 4]
+    assert got["text"].startswith("grid error from 192 θ cells: onset 47 ± 4 krpm, whip 62.9 ± ")
+    assert "divergence 52.7 krpm (none on 192 θ cells)" in got["text"]
+    # on four times the cells the difference spans three of the finer grid's steps
+    assert readout_errors(coarse, fine | {"onset_speed_rpm": 48_670.0}, 4)["errors"][
+        "onset_speed_rpm"
+    ] == pytest.approx(max(400.0, READOUT_FLOOR["onset_speed_rpm"] * 47_470.0))
+
+
+def test_a_refined_run_stops_a_margin_after_the_coarse_divergence() -> None:
+    """The refined run reads the onset, whip and divergence, not the orbit of about 1.5 C a
+    whirl can circle in for many seconds after it diverged: it stops REFINED_MARGIN_S after
+    the coarse run's divergence (or at the study's own stop, if sooner)."""
+    from types import SimpleNamespace
+
+    from foilbearing.signals import Divergence
+    from foilbearing.study.orbits import REFINED_MARGIN_S, refined_stop
+
+    diverged = {"analysis": SimpleNamespace(divergence=Divergence(52_700.0, 10.4, "orbit radius",
+                                                                 None, 0.0))}  # fmt: skip
+    assert refined_stop(diverged, None) == pytest.approx(10.4 + REFINED_MARGIN_S)
+    assert refined_stop(diverged, 5.0) == 5.0
+    assert refined_stop({"analysis": SimpleNamespace(divergence=None)}, None) is None

@@ -79,9 +79,11 @@ def stability_comparison(
                 shim_txt += f"; {label} {other.headline()['onset_speed_rpm'] / 1e3:.1f} krpm"
         onset, whirl, ratio = h["onset_speed_rpm"], h["whirl_frequency_Hz"], h["whirl_ratio"]
         own = errors.get("C-GFB", {}).get(volt, {})
+        whirl_text = None if whirl is None else f"{whirl:.0f}"
         if own.get("refined_grid"):  # set beside the paper at the published resolution
             whirl = own["whirl_frequency_refined_Hz"]
             ratio = whirl / (own["onset_refined_rpm"] / 60.0)
+            whirl_text = own.get("whirl_refined_text_Hz") or f"{whirl:.0f}"
         value = (
             f"{own['onset_refined_text_krpm']} krpm{_at(own)} ({own['onset_text_krpm']} on "
             f"the case's grid, {own['onset_error_source']} the larger part)"
@@ -91,7 +93,7 @@ def stability_comparison(
         ours = (
             "stable over the scan"
             if onset is None
-            else f"{value}, {whirl:.0f} Hz (ratio {ratio:.2f})"
+            else f"{value}, {whirl_text} Hz (ratio {ratio:.2f})"
         )
         text, diverges, whip, whip_onset = _PAPER_RUNS.get(volt, ("", None, None, None))
         if own.get("refined_grid"):  # set beside the paper at the published resolution
@@ -195,6 +197,9 @@ def orbit_comparison(
             if div
             else f"no divergence up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
         )
+        grid_error = (run.get("theta_refined") or {}).get("text")
+        if grid_error:  # the readouts with their grid error (study.orbits.readout_errors)
+            parts.append(grid_error)
         lin = (linear_onsets_rpm or {}).get(v)
         if lin and div:
             lin_text = (onset_texts_krpm or {}).get(v) or f"{lin / 1e3:.1f}"

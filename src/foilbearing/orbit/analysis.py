@@ -150,7 +150,6 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
         t, result.e_x, result.speed, fmax_hz=min(2000.0, 0.45 * result.settings.sample_rate)
     )
     sub = subsynchronous_amplitude(t, result.e_x, result.speed, result.phase)
-    ons = onset(sub, threshold=threshold)
     contact = result.contact or {}
     div = divergence(
         t,
@@ -161,6 +160,7 @@ def analyse_orbit(result: OrbitResult, *, threshold: float = ONSET_THRESHOLD) ->
         stopped_by_contact=result.status == "contact",
         contact_time=contact.get("time_s"),
     )
+    ons = onset(sub, threshold=threshold, diverged_s=None if div is None else div.time_s)
     amp = float(np.nanmax(sub.amplitude)) if sub.amplitude.size else None
     speed_rpm = None if div is None else div.speed_rpm
     return OrbitAnalysis(wf, sub, ons, speed_rpm, amp, **one_x, divergence=div)

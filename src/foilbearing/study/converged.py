@@ -45,6 +45,7 @@ __all__ = [
     "published_case",
     "published_onsets",
     "refine_onset",
+    "whirl_error",
     "with_error",
 ]
 
@@ -192,6 +193,16 @@ def refine_onset(case: Case, coarse_speed: float, scan: Sequence[float]) -> dict
     }
 
 
+def whirl_error(coarse_hz: float, refined_hz: float) -> float:
+    """The error of the whirl frequency at the published resolution, Hz: its difference to
+    the case's grid (at the case's κ: the smoothing's part and the cells' part together),
+    or :data:`RESIDUAL_FLOOR` of it if that is larger: the onsets' floor, six times the
+    largest move of the eight whirl frequencies from 192 × 24 to 384 × 48 at κ = 0.02
+    (0.12 %, the paper's reading at 50 V; docs/lift-off.md, "The published onsets'
+    error")."""
+    return max(abs(coarse_hz - refined_hz), RESIDUAL_FLOOR * abs(refined_hz))
+
+
 def published_onsets(
     case: Case,
     coarse: Mapping[float, Any],
@@ -271,6 +282,8 @@ def _collect(
             continue
         f1, f2 = res.onset_speed / RPM, got["onset_refined_rpm"]
         err = onset_errors(f1, f2, got["onset_same_kappa_rpm"])
+        w2 = got["whirl_frequency_refined_Hz"]
+        w_err = whirl_error((res.whirl_frequency or 0.0) / (2.0 * math.pi), w2)
         out[volt] = got | {
             "onset_grid_difference_rpm": err["grid_difference"],
             "onset_kappa_effect_rpm": err["kappa_effect"],
@@ -280,6 +293,8 @@ def _collect(
             "onset_refined_error_source": err["refined_source"],
             "onset_text_krpm": with_error(f1 / 1e3, err["error"] / 1e3),
             "onset_refined_text_krpm": with_error(f2 / 1e3, err["refined_error"] / 1e3),
+            "whirl_refined_error_Hz": w_err,
+            "whirl_refined_text_Hz": with_error(w2, w_err),
         }
         if progress is not None:
             n, m = got["refined_grid"]

@@ -26,6 +26,13 @@ the whirl: five seeds spread it by 3-9 % (issue 49). With ``seeds`` > 1 each 0 V
 repeated with the disturbance's seeds after the case's (seed + 1, ...), and its headline
 carries the onset over the seeds and their range (``subsync_onset_seeds``). The repeats
 decide nothing and write no figures; each is a speed-up as long as its 0 V run.
+
+With ``theta_refine`` > 1 each 0 V run (the case's seed) is also run on its orbit grid with
+that many times the θ cells, the axial cells, order and κ held: the direction that moves
+the readouts (on the built-in case's 0 V, 1 g·mm run, twice the axial cells moved them by
+0.04 % at most; θ and the refined grids: docs/development/orbit-performance.md, "The
+speed-ups' readouts with their grid error"). Its headline carries the readouts on both
+grids and each one's estimated error (:func:`readout_errors`).
 """
 
 from __future__ import annotations
@@ -39,12 +46,40 @@ from foilbearing.case import Case
 from foilbearing.study.queue import OrbitQueue
 from foilbearing.study.runs import OrbitRun, run_one
 
-__all__ = ["PAPER_ORBITS", "OrbitRun", "paper_orbit_runs", "run_one"]
+__all__ = [
+    "PAPER_ORBITS",
+    "READOUT_FLOOR",
+    "REFINED_MARGIN_S",
+    "OrbitRun",
+    "paper_orbit_runs",
+    "readout_errors",
+    "refined_stop",
+    "run_one",
+]
 
 #: Final voltage of the ramp of each of the paper's runs (0: no control).
 PAPER_ORBITS = (0.0, 50.0, 100.0, 150.0)
 RAMP = (6.0, 6.5)  # s, the paper's
 SENSITIVITY_IMBALANCE = 1e-6  # kg·m (1 g·mm)
+
+#: The readouts a refined run checks: key, name, unit printed and the factor to it.
+_READOUTS = (
+    ("onset_speed_rpm", "onset", "krpm", 1e-3),
+    ("whip_frequency_Hz", "whip", "Hz", 1.0),
+    ("divergence_speed_rpm", "divergence", "krpm", 1e-3),
+)
+
+#: How long a refined run goes on after the coarse run's divergence, s: 4.8 krpm at the
+#: protocol's 500 rad/s², three times the largest move of the 1 g·mm divergence measured
+#: from 96 to 384 θ cells (1.6 %, 0.9 krpm).
+REFINED_MARGIN_S = 1.0
+
+#: The least relative error stated for a speed-up readout, beside the two-grid difference:
+#: the largest move measured on the built-in case's 0 V, 1 g·mm run from 192 to 384 θ cells
+#: (seeds 1 and 2, κ = 0.1), where 96 and 192 agree to 0.3 %: onset −7.9 %, whip −1.8 %,
+#: divergence −1.6 %, rounded up (docs/development/orbit-performance.md, "The speed-ups'
+#: readouts with their grid error"). The two-grid difference alone would understate them.
+READOUT_FLOOR = {"onset_speed_rpm": 0.08, "whip_frequency_Hz": 0.02, "divergence_speed_rpm": 0.02}
 
 
 def _early_ramp(zero_run: dict[str, Any]) -> tuple[float, float]:
@@ -65,6 +100,7 @@ def paper_orbit_runs(
     results: dict[str, Any] | None = None,
     tag: str = "",
     seeds: int = 1,
+    theta_refine: int = 1,
 ) -> dict[str, Any]:
     """Run the speed-ups (see the module docstring), write their figures and Fig. 15.
 
@@ -74,12 +110,14 @@ def paper_orbit_runs(
     another reading of the case can share the folder. The runs go on ``workers`` processes
     (:class:`~foilbearing.study.queue.OrbitQueue`; :func:`queue_paper_orbits` puts them on
     a queue the caller shares with other stages). ``seeds``: the 0 V runs over that many
-    seeds of the disturbance (the module docstring).
+    seeds of the disturbance; ``theta_refine``: each 0 V run again with that many times the
+    θ cells, for its readouts' error (the module docstring).
     """
     queue = OrbitQueue(workers)
     summary = queue_paper_orbits(
-        queue, case, out, stage, stop_time=stop_time, results=results, tag=tag, seeds=seeds
-    )
+        queue, case, out, stage, stop_time=stop_time, results=results, tag=tag, seeds=seeds,
+        theta_refine=theta_refine,
+    )  # fmt: skip
     queue.drain()
     return summary()
 
@@ -94,6 +132,7 @@ def queue_paper_orbits(
     results: dict[str, Any] | None = None,
     tag: str = "",
     seeds: int = 1,
+    theta_refine: int = 1,
 ) -> Callable[[], dict[str, Any]]:
     """Put the protocol's speed-ups on ``queue``; returns the stage's summary, to call once
     the queue has drained (the arguments as :func:`paper_orbit_runs`).
@@ -110,6 +149,7 @@ def queue_paper_orbits(
     ramps: list[str] = []
     notes: list[str] = []
     repeats: dict[str, list[dict[str, Any]]] = {}  # a 0 V run's label → its other seeds
+    finer: dict[str, list[dict[str, Any]]] = {}  # a 0 V run's label → it on θ cells × refine
     first_seed = None if case.disturbance is None else case.disturbance.seed
     if seeds > 1 and first_seed is None:
         stage("  seeds: the case has no [disturbance] to draw again; one run per 0 V speed-up")
@@ -125,6 +165,8 @@ def queue_paper_orbits(
     def ask(run: OrbitRun, then: Callable[[dict[str, Any]], None] = finish) -> None:
         (zeros if run.ramp is None else ramps).append(run.label)
         priority = 0 if run.ramp is None else 1  # a 0 V run decides what follows it
+        if run.ramp is None and theta_refine > 1:
+            then = _and_refine(run, then)
         queue.submit(case, run, out, then, priority=priority, stop_time=stop_time)
         if run.ramp is None and first_seed is not None:
             for k in range(1, seeds):
@@ -133,6 +175,22 @@ def queue_paper_orbits(
                     case, other, out, repeats.setdefault(run.label, []).append, priority=2,
                     stop_time=stop_time,
                 )  # fmt: skip
+
+    def _and_refine(
+        run: OrbitRun, then: Callable[[dict[str, Any]], None]
+    ) -> Callable[[dict[str, Any]], None]:
+        """``then``, and the run again on θ cells × ``theta_refine``, to the end of the
+        coarse run's divergence window (:func:`refined_stop`)."""
+
+        def done_then_refine(first: dict[str, Any]) -> None:
+            then(first)
+            queue.submit(
+                case, replace(run, theta_refine=theta_refine), out,
+                finer.setdefault(run.label, []).append, priority=2,
+                stop_time=refined_stop(first, stop_time),
+            )  # fmt: skip
+
+        return done_then_refine
 
     def after_zero(first: dict[str, Any]) -> None:
         finish(first)
@@ -169,6 +227,10 @@ def queue_paper_orbits(
         for label, others in repeats.items():
             done[label]["headline"]["subsync_onset_seeds"] = _over_seeds(
                 first_seed, done[label], others
+            )
+        for label, (refined,) in finer.items():
+            done[label]["headline"]["theta_refined"] = readout_errors(
+                done[label]["headline"], refined["headline"], theta_refine
             )
         return _protocol_summary(out, done, [*zeros, *ramps], zero.label, notes, results, tag)
 
@@ -241,3 +303,64 @@ def _protocol_summary(
         "paper_control_ramp_s": list(RAMP),
         "figures": figures,
     }
+
+
+def refined_stop(coarse: dict[str, Any], stop_time: float | None) -> float | None:
+    """Where the refined run of a 0 V speed-up stops (s): :data:`REFINED_MARGIN_S` after the
+    coarse run's divergence, or ``stop_time`` (None: the profile's end) if that comes first
+    or the coarse run did not diverge. Past its divergence a whirl can circle the bearing
+    at about 1.5 C with a film of a fraction of a micrometre for many seconds before it
+    touches (on 384 θ cells the 0 V, 1 g·mm run did not touch in 20 minutes of CPU), and
+    nothing read from that orbit is a readout of the bearing."""
+    d = coarse["analysis"].divergence
+    if d is None:
+        return stop_time
+    end = d.time_s + REFINED_MARGIN_S
+    return end if stop_time is None else min(end, stop_time)
+
+
+def readout_errors(coarse: dict[str, Any], fine: dict[str, Any], factor: int) -> dict[str, Any]:
+    """A speed-up's readouts on its grid and on ``factor`` times the θ cells, with errors.
+
+    Each readout's error on the case's grid is the two-grid estimate at order 1 (the
+    lift-off edge crosses cells: docs/lift-off.md), |f₁ − f₂|/(factor − 1), or
+    :data:`READOUT_FLOOR` of f₁ if that is larger. A readout found on one grid only (a run
+    that diverged on one and not on the other) has no error: its text says so.
+
+    Parameters
+    ----------
+    coarse, fine
+        The two runs' headlines (:meth:`foilbearing.orbit.analysis.OrbitAnalysis.headline`).
+    factor
+        How many times the θ cells of ``coarse`` ``fine`` has.
+
+    Returns
+    -------
+    dict
+        ``grid`` (the finer grid), each readout's value on it (its key), ``errors`` (key →
+        error in the key's unit, or None), ``texts`` (key → the case's value with its
+        error, in krpm or Hz, :func:`~foilbearing.study.converged.with_error`) and ``text``,
+        the line the report prints: e.g. "grid error from 192 θ cells: onset 47.9 ± 0.4
+        krpm, whip 63.0 ± 0.2 Hz, divergence 52.7 ± 0.1 krpm".
+    """
+    from foilbearing.study.converged import with_error
+
+    out: dict[str, Any] = {"grid": fine.get("grid"), "errors": {}, "texts": {}}
+    n_theta = (fine.get("grid") or ["?"])[0]
+    named: list[str] = []
+    for key, name, unit, scale in _READOUTS:
+        f1, f2 = coarse.get(key), fine.get(key)
+        out[key] = f2
+        if f1 is None or f2 is None:
+            out["errors"][key] = None
+            if f1 is not None or f2 is not None:
+                here = "none" if f1 is None else f"{f1 * scale:.1f} {unit}"
+                there = "none" if f2 is None else f"{f2 * scale:.1f}"
+                named.append(f"{name} {here} ({there} on {n_theta} θ cells)")
+            continue
+        err = max(abs(f1 - f2) / (factor - 1), READOUT_FLOOR[key] * abs(f1))
+        out["errors"][key] = err
+        out["texts"][key] = with_error(f1 * scale, err * scale)
+        named.append(f"{name} {out['texts'][key]} {unit}")
+    out["text"] = f"grid error from {n_theta} θ cells: " + ", ".join(named) if named else None
+    return out

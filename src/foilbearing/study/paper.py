@@ -43,6 +43,7 @@ def run_study(
     paper_reading: bool = True,
     bifurcation: bool = True,
     seeds: int = 1,
+    theta_refine: int = 1,
 ) -> dict[str, Any]:
     """Run every stage available on ``case`` and write ``out/summary.json``.
 
@@ -62,6 +63,7 @@ def run_study(
         paper_reading=paper_reading,
         bifurcation=bifurcation,
         seeds=seeds,
+        theta_refine=theta_refine,
     ).summary
 
 
@@ -76,6 +78,7 @@ def run_study_result(
     paper_reading: bool = True,
     bifurcation: bool = True,
     seeds: int = 1,
+    theta_refine: int = 1,
 ) -> StudyResult:
     """Run every stage available on ``case``; write ``out/summary.json`` and the report.
 
@@ -110,6 +113,10 @@ def run_study_result(
         With ``orbits``, each 0 V speed-up over that many seeds of the case's disturbance
         (1: the case's alone), its sub-synchronous onset given as a range over them
         (:mod:`foilbearing.study.orbits`); each seed adds a speed-up per 0 V run.
+    theta_refine
+        With ``orbits``, each 0 V speed-up (the case's seed) again on its orbit grid with
+        that many times the θ cells, for its readouts' discretisation error (1: none;
+        :mod:`foilbearing.study.orbits`).
 
     Returns
     -------
@@ -208,7 +215,10 @@ def run_study_result(
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     orbit_runs: dict[str, Any] = {}  # the runs by label, for the report's figures
-    _speed_ups(case, out, results, stage, orbits, paper_reading, schedule, orbit_runs, seeds)
+    _speed_ups(
+        case, out, results, stage, orbits, paper_reading, schedule, orbit_runs, seeds,
+        theta_refine,
+    )  # fmt: skip
 
     _paper_comparison(case, out, results, sweep, onsets, progress, onset_errors)
     return _finish(out, results, stage, orbit_runs)
@@ -224,6 +234,7 @@ def _speed_ups(
     schedule: bool,
     orbit_runs: dict[str, Any],
     seeds: int = 1,
+    theta_refine: int = 1,
 ) -> None:
     """The stages of speed-ups (the protocol, under the paper's reading, the schedule's) on
     one queue of worker processes: each run starts as soon as a core is free, the 0 V runs
@@ -238,10 +249,12 @@ def _speed_ups(
 
         stage("orbits: speed-up 3-90 krpm at 500 rad/s², 0 V and ramps to 50/100/150 V at 6-6.5 s")
         summaries["orbits"] = queue_paper_orbits(
-            queue, case, out, stage, results=orbit_runs, seeds=seeds
+            queue, case, out, stage, results=orbit_runs, seeds=seeds, theta_refine=theta_refine
         )
         if paper_reading and case.actuators is not None:
-            summaries[PAPER_READING_KEY] = queue_paper_reading(queue, case, out, stage, seeds=seeds)
+            summaries[PAPER_READING_KEY] = queue_paper_reading(
+                queue, case, out, stage, seeds=seeds, theta_refine=theta_refine
+            )
     if schedule:
         from foilbearing.study.schedule import queue_schedule
 
@@ -354,6 +367,7 @@ def queue_paper_reading(
     stage: Any,
     stop_time: float | None = None,
     seeds: int = 1,
+    theta_refine: int = 1,
 ) -> Any:
     """:func:`paper_reading_orbits` on a shared queue; returns its summary, to call once the
     queue has drained."""
@@ -370,8 +384,9 @@ def queue_paper_reading(
     reading = replace(reading, rotor=replace(reading.rotor, imbalance=SENSITIVITY_IMBALANCE))
     runs: dict[str, Any] = {}
     protocol = queue_paper_orbits(
-        queue, reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG, seeds=seeds
-    )
+        queue, reading, out, stage, stop_time=stop_time, results=runs, tag=READING_TAG,
+        seeds=seeds, theta_refine=theta_refine,
+    )  # fmt: skip
 
     def summary() -> dict[str, Any]:
         stage_result = protocol()

@@ -28,6 +28,8 @@ class OrbitRun:
     and ``volts`` and ``ramp`` are not used. ``seed`` (None: the case's) is the seed of
     the case's random disturbance force (:mod:`foilbearing.orbit.disturbance`): another
     draw of its tones' frequencies and phases, for the spread of a readout over seeds.
+    ``theta_refine`` runs it on the case's orbit grid with that many times the θ cells (the
+    axial cells, order and κ held), for the readouts' discretisation error.
     """
 
     volts: float
@@ -38,6 +40,7 @@ class OrbitRun:
     #: Prefix of the label (and so of its files): a reading's runs beside the case's own.
     tag: str = ""
     seed: int | None = None
+    theta_refine: int = 1
 
     @property
     def constant(self) -> bool:
@@ -54,12 +57,16 @@ class OrbitRun:
             tail = "" if self.ramp is None else f"_ramp{self.ramp[0]:.2f}s"
             head = f"{self.volts:g}V{tail}"
         tail = "" if self.seed is None else f"_seed{self.seed}"
+        if self.theta_refine != 1:
+            tail += f"_theta{self.theta_refine}x"
         return f"{self.tag}{head}_{self.imbalance * 1e6:g}gmm{tail}"
 
     def describe(self) -> str:
         imbalance = f"imbalance {self.imbalance * 1e6:g} g·mm"
         if self.seed is not None:
             imbalance += f", disturbance seed {self.seed}"
+        if self.theta_refine != 1:
+            imbalance += f", {self.theta_refine} × the θ cells"
         if self.schedule is not None:
             return f"voltage schedule, {imbalance}"
         if self.constant:
@@ -82,6 +89,9 @@ def run_one(case: Case, run: OrbitRun, out: Path, stop_time: float | None = None
     case = replace(case, rotor=replace(case.rotor, imbalance=run.imbalance))
     if run.seed is not None and case.disturbance is not None:
         case = replace(case, disturbance=replace(case.disturbance, seed=run.seed))
+    if run.theta_refine != 1:
+        n_theta = case.grid.orbit_shape[0] * run.theta_refine
+        case = replace(case, grid=replace(case.grid, orbit_n_theta=n_theta))
     profile = linear_ramp(3000 * RPM, 90000 * RPM, 500.0)
     program = None if run.ramp is None else voltage_ramp(*run.ramp, run.volts)
     schedule_spec = None

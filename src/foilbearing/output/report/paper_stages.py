@@ -365,6 +365,7 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
         ("sub-synchronous intervals", lambda r: intervals(r) or None, ""),
         ("divergence (krpm)", _krpm("divergence_speed_rpm"), ".1f"),
         ("divergence over the seeds (krpm)", over_seeds("divergence_speed_rpm"), ""),
+        ("with the grid's error", lambda r: (r.get("theta_refined") or {}).get("text"), ""),
         ("max sub-sync amplitude (µm)", _key("max_subsync_amplitude_um"), ".1f"),
         ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
         ("wall time (s)", _key("wall_time_s"), ".0f"),
