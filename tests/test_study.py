@@ -232,6 +232,12 @@ def test_a_readout_error_is_the_two_grid_difference_or_its_floor() -> None:
     assert got["onset_speed_rpm"] == 47_856.0 and got["grid"] == [192, 4]
     assert got["text"].startswith("grid error from 192 θ cells: onset 47 ± 4 krpm, whip 62.9 ± ")
     assert "divergence 52.7 krpm (none on 192 θ cells)" in got["text"]
+    # the report's speed-up table prints each readout to the digits its error supports
+    from foilbearing.output.report.paper_stages import _orbits
+
+    page = _orbits({"runs": [coarse | {"voltage_V": 0.0, "theta_refined": got}]}, {})
+    assert ">47 ± 4<" in page and ">62.9 ± 1.3<" in page
+    assert "192 × 4: onset 47.86 krpm, whip 62.9 Hz, divergence none" in page
     # on four times the cells the difference spans three of the finer grid's steps
     assert readout_errors(coarse, fine | {"onset_speed_rpm": 48_670.0}, 4)["errors"][
         "onset_speed_rpm"
