@@ -23,7 +23,8 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -q -n auto --dist loadfile --durations=15 --cov --cov-report=term -m "not browser"
 
 # The docs site loaded page by page in headless Chromium (tests/test_docs.py, marker
-# browser), alone on the machine: CI runs it after `make test`.
+# browser), alone on the machine: CI runs it after `make test`, on the site that one built
+# (FOILBEARING_DOCS_SITE, set by .ci/run).
 docs-check: $(STAMP)
 	bash scripts/setup_chromium.sh
 	$(BIN)/python -m pytest -q -p no:cacheprovider -m browser tests/test_docs.py
