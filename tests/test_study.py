@@ -248,13 +248,10 @@ def test_a_refined_run_stops_a_margin_after_the_coarse_divergence() -> None:
     """The refined run reads the onset, whip and divergence, not the orbit of about 1.5 C a
     whirl can circle in for many seconds after it diverged: it stops REFINED_MARGIN_S after
     the coarse run's divergence (or at the study's own stop, if sooner)."""
-    from types import SimpleNamespace
-
     from foilbearing.signals import Divergence
     from foilbearing.study.orbits import REFINED_MARGIN_S, refined_stop
 
-    diverged = {"analysis": SimpleNamespace(divergence=Divergence(52_700.0, 10.4, "orbit radius",
-                                                                 None, 0.0))}  # fmt: skip
+    diverged = Divergence(52_700.0, 10.4, "orbit radius", None, 0.0)
     assert refined_stop(diverged, None) == pytest.approx(10.4 + REFINED_MARGIN_S)
     assert refined_stop(diverged, 5.0) == 5.0
-    assert refined_stop({"analysis": SimpleNamespace(divergence=None)}, None) is None
+    assert refined_stop(None, None) is None

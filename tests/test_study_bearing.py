@@ -144,6 +144,9 @@ def test_rigid_bearing_with_reference_values_and_its_orbit(
     orbit = out["bearing_orbit"]
     assert orbit["end_speed_rpm"] == pytest.approx(12000, rel=1e-3) or orbit["status"] == "contact"
     assert orbit["mean_power_loss_W"] > 0
+    # the CLI's default --theta-refine 2: the speed-up again on 64 θ cells, its file beside
+    assert orbit["theta_refined"]["grid"] == [64, 4]
+    assert (tmp_path / "orbit_speedup_theta2x.nc").is_file()
     rows = {r["quantity"].split(" (")[0]: r for r in out["reference_comparison"]["rows"]}
     onset = rows["linear onset speed of instability"]
     assert onset["reference"] == pytest.approx(30000.0)

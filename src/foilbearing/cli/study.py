@@ -81,9 +81,10 @@ def register(sub: Any) -> argparse.ArgumentParser:
         type=int,
         default=2,
         metavar="N",
-        help="each 0 V speed-up (the case's seed) again on its orbit grid with N times the "
-        "θ cells, so that its onset, whip and divergence carry their estimated grid error "
-        "(default 2; 1: none; on the paper's case about twice a 0 V run's CPU)",
+        help="each 0 V speed-up of the paper's protocol (the case's seed), or a bearing's "
+        "own speed-up, again on its orbit grid with N times the θ cells, so that its onset, "
+        "whip and divergence carry their estimated grid error (default 2; 1: none; about "
+        "twice the run's CPU)",
     )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=cmd_study)

@@ -336,6 +336,7 @@ def _orbit(
     out: Path,
     stage: Callable[[str], None],
     onset_whirl_hz: float | None = None,
+    theta_refine: int = 1,
 ) -> dict[str, Any]:
     from foilbearing.control import linear_ramp, voltage_ramp
     from foilbearing.io import write_with
@@ -378,6 +379,26 @@ def _orbit(
     head = analysis.headline(result) | {"netcdf": str(path)}
     figures = write_orbit_figures(result, analysis, out, "speedup", onset_whirl_hz=onset_whirl_hz)
     stage(f"  orbit: {result.message} ({result.wall_time:.0f} s)")
+    if theta_refine > 1:
+        from dataclasses import replace
+
+        from foilbearing.study.orbits import readout_errors, refined_stop
+
+        n_theta = case.grid.orbit_shape[0] * theta_refine
+        finer = replace(case, grid=replace(case.grid, orbit_n_theta=n_theta))
+        stop = refined_stop(analysis.divergence, None)
+        try:
+            fine = simulate(finer, profile, program, stop_time=stop)
+        except (InputError, SolverError) as exc:  # the readouts stay, without their error
+            stage(f"  orbit on {n_theta} θ cells: could not run ({exc}); no grid error")
+            return head | {"figures": [str(p) for p in figures]}
+        fine_path = out / f"orbit_speedup_theta{theta_refine}x.nc"
+        fine_spec = RunSpec.of(profile, program, case=finer.source, settings=fine.settings)
+        write_with(fine_path, lambda tmp: to_netcdf(fine, fine_spec, tmp))
+        head["theta_refined"] = readout_errors(
+            head, analyse_orbit(fine).headline(fine), theta_refine
+        )
+        stage(f"  orbit on {n_theta} θ cells: {head['theta_refined']['text'] or fine.message}")
     return head | {"figures": [str(p) for p in figures]}
 
 
@@ -415,9 +436,19 @@ def reference_rows(plan: StudyPlan, results: dict[str, Any]) -> list[dict[str, A
 
 
 def bearing_study(
-    case: Case, plan: StudyPlan, out: Path, stage: Callable[[str], None], *, orbits: bool = True
+    case: Case,
+    plan: StudyPlan,
+    out: Path,
+    stage: Callable[[str], None],
+    *,
+    orbits: bool = True,
+    theta_refine: int = 1,
 ) -> dict[str, Any]:
-    """Run the plan's stages on ``case`` (see the module docstring); returns their summaries."""
+    """Run the plan's stages on ``case`` (see the module docstring); returns their summaries.
+
+    ``theta_refine`` > 1: the speed-up again with that many times the θ cells, its onset,
+    whip and divergence with their grid error (:func:`foilbearing.study.orbits.readout_errors`).
+    """
     # The plan as it ran: the speed-up only where --orbits let it
     ran = plan.describe() | {"orbit": bool(orbits and plan.orbit)}
     if not ran["orbit"]:
@@ -449,7 +480,9 @@ def bearing_study(
             + ("" if ramp is None else f", voltages to {ramp[2]:g} V at {ramp[0]:g}-{ramp[1]:g} s")
         )
         onset = (results.get("bearing_stability") or {}).get("onset") or {}
-        results["bearing_orbit"] = _orbit(case, plan, out, stage, onset.get("whirl_frequency_Hz"))
+        results["bearing_orbit"] = _orbit(
+            case, plan, out, stage, onset.get("whirl_frequency_Hz"), theta_refine
+        )
     if any(k in CASE_POINT_KEYS for k in plan.reference):
         results["case_point"] = _case_point(case, found)
     if plan.reference:

@@ -70,8 +70,8 @@ _READOUTS = (
 )
 
 #: How long a refined run goes on after the coarse run's divergence, s: 4.8 krpm at the
-#: protocol's 500 rad/s², three times the largest move of the 1 g·mm divergence measured
-#: from 96 to 384 θ cells (1.6 %, 0.9 krpm).
+#: protocol's 500 rad/s², five times the largest move of the 1 g·mm divergence measured
+#: from 96 to 384 θ cells (1.7 %, 0.9 krpm).
 REFINED_MARGIN_S = 1.0
 
 #: The least relative error stated for a speed-up readout, beside the two-grid difference:
@@ -187,7 +187,7 @@ def queue_paper_orbits(
             queue.submit(
                 case, replace(run, theta_refine=theta_refine), out,
                 finer.setdefault(run.label, []).append, priority=2,
-                stop_time=refined_stop(first, stop_time),
+                stop_time=refined_stop(first["analysis"].divergence, stop_time),
             )  # fmt: skip
 
         return done_then_refine
@@ -305,17 +305,17 @@ def _protocol_summary(
     }
 
 
-def refined_stop(coarse: dict[str, Any], stop_time: float | None) -> float | None:
-    """Where the refined run of a 0 V speed-up stops (s): :data:`REFINED_MARGIN_S` after the
-    coarse run's divergence, or ``stop_time`` (None: the profile's end) if that comes first
-    or the coarse run did not diverge. Past its divergence a whirl can circle the bearing
+def refined_stop(divergence: Any, stop_time: float | None) -> float | None:
+    """Where the refined run of a speed-up stops (s): :data:`REFINED_MARGIN_S` after the
+    coarse run's ``divergence`` (a :class:`foilbearing.signals.Divergence`, or None), or
+    ``stop_time`` (None: the profile's end) if that comes first or the coarse run did not
+    diverge. Past its divergence a whirl can circle the bearing
     at about 1.5 C with a film of a fraction of a micrometre for many seconds before it
     touches (on 384 θ cells the 0 V, 1 g·mm run did not touch in 20 minutes of CPU), and
     nothing read from that orbit is a readout of the bearing."""
-    d = coarse["analysis"].divergence
-    if d is None:
+    if divergence is None:
         return stop_time
-    end = d.time_s + REFINED_MARGIN_S
+    end = divergence.time_s + REFINED_MARGIN_S
     return end if stop_time is None else min(end, stop_time)
 
 
@@ -340,8 +340,8 @@ def readout_errors(coarse: dict[str, Any], fine: dict[str, Any], factor: int) ->
         ``grid`` (the finer grid), each readout's value on it (its key), ``errors`` (key →
         error in the key's unit, or None), ``texts`` (key → the case's value with its
         error, in krpm or Hz, :func:`~foilbearing.study.converged.with_error`) and ``text``,
-        the line the report prints: e.g. "grid error from 192 θ cells: onset 47.9 ± 0.4
-        krpm, whip 63.0 ± 0.2 Hz, divergence 52.7 ± 0.1 krpm".
+        the line the report prints: e.g. "grid error from 192 θ cells: onset 48 ± 4 krpm,
+        whip 63.0 ± 1.3 Hz, divergence 52.7 ± 1.1 krpm".
     """
     from foilbearing.study.converged import with_error
 

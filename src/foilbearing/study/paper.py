@@ -183,7 +183,7 @@ def run_study_result(
                 "figures": [str(p) for p in write_identification_figures(ident, out, names)],
             }
 
-        results |= bearing_study(case, plan, out, stage, orbits=orbits)
+        results |= bearing_study(case, plan, out, stage, orbits=orbits, theta_refine=theta_refine)
         if bifurcation and case.actuators is None:
             from foilbearing.study.bifurcation import passive_bifurcation_stage
 

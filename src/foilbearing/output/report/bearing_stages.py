@@ -13,7 +13,9 @@ from foilbearing.output.report.tables import (
     _key,
     _krpm,
     _records,
+    _refined_readouts,
     _table,
+    _with_grid_error,
 )
 
 __all__: list[str] = []
@@ -124,9 +126,13 @@ def _onsets_against(*lead: tuple[str, str, str]) -> Callable[[dict[str, Any], di
 
 def _bearing_orbit(d: dict[str, Any], case: dict[str, Any]) -> str:
     rows = [
-        ["sub-synchronous onset (krpm)", _f(_krpm("onset_speed_rpm")(d), ".1f")],
-        ["whip frequency (Hz)", _f(d.get("whip_frequency_Hz"), ".0f")],
-        ["divergence (krpm)", _f(_krpm("divergence_speed_rpm")(d), ".1f")],
+        [
+            "sub-synchronous onset (krpm)",
+            _f(_with_grid_error("onset_speed_rpm", 1e-3, ".1f")(d), ""),
+        ],
+        ["whip frequency (Hz)", _f(_with_grid_error("whip_frequency_Hz", 1.0, ".0f")(d), "")],
+        ["divergence (krpm)", _f(_with_grid_error("divergence_speed_rpm", 1e-3, ".1f")(d), "")],
+        ["on the refined θ grid", _f(_refined_readouts(d), "")],
         ["largest sub-synchronous amplitude (µm)", _f(d.get("max_subsync_amplitude_um"), ".2f")],
         ["end speed (krpm)", _f(_krpm("end_speed_rpm")(d), ".1f")],
         ["mean power loss (W)", _f(d.get("mean_power_loss_W"), ".2f")],

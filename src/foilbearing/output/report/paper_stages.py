@@ -15,7 +15,9 @@ from foilbearing.output.report.tables import (
     _krpm,
     _nearest,
     _records,
+    _refined_readouts,
     _transpose,
+    _with_grid_error,
 )
 
 __all__: list[str] = []
@@ -352,36 +354,6 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
 
         return get
 
-    def with_error(key: str, scale: float, spec: str) -> Callable[[dict[str, Any]], str | None]:
-        """A readout with its grid error where the run was refined
-        (:func:`foilbearing.study.orbits.readout_errors`), printed to the digits the error
-        supports; otherwise the value to ``spec``."""
-
-        def get(r: dict[str, Any]) -> str | None:
-            text = ((r.get("theta_refined") or {}).get("texts") or {}).get(key)
-            if text:
-                return str(text)
-            value = r.get(key)
-            return None if value is None else format(float(value) * scale, spec)
-
-        return get
-
-    def finer(r: dict[str, Any]) -> str | None:
-        """The readouts on the refined grid."""
-        f = r.get("theta_refined")
-        if not f:
-            return None
-        parts = [
-            f"{name} {'none' if f.get(key) is None else format(f[key] * scale, spec)}{unit}"
-            for key, name, scale, spec, unit in (
-                ("onset_speed_rpm", "onset", 1e-3, ".2f", " krpm"),
-                ("whip_frequency_Hz", "whip", 1.0, ".1f", " Hz"),
-                ("divergence_speed_rpm", "divergence", 1e-3, ".2f", " krpm"),
-            )
-        ]
-        grid = f.get("grid") or ["?", "?"]
-        return f"{grid[0]} × {grid[1]}: " + ", ".join(parts)
-
     def run(r: dict[str, Any]) -> str | None:
         described = r.get("description")
         volts = r.get("voltage_V")
@@ -389,13 +361,13 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
 
     cols: list[Column] = [
         ("run", run, ""),
-        ("sub-sync onset (krpm)", with_error("onset_speed_rpm", 1e-3, ".1f"), ""),
+        ("sub-sync onset (krpm)", _with_grid_error("onset_speed_rpm", 1e-3, ".1f"), ""),
         ("onset over the seeds (krpm)", over_seeds("onset_speed_rpm"), ""),
-        ("whip (Hz)", with_error("whip_frequency_Hz", 1.0, ".0f"), ""),
+        ("whip (Hz)", _with_grid_error("whip_frequency_Hz", 1.0, ".0f"), ""),
         ("sub-synchronous intervals", lambda r: intervals(r) or None, ""),
-        ("divergence (krpm)", with_error("divergence_speed_rpm", 1e-3, ".1f"), ""),
+        ("divergence (krpm)", _with_grid_error("divergence_speed_rpm", 1e-3, ".1f"), ""),
         ("divergence over the seeds (krpm)", over_seeds("divergence_speed_rpm"), ""),
-        ("on the refined θ grid", finer, ""),
+        ("on the refined θ grid", _refined_readouts, ""),
         ("max sub-sync amplitude (µm)", _key("max_subsync_amplitude_um"), ".1f"),
         ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
         ("wall time (s)", _key("wall_time_s"), ".0f"),

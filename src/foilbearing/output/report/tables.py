@@ -65,6 +65,43 @@ def _krpm(name: str) -> Callable[[dict[str, Any]], Any]:
     return lambda r: None if r.get(name) is None else float(r[name]) / 1e3
 
 
+#: A speed-up's readouts a refined run checks (foilbearing.study.orbits.readout_errors): key,
+#: name, the factor to the unit printed, the format on the refined grid and the unit.
+_REFINED_READOUTS = (
+    ("onset_speed_rpm", "onset", 1e-3, ".2f", " krpm"),
+    ("whip_frequency_Hz", "whip", 1.0, ".1f", " Hz"),
+    ("divergence_speed_rpm", "divergence", 1e-3, ".2f", " krpm"),
+)
+
+
+def _with_grid_error(key: str, scale: float, spec: str) -> Callable[[dict[str, Any]], str | None]:
+    """A speed-up's readout with its grid error where the run was refined
+    (:func:`foilbearing.study.orbits.readout_errors`), to the digits the error supports;
+    otherwise its value times ``scale`` to ``spec``."""
+
+    def get(r: dict[str, Any]) -> str | None:
+        text = ((r.get("theta_refined") or {}).get("texts") or {}).get(key)
+        if text:
+            return str(text)
+        value = r.get(key)
+        return None if value is None else format(float(value) * scale, spec)
+
+    return get
+
+
+def _refined_readouts(r: dict[str, Any]) -> str | None:
+    """A speed-up's readouts on its refined grid: "192 × 4: onset 47.81 krpm, ..."."""
+    f = r.get("theta_refined")
+    if not f:
+        return None
+    parts = [
+        f"{name} {'none' if f.get(key) is None else format(f[key] * scale, spec)}{unit}"
+        for key, name, scale, spec, unit in _REFINED_READOUTS
+    ]
+    grid = f.get("grid") or ["?", "?"]
+    return f"{grid[0]} × {grid[1]}: " + ", ".join(parts)
+
+
 def _nearest(values: list[float], target: float) -> float:
     return min(values, key=lambda s: abs(s - target))
 
