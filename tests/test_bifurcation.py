@@ -367,16 +367,21 @@ def test_the_study_stage_runs_each_reading_as_a_dask_sweep(tmp_path) -> None:
     """The study's stage (issue 31): at 150 V, under the case's reading and the paper's,
     each branch a point of a Dask sweep whose file is written beside it; each row is the
     API's branch (its linear onset and type), the figure is written, and the report's
-    section names the readings and the grid."""
+    section names the readings and the grid; refined on twice the θ cells, each row's
+    finer onset is that grid's own and the report prints the errors."""
+    from foilbearing.analysis.stability import onset_speed
     from foilbearing.bifurcation.bearing import whirl_branch_headline
     from foilbearing.case import Grid, default_case
+    from foilbearing.constants import RPM
     from foilbearing.output.report.sections import _TABLES
     from foilbearing.study.bifurcation import READINGS, SCAN, bifurcation_stage
     from foilbearing.units import parse_quantity
 
     case = default_case()
     lines: list[str] = []
-    out = bifurcation_stage(case, tmp_path, lines.append, voltages=(150.0,), steps=0, grid=(32, 4))
+    out = bifurcation_stage(
+        case, tmp_path, lines.append, voltages=(150.0,), steps=0, grid=(32, 4), theta_refine=2
+    )
     assert [r["reading"] for r in out["rows"]] == ["local + compliant", "lobe + held"]
     assert all(r["status"] == "ok" and r["cycles"] == 2 for r in out["rows"])
     start, stop, step = (parse_quantity(s, "speed", field="scan") for s in SCAN)
@@ -400,9 +405,22 @@ def test_the_study_stage_runs_each_reading_as_a_dask_sweep(tmp_path) -> None:
         upper = direct["hopf_speed_rpm"] + 2500.0
         assert row["hopf_speed_rpm"] == pytest.approx(direct["hopf_speed_rpm"], abs=2e-4 * upper)
         assert row["bifurcation_type"] == direct["bifurcation_type"]
+        # refined (--theta-refine 2): the finer onset is the 64 × 4 grid's own, and each
+        # error printed is at least the two grids' difference
+        fine = row["theta_refined"]
+        finer = replace(coarse, grid=replace(coarse.grid, n_theta=64, orbit_n_theta=64))
+        alone = onset_speed(finer.with_actuator_reading(*reading).orbit_case(), scan)
+        assert fine["grid"] == [64, 4]
+        high = alone.onset_speed / RPM + 2500.0
+        assert fine["hopf_speed_rpm"] == pytest.approx(alone.onset_speed / RPM, abs=2e-4 * high)
+        step = abs(fine["hopf_speed_rpm"] - row["hopf_speed_rpm"])
+        assert fine["errors"]["hopf_speed_rpm"] >= step
+        assert "grid error from 64 θ cells" in fine["text"]
+    assert len(out["sweep_files"]) == 4 and out["refined_grid"] == [64, 4]
     assert all(Path(f).exists() for f in out["sweep_files"] + out["figures"])
     html = _TABLES["bifurcation"](out, {})
     assert "lobe + held" in html and "32 × 4" in html and "foilbearing sweep" in html
+    assert "64 × 4" in html and " ± " in html
 
 
 def test_the_study_stage_s_sweep_file_carries_the_whole_orbit_grid(tmp_path) -> None:

@@ -298,6 +298,12 @@ def test_the_study_of_a_passive_bearing_runs_the_bifurcation_command_s_branch(
     low, _, high = branch["scan_rpm"]
     assert low < branch["hopf_speed_rpm"] < high
     assert "whirl_branch.png" in names
+    # the CLI's default --theta-refine 2: the branch again on 64 θ cells, the onset's
+    # error at least the two grids' difference
+    fine = branch["theta_refined"]
+    assert fine["grid"] == [64, 4]
+    moved = abs(fine["hopf_speed_rpm"] - branch["hopf_speed_rpm"])
+    assert fine["errors"]["hopf_speed_rpm"] >= moved
     scan = f"{low!r}rpm:{high!r}rpm:{(high - low) / 2!r}rpm"
     direct = _run(["bifurcation", path, "--speed-range", scan, "--steps", "3"], capsys)
     assert direct["hopf_speed_rpm"] == pytest.approx(branch["hopf_speed_rpm"], rel=1e-9)

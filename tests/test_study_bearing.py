@@ -98,7 +98,9 @@ def test_a_load_no_speed_can_carry_is_refused_before_work(write_case, capsys) ->
 @pytest.mark.slow
 def test_passive_foil_bearing_study_runs_every_stage(write_case, tmp_path: Path, capsys) -> None:
     path = write_case("gfb", n_theta=32, n_z=4, edit=_passive)
-    assert main(["study", str(path), "--out", str(tmp_path), "--orbits", "none", "--json"]) == 0
+    # --theta-refine 1: the refined branch is checked on the rigid bearing and in the report
+    argv = ["study", str(path), "--out", str(tmp_path), "--orbits", "none", "--json"]
+    assert main([*argv, "--theta-refine", "1"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert "paper_comparison" not in out and out["plan"]["bearing_kind"] == "GFB"
     static = out["bearing_static"]["points"]
@@ -194,7 +196,7 @@ def test_shimmed_bearing_onset_against_shim_thickness(write_case, tmp_path: Path
         d["study"] = {"orbit": False, "speed_range": ["10000 rpm", "50000 rpm", "10000 rpm"]}
 
     path = write_case("shimmed", n_theta=32, n_z=4, edit=shimmed)
-    assert main(["study", str(path), "--out", str(tmp_path), "--json"]) == 0
+    assert main(["study", str(path), "--out", str(tmp_path), "--json", "--theta-refine", "1"]) == 0
     rows = {r["scale"]: r for r in json.loads(capsys.readouterr().out)["shim_stability"]["rows"]}
     assert sorted(rows) == [0.0, 0.5, 1.0, 1.5]
 
@@ -203,7 +205,8 @@ def test_shimmed_bearing_onset_against_shim_thickness(write_case, tmp_path: Path
         d["study"] = {"orbit": False, "speed_range": ["10000 rpm", "50000 rpm", "10000 rpm"]}
 
     bare = write_case("bare", n_theta=32, n_z=4, edit=passive)
-    assert main(["study", str(bare), "--out", str(tmp_path / "bare"), "--json"]) == 0
+    bare_out = ["--out", str(tmp_path / "bare"), "--json", "--theta-refine", "1"]
+    assert main(["study", str(bare), *bare_out]) == 0
     onset = json.loads(capsys.readouterr().out)["bearing_stability"]["onset"]
     assert rows[0.0]["onset_speed_rpm"] == pytest.approx(onset["onset_speed_rpm"], rel=1e-9)
     assert rows[1.5]["onset_speed_rpm"] > 1.5 * rows[0.0]["onset_speed_rpm"]

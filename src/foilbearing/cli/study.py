@@ -83,8 +83,9 @@ def register(sub: Any) -> argparse.ArgumentParser:
         metavar="N",
         help="each 0 V speed-up of the paper's protocol (the case's seed), or a bearing's "
         "own speed-up, again on its orbit grid with N times the θ cells, so that its onset, "
-        "whip and divergence carry their estimated grid error (default 2; 1: none; about "
-        "twice the run's CPU)",
+        "whip and divergence carry their estimated grid error; every limit-cycle branch "
+        "too, for its onset, whirl and largest stable cycle (default 2; 1: none; about "
+        "twice the runs' CPU)",
     )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=cmd_study)

@@ -45,6 +45,7 @@ __all__ = [
     "published_case",
     "published_onsets",
     "refine_onset",
+    "two_grid_readouts",
     "whirl_error",
     "with_error",
 ]
@@ -87,6 +88,46 @@ def with_error(value: float, error: float) -> str:
     if digits < 0:  # an error of tens: round the value to them as well
         return f"{round(value / step) * step:.0f} ± {shown:.0f}"
     return f"{value:.{decimals}f} ± {shown:.{decimals}f}"
+
+
+def two_grid_readouts(
+    readouts: Sequence[tuple[str, str, str, float]],
+    coarse: Mapping[str, Any],
+    fine: Mapping[str, Any],
+    error: Callable[[str, float, float], float],
+    n_theta: Any,
+    lost: str = "none",
+) -> tuple[dict[str, Any], list[str]]:
+    """Readouts on two grids, each with its error: the loop the refined orbits and the
+    refined limit-cycle branches share.
+
+    ``readouts`` are (key, name, unit, scale to the unit); ``error(key, f1, f2)`` gives
+    the error of the coarse value f1 from the finer f2. A readout found on one grid only
+    has no error (None); its text names both (``lost`` where the finer grid has none).
+
+    Returns
+    -------
+    tuple
+        ``{key: finer value, "errors": {key: error or None}, "texts": {key: "f1 ± e"}}``
+        and the list of texts naming each readout ("onset 52.7 ± 0.4 krpm", ...).
+    """
+    out: dict[str, Any] = {"errors": {}, "texts": {}}
+    named: list[str] = []
+    for key, name, unit, scale in readouts:
+        f1, f2 = coarse.get(key), fine.get(key)
+        out[key] = f2
+        if f1 is None or f2 is None:
+            out["errors"][key] = None
+            if f1 is not None or f2 is not None:
+                here = "none" if f1 is None else f"{f1 * scale:.1f} {unit}"
+                there = lost if f2 is None else f"{f2 * scale:.1f}"
+                named.append(f"{name} {here} ({there} on {n_theta} θ cells)")
+            continue
+        err = error(key, f1, f2)
+        out["errors"][key] = err
+        out["texts"][key] = with_error(f1 * scale, err * scale)
+        named.append(f"{name} {out['texts'][key]} {unit}")
+    return out, named
 
 
 def published_case(case: Case) -> Case:

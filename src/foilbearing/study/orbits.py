@@ -343,24 +343,14 @@ def readout_errors(coarse: dict[str, Any], fine: dict[str, Any], factor: int) ->
         the line the report prints: e.g. "grid error from 192 θ cells: onset 48 ± 4 krpm,
         whip 63.0 ± 1.3 Hz, divergence 52.7 ± 1.1 krpm".
     """
-    from foilbearing.study.converged import with_error
+    from foilbearing.study.converged import two_grid_readouts
 
-    out: dict[str, Any] = {"grid": fine.get("grid"), "errors": {}, "texts": {}}
     n_theta = (fine.get("grid") or ["?"])[0]
-    named: list[str] = []
-    for key, name, unit, scale in _READOUTS:
-        f1, f2 = coarse.get(key), fine.get(key)
-        out[key] = f2
-        if f1 is None or f2 is None:
-            out["errors"][key] = None
-            if f1 is not None or f2 is not None:
-                here = "none" if f1 is None else f"{f1 * scale:.1f} {unit}"
-                there = "none" if f2 is None else f"{f2 * scale:.1f}"
-                named.append(f"{name} {here} ({there} on {n_theta} θ cells)")
-            continue
-        err = max(abs(f1 - f2) / (factor - 1), READOUT_FLOOR[key] * abs(f1))
-        out["errors"][key] = err
-        out["texts"][key] = with_error(f1 * scale, err * scale)
-        named.append(f"{name} {out['texts'][key]} {unit}")
+
+    def error(key: str, f1: float, f2: float) -> float:
+        return max(abs(f1 - f2) / (factor - 1), READOUT_FLOOR[key] * abs(f1))
+
+    out, named = two_grid_readouts(_READOUTS, coarse, fine, error, n_theta)
+    out["grid"] = fine.get("grid")
     out["text"] = f"grid error from {n_theta} θ cells: " + ", ".join(named) if named else None
     return out

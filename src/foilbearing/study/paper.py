@@ -116,7 +116,8 @@ def run_study_result(
     theta_refine
         With ``orbits``, each 0 V speed-up (the case's seed) again on its orbit grid with
         that many times the θ cells, for its readouts' discretisation error (1: none;
-        :mod:`foilbearing.study.orbits`).
+        :mod:`foilbearing.study.orbits`); with ``bifurcation``, every limit-cycle branch
+        as well (:func:`~foilbearing.study.bifurcation.cycle_errors`).
 
     Returns
     -------
@@ -189,7 +190,7 @@ def run_study_result(
 
             onset = (results.get("bearing_stability") or {}).get("onset") or {}
             results["bifurcation"] = passive_bifurcation_stage(
-                case, out, stage, onset.get("onset_speed_rpm")
+                case, out, stage, onset.get("onset_speed_rpm"), theta_refine
             )
         if schedule and case.actuators is not None:
             from foilbearing.study.schedule import schedule_stage
@@ -207,7 +208,7 @@ def run_study_result(
         if bifurcation:
             from foilbearing.study.bifurcation import bifurcation_stage
 
-            results["bifurcation"] = bifurcation_stage(case, out, stage)
+            results["bifurcation"] = bifurcation_stage(case, out, stage, theta_refine=theta_refine)
             write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     if uncertainty != "none":

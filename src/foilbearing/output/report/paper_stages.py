@@ -299,14 +299,32 @@ def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
         ("reading of the actuator", _key("reading"), ""),
         ("voltage (V)", _key("voltage_V"), "g"),
         ("Hopf bifurcation", _key("bifurcation_type"), ""),
-        ("linear onset (krpm)", _krpm("hopf_speed_rpm"), ".1f"),
-        ("whirl (Hz)", _key("linear_whirl_frequency_Hz"), ".0f"),
-        ("speed limit (krpm)", _krpm("speed_limit_rpm"), ".1f"),
-        ("largest stable cycle (µm)", _key("largest_stable_cycle_um"), ".1f"),
+        ("linear onset (krpm)", _with_grid_error("hopf_speed_rpm", 1e-3, ".1f"), ""),
+        ("whirl (Hz)", _with_grid_error("linear_whirl_frequency_Hz", 1.0, ".0f"), ""),
+        ("speed limit (krpm)", _with_grid_error("speed_limit_rpm", 1e-3, ".1f"), ""),
+        ("largest stable cycle (µm)", _with_grid_error("largest_stable_cycle_um", 1.0, ".1f"), ""),
+        ("its speed past the onset (%)", _scaled("largest_stable_cycle_past_onset", 100.0), ".2f"),
+        ("on the refined grid", _refined_type, ""),
         ("cycles", _key("cycles"), "d"),
         ("status", _key("status"), ""),
     ]
     grid = d.get("grid") or ["?", "?"]
+    if "scan_rpm" in d:  # a bearing of its own: one branch, no readings of an actuator
+        fine = (d.get("theta_refined") or {}).get("grid")
+        note = (
+            f'<p class="note">{escape(str(d.get("message", "")))} The branch from the '
+            f"linear onset on the orbit grid {grid[0]} × {grid[1]}, as "
+            "<code>foilbearing bifurcation CASE</code> gives it (docs/bifurcation.md)"
+            + (
+                f"; a value printed ± carries the difference to the same branch on "
+                f"{fine[0]} × {fine[1]} cells (the cycle's at the same distance past "
+                "each grid's onset)."
+                if fine
+                else "."
+            )
+            + "</p>"
+        )
+        return note + _records(d.get("rows", []), cols[2:-1])
     label = d.get("grid_label") or f"{grid[0]} × {grid[1]}"
     files = ", ".join(f"<code>{escape(Path(f).name)}</code>" for f in d.get("sweep_files", []))
     note = (
@@ -327,7 +345,29 @@ def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
         f"Each reading is a Dask sweep: rerun or extend {files} with "
         "<code>foilbearing sweep FILE --out RESULT</code>.</p>"
     )
+    fine = d.get("refined_grid")
+    if fine:
+        note += (
+            f'<p class="note">Each branch was run again on {fine[0]} × {fine[1]} cells '
+            "(<code>--theta-refine</code>); a value printed ± carries the two grids' "
+            "difference: for the onset, its whirl and the speed limit at least the "
+            "published onsets' 0.7 %; for the largest stable cycle, the finer branch's "
+            "amplitude at the same distance past its own onset, relative to the onset "
+            "speed (the onset's move is the onset's error; near it a cycle grows as the "
+            "square root of that distance). A branch whose type differs between the two "
+            "grids bends by less than the grid resolves: its cycle's error is the cycle "
+            "itself.</p>"
+        )
     return note + _records(d.get("rows", []), cols)
+
+
+def _refined_type(r: dict[str, Any]) -> str | None:
+    """The Hopf type on a refined branch's grid: "192 × 4: supercritical"."""
+    f = r.get("theta_refined")
+    if not f:
+        return None
+    grid = f.get("grid") or ["?", "?"]
+    return f"{grid[0]} × {grid[1]}: {f.get('bifurcation_type') or 'no branch'}"
 
 
 def _scaled(name: str, factor: float) -> Callable[[dict[str, Any]], Any]:
