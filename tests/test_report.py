@@ -323,7 +323,13 @@ def study_out(tmp_path_factory: pytest.TempPathFactory) -> Path:
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(schedule, "SCHEDULE_SPEEDS_RPM", SCHEDULE_SPEEDS)
         result = run_study_result(
-            default_case(), out, progress=False, orbits=False, uncertainty="none", bifurcation=False
+            default_case(),
+            out,
+            progress=False,
+            orbits=False,
+            uncertainty="none",
+            bifurcation=False,
+            theta_refine=2,  # the statics and coefficients with their grid error (3 s)
         )
     assert {p.name for ps in result.figures.values() for p in ps} == {
         p.name for p in out.glob("*.png")
@@ -381,7 +387,21 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
             assert e["whirl_refined_error_Hz"] >= 0.007 * e["whirl_frequency_refined_Hz"] * (
                 1 - 1e-12
             )
-    assert "±" in (study_out / "report.html").read_text(encoding="utf-8")
+    text = (study_out / "report.html").read_text(encoding="utf-8")
+    assert "±" in text
+    # the static table's shown points and the coefficients, each with its grid error
+    shown = [p for p in summary["static"]["points"] if p.get("grid_refined")]
+    assert len(shown) == 2 * 4 * 3 and all(p["speed_rpm"] in (1e4, 5e4, 9e4) for p in shown)
+    for p in shown:
+        r = p["grid_refined"]
+        assert r["grid"] == [192, 24]
+        for key in ("eccentricity", "attitude_deg", "min_film_um", "drag_torque_Nm"):
+            value, err = r["texts"][key].split(" ± ")
+            assert float(err) >= r["errors"][key] >= abs(p[key] - r[key])
+    for section in ("static", "coefficients"):
+        body = text[text.index(f'<section id="{section}"') :]
+        body = body[: body.index("</section>")]
+        assert body.count(" ± ") >= (5 * 24 if section == "static" else 8 * 7), section
 
 
 @pytest.mark.slow

@@ -297,6 +297,13 @@ def test_a_bearing_without_actuators_shows_nothing_of_actuators(
     assert cycles and "Hopf bifurcation" in cycles.group(1)
     if not refine:  # the branch again on 64 θ cells, its readouts printed with their error
         assert "64 × 4" in cycles.group(1) and " ± " in cycles.group(1)
+        # and the grid check: the case point and the onset on 64 × 8, each with its error,
+        # the onset printed so in the stability section too
+        check = re.search(r'<section id="grid_check">(.*?)</section>', text, re.S)
+        assert check and "32 × 4" in check.group(1) and "64 × 8" in check.group(1)
+        assert check.group(1).count(" ± ") >= 9  # ε, film, attitude, torque, K, C, onset
+        stability = re.search(r'<section id="bearing_stability">(.*?)</section>', text, re.S)
+        assert stability and re.search(r"Linear onset speed [\d.]+ ± [\d.]+ krpm", stability[1])
 
 
 def test_a_divergence_says_which_readout_set_it_and_whether_it_touched() -> None:

@@ -15,6 +15,9 @@ figures into the output folder as it finishes:
    to ``onset_top``), and the log decrement of the least stable whirl mode at
    every plan speed (the stability map of a bearing without voltages); for a
    shimmed bearing also the onset against the shims' thickness;
+   **grid check**: the readouts at the case speed and load (static, synchronous
+   K and C) and the onset and whirl frequency on the case's grid and on twice its
+   cells (:func:`foilbearing.check.grid_check`), each printed with its error;
 5. **actuators** (C-GFB): the static readouts, the preloads and the actuator
    pressures against the actuators' voltage at the case speed and load;
 6. **orbit**: a speed-up over the plan's speeds with the case's imbalance
@@ -222,6 +225,37 @@ def _stability(
         plot_log_decrement(modes, onset.get("onset_speed_rpm")), out / "log_decrement.png"
     )
     return {"onset": onset, "modes": modes, "figures": [str(fig)]}
+
+
+def _grid_check(case: Case, plan: StudyPlan, stage: Callable[[str], None]) -> dict[str, Any]:
+    """The case point's readouts and the linear onset on the case's grid and on twice its
+    cells in θ and Z (:func:`foilbearing.check.grid_check`, as ``foilbearing check CASE``
+    gives them); ``rows`` (readout, its value per grid, the text printed) and ``texts``: each
+    readout on the case's grid with its error (the difference to the finer grid,
+    :func:`~foilbearing.study.converged.with_error`; the onset in krpm)."""
+    from foilbearing.check import READOUTS, grid_check
+    from foilbearing.study.converged import with_error
+
+    try:
+        check = grid_check(case, 2, onset_speeds=plan.onset_scan())
+    except (InputError, SolverError) as exc:
+        return {"message": f"no grid check: {exc}"}
+    head = check.headline()
+    rows, texts = [], {}
+    for key, label, _ in READOUTS:
+        r = head["readouts"].get(key)
+        if r is None or r["values"][0] is None or r["error"] is None:
+            continue
+        scale = 1e-3 if key == "onset_speed_rpm" else 1.0  # printed in krpm
+        values = [None if v is None else v * scale for v in r["values"]]
+        texts[key] = with_error(r["values"][0] * scale, abs(r["error"]) * scale)
+        label = label.replace(", rpm", ", krpm")
+        rows.append({"readout": label, "values": values, "text": texts[key]})
+    head["rows"], head["texts"] = rows, texts
+    onset = texts.get("onset_speed_rpm")
+    fine = " × ".join(str(n) for n in head["grids"][1])
+    stage(f"  on {fine}: onset {onset or 'none'} krpm ({sum(check.wall_times):.1f} s)")
+    return head
 
 
 def _onset(case: Case, plan: StudyPlan) -> dict[str, Any]:
@@ -447,7 +481,8 @@ def bearing_study(
     """Run the plan's stages on ``case`` (see the module docstring); returns their summaries.
 
     ``theta_refine`` > 1: the speed-up again with that many times the θ cells, its onset,
-    whip and divergence with their grid error (:func:`foilbearing.study.orbits.readout_errors`).
+    whip and divergence with their grid error (:func:`foilbearing.study.orbits.readout_errors`),
+    and the grid check of the case point and the onset (:func:`_grid_check`); 1: neither.
     """
     # The plan as it ran: the speed-up only where --orbits let it
     ran = plan.describe() | {"orbit": bool(orbits and plan.orbit)}
@@ -463,6 +498,13 @@ def bearing_study(
         results["bearing_coefficients"] = _coefficients(case, plan, found, out, stage)
         stage("linear stability: onset speed, log decrement against speed")
         results["bearing_stability"] = _stability(case, plan, found, out, stage)
+        if theta_refine > 1:
+            stage("grid check: the case point and the onset on twice the cells")
+            results["grid_check"] = check = _grid_check(case, plan, stage)
+            onset = results["bearing_stability"]["onset"]
+            for key in ("onset_speed_rpm", "whirl_frequency_Hz"):  # the report's onset line
+                if key in check.get("texts", {}):
+                    onset.setdefault("with_grid_error", {})[key] = check["texts"][key]
     if plan.shim_scales:
         stage("linear stability against the shims' thickness")
         results["shim_stability"] = _shims(case, plan, out, stage)

@@ -38,6 +38,7 @@ from foilbearing.constants import RPM
 __all__ = [
     "ASSUMED_ORDER",
     "BRACKET",
+    "COEFFICIENT_FLOOR",
     "PUBLISHED_KAPPA",
     "RESIDUAL_FLOOR",
     "onset_errors",
@@ -45,6 +46,7 @@ __all__ = [
     "published_case",
     "published_onsets",
     "refine_onset",
+    "refined_coefficients",
     "two_grid_readouts",
     "whirl_error",
     "with_error",
@@ -63,6 +65,13 @@ ASSUMED_ORDER = 1.0
 #: The lift-off smoothing of the published resolution: on 192 × 24 it moves no published
 #: onset by more than 0.23 % from the sharp law (``benchmarks/bench_kappa_onsets.py``).
 PUBLISHED_KAPPA = 0.02
+
+#: The least relative error stated for a force coefficient: where the difference between
+#: 96 × 12 and 192 × 24 passes through zero as the frequency changes, the next refinement
+#: still moves the coefficient: by 5.5e-4 of it for K_YY at 1.5 times the speed (50 krpm,
+#: 150 V, where the coarser two agreed to 1.4e-5), rounded up; elsewhere the moves shrink
+#: at order about 2 (2026-12-06).
+COEFFICIENT_FLOOR = 1e-3
 
 #: The least relative error stated for a published onset: the largest move measured from
 #: 192 × 24 to 384 × 48 at κ = 0.02, 0.63 % (default reading, 50 V), rounded up.
@@ -128,6 +137,58 @@ def two_grid_readouts(
         out["texts"][key] = with_error(f1 * scale, err * scale)
         named.append(f"{name} {out['texts'][key]} {unit}")
     return out, named
+
+
+def refined_coefficients(fc: Any, factor: int = 2) -> dict[str, Any]:
+    """The force coefficients ``fc`` (:class:`~foilbearing.analysis.coefficients.
+    ForceCoefficients`) again on the grid refined by ``factor`` in θ and Z
+    (:func:`foilbearing.check.refined`: the axial order and κ held), about the equilibrium
+    there at the same speed and load, at the same frequencies.
+
+    Returns
+    -------
+    dict
+        ``grid``, the finer ``K_N_per_m`` and ``C_Ns_per_m`` (per frequency, 2 × 2), each
+        entry's error (``K_error_N_per_m``, ``C_error_Ns_per_m``: the difference to the
+        finer grid, the two-level estimate at order 1, or :data:`COEFFICIENT_FLOOR` of the
+        entry if larger), the texts the report prints
+        (``K_texts_MN_per_m``, ``C_texts_Ns_per_m``: each coarse value with its error,
+        :func:`with_error`) and ``eccentricity`` there; or ``message`` where the finer
+        equilibrium does not converge.
+    """
+    import numpy as np
+
+    from foilbearing.analysis.coefficients import force_coefficients
+    from foilbearing.analysis.equilibrium import solve_equilibrium
+    from foilbearing.check import refined
+
+    fine = refined(fc.static.case, factor)
+    grid = [fine.grid.n_theta, fine.grid.n_z]
+    st = solve_equilibrium(fine, speed=fc.static.speed)
+    if not st.converged:
+        return {"grid": grid, "message": f"no equilibrium on {grid[0]} × {grid[1]}: {st.message}"}
+    f2 = force_coefficients(st, list(fc.frequencies))
+    k1, c1 = np.asarray(fc.K), np.asarray(fc.C)
+    k_err = np.maximum(np.abs(k1 - f2.K), COEFFICIENT_FLOOR * np.abs(k1))
+    c_err = np.maximum(np.abs(c1 - f2.C), COEFFICIENT_FLOOR * np.abs(c1))
+
+    def texts(coarse: Any, err: Any, scale: float) -> list[list[list[str]]]:
+        return [
+            [[with_error(a * scale, e * scale) for a, e in zip(ra, re, strict=True)]
+             for ra, re in zip(ma, me, strict=True)]
+            for ma, me in zip(np.asarray(coarse), err, strict=True)
+        ]  # fmt: skip
+
+    return {
+        "grid": grid,
+        "eccentricity": st.eccentricity,
+        "K_N_per_m": f2.K.tolist(),
+        "C_Ns_per_m": f2.C.tolist(),
+        "K_error_N_per_m": k_err.tolist(),
+        "C_error_Ns_per_m": c_err.tolist(),
+        "K_texts_MN_per_m": texts(fc.K, k_err, 1e-6),
+        "C_texts_Ns_per_m": texts(fc.C, c_err, 1.0),
+    }
 
 
 def published_case(case: Case) -> Case:

@@ -117,7 +117,11 @@ def run_study_result(
         With ``orbits``, each 0 V speed-up (the case's seed) again on its orbit grid with
         that many times the θ cells, for its readouts' discretisation error (1: none;
         :mod:`foilbearing.study.orbits`); with ``bifurcation``, every limit-cycle branch
-        as well (:func:`~foilbearing.study.bifurcation.cycle_errors`).
+        as well (:func:`~foilbearing.study.bifurcation.cycle_errors`); > 1 also solves the
+        static table's shown speeds and the coefficients on twice the cells in θ and Z,
+        for theirs (:func:`~foilbearing.study.static.static_errors`,
+        :func:`~foilbearing.study.converged.refined_coefficients`), and on a bearing of
+        its own the grid check of its case point and onset.
 
     Returns
     -------
@@ -201,8 +205,8 @@ def run_study_result(
             )
         return _finish(out, results, stage)
 
-    sweep = _static_stage(case, out, results, stage)
-    onsets, onset_errors = _stability_stage(case, out, results, stage)
+    sweep = _static_stage(case, out, results, stage, theta_refine > 1)
+    onsets, onset_errors = _stability_stage(case, out, results, stage, theta_refine > 1)
     if case.actuators is not None:
         results["actuator_design"] = _design_stage(case, out, stage)
         if bifurcation:
@@ -425,21 +429,36 @@ def _finish(
     return result
 
 
-def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) -> Any:
-    """Figs. 9-12: C-GFB and shimmed GFB, 10-90 krpm, 0/50/100/150 V."""
+def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any, refine: bool) -> Any:
+    """Figs. 9-12: C-GFB and shimmed GFB, 10-90 krpm, 0/50/100/150 V; ``refine``: the
+    speeds the report shows again on twice the cells, for their grid error."""
     import math
 
+    from foilbearing.check import refined
     from foilbearing.io import write_with
     from foilbearing.output.figures import write_static_figures
     from foilbearing.output.summary import sweep_points
-    from foilbearing.study.static import PAPER_SPEEDS_RPM, PAPER_VOLTAGES, static_sweep
+    from foilbearing.study.static import (
+        PAPER_SPEEDS_RPM,
+        PAPER_VOLTAGES,
+        SHOWN_SPEEDS_RPM,
+        static_errors,
+        static_sweep,
+    )
 
     stage("static analysis: C-GFB and shimmed GFB, 10-90 krpm x 0/50/100/150 V (Figs. 9-12)")
-    speeds = [s * math.pi / 30.0 for s in PAPER_SPEEDS_RPM]
+    rpm = math.pi / 30.0
+    speeds = [s * rpm for s in PAPER_SPEEDS_RPM]
     ds = static_sweep(case, speeds, PAPER_VOLTAGES, progress=lambda line: stage("  " + line))
     write_with(out / "static_sweep.nc", lambda tmp: ds.to_netcdf(tmp))
+    points = sweep_points(ds)
+    if refine:
+        fine = refined(case, 2)
+        stage(f"  {len(SHOWN_SPEEDS_RPM)} speeds on {fine.grid.n_theta} × {fine.grid.n_z}")
+        finer = static_sweep(fine, [s * rpm for s in SHOWN_SPEEDS_RPM], PAPER_VOLTAGES)
+        static_errors(points, sweep_points(finer), [fine.grid.n_theta, fine.grid.n_z])
     results["static"] = {
-        "points": sweep_points(ds),
+        "points": points,
         "figures": [str(p) for p in write_static_figures(ds, out)],
         "netcdf": str(out / "static_sweep.nc"),
     }
@@ -447,9 +466,10 @@ def _static_stage(case: Case, out: Path, results: dict[str, Any], stage: Any) ->
 
 
 def _stability_stage(
-    case: Case, out: Path, results: dict[str, Any], stage: Any
+    case: Case, out: Path, results: dict[str, Any], stage: Any, refine: bool
 ) -> tuple[dict[str, dict[float, Any]], dict[str, dict[float, dict[str, Any]]]]:
-    """Coefficients at 50 krpm and 150 V; onset speeds per voltage; the stability map.
+    """Coefficients at 50 krpm and 150 V (``refine``: with their grid error); onset speeds
+    per voltage; the stability map.
 
     Returns the onsets by kind and voltage, and the published ones' refinements and errors
     (:func:`~foilbearing.study.converged.published_onsets`)."""
@@ -462,7 +482,7 @@ def _stability_stage(
     from foilbearing.errors import InputError
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
-    from foilbearing.study.converged import onset_table
+    from foilbearing.study.converged import onset_table, refined_coefficients
     from foilbearing.study.queue import worker_pool
     from foilbearing.study.static import PAPER_VOLTAGES
 
@@ -472,6 +492,8 @@ def _stability_stage(
     fc = force_coefficients(st, [f * st.speed for f in (0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0)])
     fig = save_figure(plot_coefficients(fc), out / "coefficients_50krpm_150V.png")
     results["coefficients"] = fc.headline() | {"figures": [str(fig)]}
+    if refine:  # each coefficient with its grid error (the report's table)
+        results["coefficients"]["grid_refined"] = refined_coefficients(fc)
     stage("linear stability: onset speed per voltage, C-GFB and shimmed GFB")
     scan = [s * rpm for s in range(5_000, 150_001, 2_500)]
     if case.actuators is None:

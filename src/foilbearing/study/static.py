@@ -19,10 +19,37 @@ from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.film import film_model
 
-__all__ = ["PAPER_SPEEDS_RPM", "PAPER_VOLTAGES", "speed_sweep", "static_sweep"]
+__all__ = [
+    "MIN_FILM_FLOOR",
+    "PAPER_SPEEDS_RPM",
+    "PAPER_VOLTAGES",
+    "SHOWN_SPEEDS_RPM",
+    "speed_sweep",
+    "static_errors",
+    "static_sweep",
+]
 
 PAPER_SPEEDS_RPM = tuple(float(s) for s in range(10_000, 90_001, 10_000))
 PAPER_VOLTAGES = (0.0, 50.0, 100.0, 150.0)
+#: The speeds of the sweep the report's table shows, each with its grid error.
+SHOWN_SPEEDS_RPM = (10_000.0, 50_000.0, 90_000.0)
+
+#: The readouts of a point of the sweep printed with their grid error (key, name, unit,
+#: scale to the unit), and those that are one value per actuator.
+_POINT_READOUTS = (
+    ("eccentricity", "eccentricity", "", 1.0),
+    ("attitude_deg", "attitude", "°", 1.0),
+    ("min_film_um", "minimum film", "µm", 1.0),
+    ("drag_torque_Nm", "drag torque", "N m", 1.0),
+)
+_PER_ACTUATOR = ("preload_um", "actuator_pressure_kPa")
+
+#: The least relative error stated for the minimum film: the film's least value over the
+#: cells moves with where the minimum falls among them, and from 192 × 24 to 384 × 48 it
+#: moved by up to 0.32 % where the two coarser grids agreed more closely (C-GFB, 150 V,
+#: 10 krpm; 0.75 % at most anywhere), rounded up. Every other readout's two coarser grids
+#: differed by more than the next refinement's move (order about 2, 2026-12-06).
+MIN_FILM_FLOOR = 0.004
 
 #: The scalar readouts of a sweep: unit in the dataset and factor from SI.
 _UNITS = {
@@ -137,6 +164,44 @@ def static_sweep(
         n_z=case.grid.n_z,
     )
     return ds
+
+
+def static_errors(
+    points: list[dict[str, Any]], fine: list[dict[str, Any]], grid: Sequence[int]
+) -> None:
+    """Set on each point of ``points`` (:func:`foilbearing.output.summary.sweep_points`)
+    that ``fine`` has too (the same bearing, voltage and speed on a refined grid) its
+    ``grid_refined``: the finer values, each readout's error and its text (the value with
+    its error, :func:`~foilbearing.study.converged.with_error`).
+
+    The error is the difference to the finer grid: the two-level estimate at order 1
+    (:data:`foilbearing.study.converged.ASSUMED_ORDER`), which the statics' second order
+    (docs/numerics.md) makes an upper bound where the differences shrink smoothly; for the
+    minimum film at least :data:`MIN_FILM_FLOOR` of it.
+    """
+    from foilbearing.study.converged import two_grid_readouts, with_error
+
+    def at(p: dict[str, Any]) -> tuple[str, float, float]:
+        return (p["bearing"], float(p["voltage_V"]), round(float(p["speed_rpm"]), 6))
+
+    finer = {at(p): p for p in fine if p.get("converged")}
+    for p in points:
+        f = finer.get(at(p))
+        if f is None or not p.get("converged"):
+            continue
+        out, _ = two_grid_readouts(_POINT_READOUTS, p, f, _error, grid[0])
+        for key in _PER_ACTUATOR:
+            pairs = list(zip(p.get(key) or [], f.get(key) or [], strict=False))
+            out[key] = [b for _, b in pairs]
+            out["errors"][key] = [abs(a - b) for a, b in pairs]
+            out["texts"][key] = " / ".join(  # a shim's thickness: the same on every grid
+                with_error(a, abs(a - b)) if a != b else f"{a:.1f}" for a, b in pairs
+            )
+        p["grid_refined"] = out | {"grid": list(grid)}
+
+
+def _error(key: str, f1: float, f2: float) -> float:
+    return max(abs(f1 - f2), MIN_FILM_FLOOR * abs(f1) if key == "min_film_um" else 0.0)
 
 
 def _store(

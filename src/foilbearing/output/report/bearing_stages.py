@@ -80,10 +80,17 @@ def _bearing_coefficients(d: dict[str, Any], case: dict[str, Any]) -> str:
 
 def _bearing_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
     onset = d.get("onset") or {}
+    checked = onset.get("with_grid_error") or {}
+    if "onset_speed_rpm" in checked:  # with its grid error (section "How far to trust ...")
+        speed = f"{checked['onset_speed_rpm']} krpm"
+    else:
+        speed = f"{_f(_krpm('onset_speed_rpm')(onset), '.1f')} krpm"
+    whirl = checked.get("whirl_frequency_Hz") or _f(onset.get("whirl_frequency_Hz"), ".1f")
     note = (
-        f'<p class="note">Linear onset speed {_f(onset.get("onset_speed_rpm"), ".6g")} rpm, '
-        f"whirl frequency {_f(onset.get('whirl_frequency_Hz'), '.4g')} Hz "
-        f"({escape(str(onset.get('message', '')))}).</p>"
+        f'<p class="note">Linear onset speed {speed}, whirl frequency {whirl} Hz '
+        f"({escape(str(onset.get('message', '')))})"
+        + ("; ± its grid error, from twice the cells (below)" if checked else "")
+        + ".</p>"
     )
     cols: list[Column] = [
         ("speed (krpm)", _krpm("speed_rpm"), ".1f"),
@@ -93,6 +100,27 @@ def _bearing_stability(d: dict[str, Any], case: dict[str, Any]) -> str:
         ("message", _key("message"), ""),
     ]
     return note + _records([m for m in d.get("modes", []) if isinstance(m, dict)], cols)
+
+
+def _grid_check(d: dict[str, Any], case: dict[str, Any]) -> str:
+    grids = [" × ".join(str(n) for n in g) for g in d.get("grids") or []]
+    if len(grids) < 2 or not d.get("rows"):
+        return f'<p class="note">{escape(str(d.get("message", "no grid check")))}</p>'
+    note = (
+        f'<p class="note">The readouts at the case speed and load, and the linear onset, on '
+        f"the case's grid {grids[0]} and on {grids[1]} (the axial order "
+        f"{_f(d.get('axial_order'), 'd')} and κ = {_f(d.get('lift_off_smoothing'), 'g')} "
+        "held), as <code>foilbearing check CASE</code> gives them. Each is printed with its "
+        "error: the difference to the finer grid, which is not converged either "
+        "(<code>foilbearing check CASE --levels 3</code> extrapolates).</p>"
+    )
+    cols: list[Column] = [
+        ("readout", _key("readout"), ""),
+        (grids[0], lambda r: r["values"][0], ".6g"),
+        (grids[1], lambda r: r["values"][1], ".6g"),
+        ("with its error", _key("text"), ""),
+    ]
+    return note + _records([r for r in d["rows"] if isinstance(r, dict)], cols)
 
 
 def _actuator_static(d: dict[str, Any], case: dict[str, Any]) -> str:

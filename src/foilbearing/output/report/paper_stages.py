@@ -9,7 +9,6 @@ from typing import Any
 
 from foilbearing.output.report.tables import (
     Column,
-    _entry,
     _f,
     _key,
     _krpm,
@@ -81,22 +80,34 @@ def _static(d: dict[str, Any], case: dict[str, Any]) -> str:
     speeds = sorted({float(p["speed_rpm"]) for p in points})
     shown = sorted({_nearest(speeds, t) for t in (10e3, 50e3, 90e3)})
     at = "/".join(_f(a, ".0f") for a in case.get("actuator_angles_deg", [])) or "actuators"
+
+    def checked(key: str, spec: str) -> Callable[[dict[str, Any]], Any]:
+        return _with_grid_error(key, 1.0, spec, "grid_refined")
+
     cols: list[Column] = [
         ("bearing", _key("bearing"), ""),
         ("voltage (V)", _key("voltage_V"), "g"),
         ("speed (krpm)", lambda p: p["speed_rpm"] / 1e3, ".0f"),
-        ("eccentricity ε", _key("eccentricity"), ".3f"),
-        ("attitude (°)", _key("attitude_deg"), ".1f"),
-        ("min film (µm)", _key("min_film_um"), ".1f"),
-        (f"preload at {at}° (µm)", _key("preload_um"), ".1f"),
-        (f"film pressure at {at}° (kPa)", _key("actuator_pressure_kPa"), ".1f"),
+        ("eccentricity ε", checked("eccentricity", ".3f"), ".3f"),
+        ("attitude (°)", checked("attitude_deg", ".1f"), ".1f"),
+        ("min film (µm)", checked("min_film_um", ".1f"), ".1f"),
+        (f"preload at {at}° (µm)", checked("preload_um", ".1f"), ".1f"),
+        (f"film pressure at {at}° (kPa)", checked("actuator_pressure_kPa", ".1f"), ".1f"),
         ("converged", _key("converged"), ""),
     ]
     n_ok = sum(bool(p.get("converged")) for p in points)
+    fine = next((p["grid_refined"]["grid"] for p in points if p.get("grid_refined")), None)
     note = (
         f'<p class="note">{len(points)} equilibria ({n_ok} converged), shown here at '
         f"{', '.join(_f(s / 1e3, '.0f') for s in shown)} krpm; all of them are in "
-        "<code>static_sweep.nc</code> beside this page.</p>"
+        "<code>static_sweep.nc</code> beside this page."
+        + (
+            f" A value printed ± carries its grid error: the difference to the same "
+            f"equilibrium on {fine[0]} × {fine[1]} cells (the axial order and κ held)."
+            if fine
+            else ""
+        )
+        + "</p>"
     )
     return note + _records([p for p in points if float(p["speed_rpm"]) in shown], cols)
 
@@ -107,15 +118,39 @@ def _coefficients(d: dict[str, Any], case: dict[str, Any]) -> str:
         f"{_f(d.get('eccentricity'), '.3f')}, attitude {_f(d.get('attitude_deg'), '.1f')}°.</p>"
     )
     keys = ("frequency_Hz", "frequency_ratio", "K_N_per_m", "C_Ns_per_m")
+    fine = d.get("grid_refined") or {}
+    k_texts, c_texts = fine.get("K_texts_MN_per_m") or [], fine.get("C_texts_Ns_per_m") or []
     rows = _transpose(d, keys)
+    checked = bool(k_texts and c_texts)
+    if checked:  # each coefficient's text with its grid error, per frequency
+        for row, k_text, c_text in zip(rows, k_texts, c_texts, strict=False):
+            row |= {"tK_N_per_m": k_text, "tC_Ns_per_m": c_text}
+
+    def entry(name: str, i: int, scale: float, spec: str) -> Callable[[dict[str, Any]], Any]:
+        def get(r: dict[str, Any]) -> str:
+            if "t" + name in r:
+                return str(r["t" + name][i // 2][i % 2])
+            return _f(r[name][i // 2][i % 2] * scale, spec)
+
+        return get
+
     cols: list[Column] = [
         ("frequency (Hz)", _key("frequency_Hz"), ".1f"),
         ("ratio to speed", _key("frequency_ratio"), ".2f"),
     ]
     for i, ij in enumerate(("xx", "xy", "yx", "yy")):
-        cols.append((f"K{ij} (MN/m)", _entry("K_N_per_m", i, 1e-6), ".4f"))
+        cols.append((f"K{ij} (MN/m)", entry("K_N_per_m", i, 1e-6, ".4f"), "r"))
     for i, ij in enumerate(("xx", "xy", "yx", "yy")):
-        cols.append((f"C{ij} (N·s/m)", _entry("C_Ns_per_m", i), ".1f"))
+        cols.append((f"C{ij} (N·s/m)", entry("C_Ns_per_m", i, 1.0, ".1f"), "r"))
+    if checked:
+        grid = fine.get("grid") or ["?", "?"]
+        note += (
+            f'<p class="note">Each coefficient ± its grid error: the difference to the same '
+            f"equilibrium and frequency on {grid[0]} × {grid[1]} cells (the axial order and "
+            "κ held).</p>"
+        )
+    elif fine.get("message"):
+        note += f'<p class="note">{escape(str(fine["message"]))}</p>'
     return note + _records(rows, cols)
 
 

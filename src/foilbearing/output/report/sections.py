@@ -12,6 +12,7 @@ from foilbearing.output.report.bearing_stages import (
     _bearing_orbit,
     _bearing_stability,
     _bearing_static,
+    _grid_check,
     _load_capacity,
     _onsets_against,
     _plan,
@@ -56,6 +57,7 @@ STAGES: tuple[tuple[str, str], ...] = (
     ("load_capacity", "Load capacity"),
     ("bearing_coefficients", "Dynamic force coefficients"),
     ("bearing_stability", "Linear stability"),
+    ("grid_check", "How far to trust the grid: the case point and the onset on twice the cells"),
     ("shim_stability", "Linear stability against the shims' thickness"),
     ("voltage_stability", "Linear stability against the actuators' voltage"),
     ("actuator_static", "Static performance against the actuators' voltage"),
@@ -191,6 +193,7 @@ _TABLES: dict[str, Callable[[dict[str, Any], dict[str, Any]], str]] = {
     "load_capacity": _load_capacity,
     "bearing_coefficients": _bearing_coefficients,
     "bearing_stability": _bearing_stability,
+    "grid_check": _grid_check,
     "bearing_orbit": _bearing_orbit,
     "shim_stability": _onsets_against(
         ("× case thickness", "scale", "g"), ("shim thickness (µm)", "thickness_um", ".3g")

@@ -74,16 +74,21 @@ _REFINED_READOUTS = (
 )
 
 
-def _with_grid_error(key: str, scale: float, spec: str) -> Callable[[dict[str, Any]], str | None]:
-    """A speed-up's readout with its grid error where the run was refined
-    (:func:`foilbearing.study.orbits.readout_errors`), to the digits the error supports;
-    otherwise its value times ``scale`` to ``spec``."""
+def _with_grid_error(
+    key: str, scale: float, spec: str, refined: str = "theta_refined"
+) -> Callable[[dict[str, Any]], str | None]:
+    """A readout with its grid error where the record was refined (its ``refined`` entry:
+    :func:`foilbearing.study.orbits.readout_errors` for a speed-up, ``grid_refined`` of
+    :func:`foilbearing.study.static.static_errors` for a static point), to the digits the
+    error supports; otherwise its value times ``scale`` to ``spec``."""
 
     def get(r: dict[str, Any]) -> str | None:
-        text = ((r.get("theta_refined") or {}).get("texts") or {}).get(key)
+        text = ((r.get(refined) or {}).get("texts") or {}).get(key)
         if text:
             return str(text)
         value = r.get(key)
+        if isinstance(value, list):  # one per actuator
+            return " / ".join(format(float(v) * scale, spec) for v in value) or None
         return None if value is None else format(float(value) * scale, spec)
 
     return get
