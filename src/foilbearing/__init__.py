@@ -16,6 +16,7 @@ loads no numerics, so the command line starts quickly)::
     st = fb.solve_equilibrium(case, speed=50_000 * fb.RPM)
     fc = fb.force_coefficients(st, [st.speed])          # K (N/m), C (N·s/m)
     onset = fb.onset_speed(case)                        # linear stability threshold
+    print(fb.grid_check(case, onset_speeds=onset.speeds))  # the same on twice the cells
     run = fb.simulate(case, fb.linear_ramp(3e3 * fb.RPM, 90e3 * fb.RPM, 500.0))
 
 ===================  ===========================================================================
@@ -92,6 +93,7 @@ if TYPE_CHECKING:
     from foilbearing.bearing_system.scales import Scales
     from foilbearing.bearing_system.verbs import BearingSystem
     from foilbearing.case import Case, default_case, load_case
+    from foilbearing.check import grid_check
     from foilbearing.control import constant_speed, linear_ramp, voltage_ramp
     from foilbearing.design.schedule_search import voltage_schedule
     from foilbearing.orbit import OrbitSettings, simulate
@@ -112,6 +114,7 @@ _LAZY = {
     "whirl_mode": "foilbearing.analysis.stability",
     "onset_speed": "foilbearing.analysis.stability",
     "stability_map": "foilbearing.analysis.stability",
+    "grid_check": "foilbearing.check",
     "simulate": "foilbearing.orbit",
     "OrbitSettings": "foilbearing.orbit",
     "analyse_orbit": "foilbearing.orbit.analysis",
@@ -136,6 +139,7 @@ __all__ = [
     "constant_speed",
     "default_case",
     "force_coefficients",
+    "grid_check",
     "linear_ramp",
     "load_case",
     "onset_speed",
