@@ -362,6 +362,12 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
     summary = json.loads((study_out / "summary.json").read_text())
     rows = {r["quantity"]: r for r in summary["paper_comparison"]}
     assert "k_assy (N/m³)" in rows
+    # the preloads beside the paper's carry their grid error (the static table's refinement)
+    for angle in (60, 180, 300):
+        ours = rows[f"piezoelectric preload at {angle}°, 150 V, 90 krpm (µm)"]["ours"]
+        value, err = (float(x) for x in ours.split(" ± "))
+        assert 50.0 < value < 75.0 and 0.0 < err < 0.5
+    assert rows["preload reduction at 60/180/300° (%)"]["ours"].count(" ± ") == 3
     assert (study_out / "paper_comparison.md").read_text().count("|") > 50
     assert summary["structure"]["k_b_N_per_m3"] > 0
     onsets = [e["onset_speed_rpm"] for e in summary["stability"]["C-GFB"]]

@@ -92,7 +92,12 @@ def _points(n: int, total: int) -> str:
     )
 
 
-def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -> list[Row]:
+def static_comparison(
+    case: Any,
+    structure: dict[str, Any],
+    sweep: Any | None,
+    preload_errors: Sequence[float] | None = None,
+) -> list[Row]:
     """Rows for the structure and static results (Figs. 8-12) of a study.
 
     Parameters
@@ -103,6 +108,9 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
         ``cli.structure_summary`` at 0/50/100/150 V.
     sweep
         ``foilbearing.study.static.static_sweep`` dataset over speeds and 0/50/100/150 V, or None.
+    preload_errors
+        The grid errors of the C-GFB's preloads at 150 V and 90 krpm, µm, one per actuator
+        (:func:`foilbearing.study.static.static_errors`), or None: printed with them.
     """
     rows: list[Row] = []
     volts = structure.get("voltages_V", [])
@@ -178,14 +186,21 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
         return rows
     c90 = sweep.sel(bearing="C-GFB", voltage=150.0).sel(speed=90.0, method="nearest")
     if bool(c90.converged):
+        from foilbearing.study.converged import with_error
+
         ref = PAPER["preload_150V_90krpm_um"]
         base = structure["base_preload_um"][-1]
-        for angle, ours, paper in zip(sweep.actuator.values, c90.preload.values, ref, strict=True):
+        errs: list[float | None] = [None] * len(ref)
+        if preload_errors is not None:
+            errs = list(preload_errors)
+        for angle, ours, paper, err in zip(
+            sweep.actuator.values, c90.preload.values, ref, errs, strict=True
+        ):
             rows.append(
                 Row(
                     f"piezoelectric preload at {angle:g}°, 150 V, 90 krpm (µm)",
                     f"{paper:.2f}",
-                    f"{ours:.2f}",
+                    f"{ours:.2f}" if err is None else with_error(float(ours), err),
                     _dev(ours, paper),
                     f"the film at {angle:g}° shortens the stack by {base - ours:.2f} µm "
                     f"(Eq. 3b; the paper: {base - paper:.2f} µm), a pressure that scales with "
@@ -200,7 +215,10 @@ def static_comparison(case: Any, structure: dict[str, Any], sweep: Any | None) -
             Row(
                 "preload reduction at 60/180/300° (%)",
                 " / ".join(f"{x:.1f}" for x in paper_red),
-                " / ".join(f"{x:.1f}" for x in red),
+                " / ".join(
+                    f"{x:.1f}" if e is None else with_error(float(x), 100.0 * e / base)
+                    for x, e in zip(red, errs, strict=True)
+                ),
                 _devs(red, paper_red),
                 f"a small difference of two large numbers: preloads at most {worst:.1f} % off "
                 "move it by several times that; the abstract's 'up to 11 %' is the 60°/300° "

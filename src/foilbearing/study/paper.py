@@ -291,8 +291,11 @@ def _paper_comparison(
     beside the paper at its value at the published resolution."""
     from foilbearing.paper import markdown_table, static_comparison
     from foilbearing.paper_dynamics import orbit_comparison, stability_comparison
+    from foilbearing.study.static import grid_errors_at
 
-    rows = static_comparison(case, results["structure"], sweep)
+    at = ("C-GFB", 150.0, 90e3)  # the preloads the paper gives, with their grid error
+    errors = grid_errors_at(results["static"]["points"], at, "preload_um")
+    rows = static_comparison(case, results["structure"], sweep, errors)
     if onsets is not None:
         rows += stability_comparison(onsets, onset_errors)
     if "orbits" in results:

@@ -24,6 +24,7 @@ __all__ = [
     "PAPER_SPEEDS_RPM",
     "PAPER_VOLTAGES",
     "SHOWN_SPEEDS_RPM",
+    "grid_errors_at",
     "speed_sweep",
     "static_errors",
     "static_sweep",
@@ -198,6 +199,15 @@ def static_errors(
                 with_error(a, abs(a - b)) if a != b else f"{a:.1f}" for a, b in pairs
             )
         p["grid_refined"] = out | {"grid": list(grid)}
+
+
+def grid_errors_at(points: list[dict[str, Any]], at: tuple[str, float, float], key: str) -> Any:
+    """The grid error of readout ``key`` at the point ``at`` (bearing, voltage in V, speed
+    in rpm) of :func:`static_errors`'s ``points``; None where that point was not refined."""
+    for p in points:
+        if (p["bearing"], float(p["voltage_V"]), float(p["speed_rpm"])) == at:
+            return ((p.get("grid_refined") or {}).get("errors") or {}).get(key)
+    return None
 
 
 def _error(key: str, f1: float, f2: float) -> float:
