@@ -393,6 +393,21 @@ def test_the_study_writes_figures_results_and_comparison(study_out: Path) -> Non
             assert e["whirl_refined_error_Hz"] >= 0.007 * e["whirl_frequency_refined_Hz"] * (
                 1 - 1e-12
             )
+    # the stack design's onsets with their errors: those the stability stage publishes are
+    # the same onsets (to Brent's tolerance), the others refined as it refines its own
+    design = summary["actuator_design"]["table"]
+    same = {"local+compliant at K_p × 1": "C-GFB", "lobe+held at K_p × 1": "C-GFB, lobe+held"}
+    for row in design:
+        assert " ± " in row["onset_text_krpm"], row
+        err = row["onset_error_rpm"]
+        assert err >= abs(row["onset_speed_rpm"] - row["onset_refined_rpm"]) > 0.0
+        kind = same.get(row["bearing"], "shimmed" if "shimmed" in row["bearing"] else None)
+        if kind is not None:
+            e = next(e for e in summary["stability"][kind] if e["voltage_V"] == 150.0)
+            # the same onset to Brent's tolerance (onset_speed's rel_tol, 1e-4)
+            assert row["onset_speed_rpm"] == pytest.approx(e["onset_speed_rpm"], rel=1e-4)
+            assert row["onset_text_krpm"] == e["onset_text_krpm"]
+    assert sum(r["bearing"].startswith("local+compliant at K_p × ") for r in design) == 3
     text = (study_out / "report.html").read_text(encoding="utf-8")
     assert "±" in text
     # the static table's shown points and the coefficients, each with its grid error

@@ -13,6 +13,7 @@ module           responsibility
 ``schedule``     the voltage schedule as a study stage, verified in speed-ups
 ``bifurcation``  the limit-cycle branches as a study stage
 ``converged``    the published onsets (×2 grid, κ 0.02) with their errors
+``design``       what the stack's stiffness buys (150 V), its onsets with their errors
 ``rotor``        the study of a rotor on two foil bearings (``foilbearing study ROTOR.toml``)
 ===============  ===============================================================================
 """

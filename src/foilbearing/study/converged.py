@@ -41,6 +41,7 @@ __all__ = [
     "COEFFICIENT_FLOOR",
     "PUBLISHED_KAPPA",
     "RESIDUAL_FLOOR",
+    "STUDY_SCAN_RPM",
     "onset_errors",
     "onset_table",
     "published_case",
@@ -51,6 +52,9 @@ __all__ = [
     "whirl_error",
     "with_error",
 ]
+
+#: The study's onset scan, rpm: every onset of its stability stage is found in it.
+STUDY_SCAN_RPM = tuple(range(5_000, 150_001, 2_500))
 
 #: Half-width of the onset brackets, relative to the onset on the case's grid: the
 #: measured grid error of the onsets is 0.5-2 % (issue 49), κ's up to 5 %.

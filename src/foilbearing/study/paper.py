@@ -208,7 +208,9 @@ def run_study_result(
     sweep = _static_stage(case, out, results, stage, theta_refine > 1)
     onsets, onset_errors = _stability_stage(case, out, results, stage, theta_refine > 1)
     if case.actuators is not None:
-        results["actuator_design"] = _design_stage(case, out, stage)
+        from foilbearing.study.design import design_stage
+
+        results["actuator_design"] = design_stage(case, out, stage, onset_errors)
         if bifurcation:
             from foilbearing.study.bifurcation import bifurcation_stage
 
@@ -485,7 +487,7 @@ def _stability_stage(
     from foilbearing.errors import InputError
     from foilbearing.io import save_figure
     from foilbearing.output.plots.dynamics import plot_coefficients, plot_stability_map
-    from foilbearing.study.converged import onset_table, refined_coefficients
+    from foilbearing.study.converged import STUDY_SCAN_RPM, onset_table, refined_coefficients
     from foilbearing.study.queue import worker_pool
     from foilbearing.study.static import PAPER_VOLTAGES
 
@@ -498,7 +500,7 @@ def _stability_stage(
     if refine:  # each coefficient with its grid error (the report's table)
         results["coefficients"]["grid_refined"] = refined_coefficients(fc)
     stage("linear stability: onset speed per voltage, C-GFB and shimmed GFB")
-    scan = [s * rpm for s in range(5_000, 150_001, 2_500)]
+    scan = [s * rpm for s in STUDY_SCAN_RPM]
     if case.actuators is None:
         raise InputError("the onset over voltages needs a case with [actuators]")
     # Every onset the study prints, each with its error (foilbearing.study.converged): the
@@ -531,28 +533,6 @@ def _stability_stage(
         for kind, per_volt in onsets.items()
     } | {"figures": [str(fig)]}
     return onsets, errors
-
-
-def _design_stage(case: Case, out: Path, stage: Any) -> dict[str, Any]:
-    """What the stack's stiffness buys at 150 V (docs/model.md §3.8): the default reading
-    and the paper's (lobe + held) at K_p × 0.3, 1, 3 and 10, beside the shimmed GFB; the
-    stiffness for 90 % of its onset interpolated in log K_p (``stability --design``
-    refines it and scans all four readings)."""
-    from foilbearing.design import stack_design
-    from foilbearing.io import save_figure
-    from foilbearing.output.plots.dynamics import plot_stack_design
-
-    stage("the stack's stiffness: 150 V onset against K_p, default and paper's reading")
-    design = stack_design(
-        case,
-        150.0,
-        factors=(0.3, 1.0, 3.0, 10.0),
-        readings=(("local", "compliant"), ("lobe", "held")),
-        refine=False,
-        progress=lambda line: stage(line),
-    )
-    fig = save_figure(plot_stack_design(design), out / "stack_design.png")
-    return design.headline() | {"figures": [str(fig)]}
 
 
 def uncertainty_plan(plan: str) -> Any:

@@ -308,7 +308,7 @@ def _actuator_design(d: dict[str, Any], case: dict[str, Any]) -> str:
     cols: list[Column] = [
         ("bearing at the voltage", _key("bearing"), ""),
         ("stack stiffness K_p (MN/m)", _scaled("stack_stiffness_N_per_m", 1e-6), ".3g"),
-        ("linear onset (krpm)", _krpm("onset_speed_rpm"), ".1f"),
+        ("linear onset (krpm)", _text_or("onset_text_krpm", _krpm("onset_speed_rpm")), ".1f"),
         ("whirl (Hz)", _key("whirl_frequency_Hz"), ".0f"),
     ]
     need = d.get("required_stack_stiffness_N_per_m") or {}
@@ -323,7 +323,8 @@ def _actuator_design(d: dict[str, Any], case: dict[str, Any]) -> str:
         f'<p class="note">At {d.get("voltage_V", 150):g} V: the linear onset under the '
         "case's reading of the actuator (local + compliant) and the paper's (lobe + held), "
         "beside the shimmed GFB, rigid shims at the base preloads: an ideal positioner "
-        "(docs/model.md §3.8). The stack stiffness each reading needs for "
+        "(docs/model.md §3.8); each onset on the case's grid ± its error, as the linear "
+        "stability section states it. The stack stiffness each reading needs for "
         f"{target:.0%} of the shimmed onset:</p><ul>{items}</ul>"
     )
     return note + _records(d.get("table", []), cols)
@@ -394,6 +395,11 @@ def _bifurcation(d: dict[str, Any], case: dict[str, Any]) -> str:
             "itself.</p>"
         )
     return note + _records(d.get("rows", []), cols)
+
+
+def _text_or(key: str, get: Callable[[dict[str, Any]], Any]) -> Callable[[dict[str, Any]], Any]:
+    """The record's printed ``key`` (a value with its error) where it has one, else ``get``."""
+    return lambda r: r.get(key) or get(r)
 
 
 def _refined_type(r: dict[str, Any]) -> str | None:
