@@ -33,7 +33,7 @@ from foilbearing.errors import InputError
 from foilbearing.laws.actuator import READINGS as ACTUATOR_READINGS
 from foilbearing.units import speed_text
 
-__all__ = ["READINGS", "StackDesign", "stack_design"]
+__all__ = ["READINGS", "StackDesign", "stack_case", "stack_design"]
 
 #: The four readings (preload_response, dynamics), the case's default first
 #: (:data:`foilbearing.laws.actuator.READINGS` as words).
@@ -80,7 +80,9 @@ class StackDesign:
     max_speed: float
 
     def table(self) -> list[dict[str, Any]]:
-        """The design table of issue 29: shimmed, lobe+held, and the default at K_p × 1, 3, 10."""
+        """The design table of issue 29: shimmed, lobe+held, and the default at K_p × 1, 3, 10;
+        each row names its ``reading`` ("local+compliant") and ``stiffness_factor`` (None
+        for the shimmed GFB), the case of :func:`stack_case`."""
         rows: list[dict[str, Any]] = [
             _row(
                 "shimmed GFB (ideal positioner at the base stroke)",
@@ -88,6 +90,7 @@ class StackDesign:
                 self.shimmed_onset,
                 self.shimmed_whirl,
             )
+            | {"reading": None, "stiffness_factor": None}
         ]
         wanted = [
             ("lobe+held", 1.0),
@@ -107,6 +110,7 @@ class StackDesign:
                     None if math.isnan(on) else float(on),
                     None if math.isnan(wh) else float(wh),
                 )
+                | {"reading": key, "stiffness_factor": factor}
             )
         return rows
 
@@ -136,6 +140,16 @@ def _row(label: str, k_p: float | None, onset: float | None, whirl: float | None
         "onset_speed_rpm": None if onset is None else onset / RPM,
         "whirl_frequency_Hz": None if whirl is None else whirl / (2 * math.pi),
     }
+
+
+def stack_case(case: Case, voltage: float, factor: float, reading: tuple[str, str]) -> Case:
+    """``case`` at ``voltage`` (V on every actuator) with its stack stiffness K_p times
+    ``factor``, under ``reading`` (preload_response, dynamics): a bearing of the design."""
+    base = case.with_voltages(voltage)
+    if base.actuators is None:
+        raise InputError("the stack design needs a case with [actuators]", source=case.source)
+    stack = replace(base.actuators, stack_stiffness=base.actuators.stack_stiffness * factor)
+    return replace(base, actuators=stack).with_actuator_reading(*reading)
 
 
 def stack_design(
@@ -189,9 +203,7 @@ def stack_design(
         factor = float(f[np.argmin(np.abs(f - factor))]) if np.isclose(f, factor).any() else factor
         if (factor, reading) in known:  # Brent's method starts at the scan's points
             return known[factor, reading]
-        assert base.actuators is not None
-        stack = replace(base.actuators, stack_stiffness=act.stack_stiffness * factor)
-        r = onset_speed(replace(base, actuators=stack).with_actuator_reading(*reading), speeds)
+        r = onset_speed(stack_case(case, voltage, factor, reading), speeds)
         if progress is not None:
             text = "stable" if r.onset_speed is None else speed_text(r.onset_speed / RPM)
             progress(f"  {'+'.join(reading):16s} K_p × {factor:<7.3g} onset {text}")

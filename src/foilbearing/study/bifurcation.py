@@ -319,15 +319,13 @@ def cycle_errors(coarse: dict[str, Any], fine: dict[str, Any]) -> dict[str, Any]
     reach = None if past is None or hopf is None else amplitude_at(fine, hopf * (1.0 + past))
     row2["largest_stable_cycle_um"] = reach
     grid = fine.get("grid")
+    n = (grid or ["?"])[0]
 
     def error(key: str, f1: float, f2: float) -> float:
         return max(abs(f1 - f2), 0.0 if key in _AMPLITUDES else RESIDUAL_FLOOR * abs(f1))
 
-    out, named = two_grid_readouts(
-        _CYCLE_READOUTS, row1, row2, error, (grid or ["?"])[0], lost="out of reach"
-    )
+    out, named = two_grid_readouts(_CYCLE_READOUTS, row1, row2, error, n, lost="out of reach")
     out["grid"] = grid
-    n = (grid or ["?"])[0]
     kind = out["bifurcation_type"] = fine.get("bifurcation_type")
     if kind != coarse.get("bifurcation_type"):
         named.append(f"the Hopf bifurcation {kind} on {n} θ cells")

@@ -4,9 +4,7 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping, Sequence
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -47,15 +45,6 @@ def design_stage(case: Case, out: Path, stage: Any, published: Any) -> dict[str,
     return head | {"figures": [str(fig)]}
 
 
-#: The stack-design table's rows whose onset the stability stage publishes (the same
-#: onset, to Brent's tolerance): row label → the onset table's kind.
-_DESIGN_PUBLISHED = {
-    "shimmed GFB (ideal positioner at the base stroke)": "shimmed",
-    "local+compliant at K_p × 1": "C-GFB",
-    "lobe+held at K_p × 1": "C-GFB, lobe+held",
-}
-
-
 def design_errors(
     case: Case,
     table: list[dict[str, Any]],
@@ -66,26 +55,29 @@ def design_errors(
     """Set on each row of the stack-design table (:meth:`StackDesign.table
     <foilbearing.design.stack.StackDesign.table>` at ``voltage``) its onset's error as the
     published onsets state theirs: ``onset_error_rpm``, ``onset_text_krpm`` and
-    ``onset_refined_rpm``. The shimmed GFB's row and those at K_p × 1 take the stability
-    stage's (``published``: kind → voltage → :func:`onset_table`'s errors, the same onsets);
-    the others are solved at the published resolution here (:func:`refine_onset`,
-    :func:`onset_errors`), the stack's stiffness scaled as the design scales it.
+    ``onset_refined_rpm``. The shimmed GFB's row and those at K_p × 1 under the case's
+    reading or the paper's take the stability stage's (``published``: kind → voltage →
+    :func:`~foilbearing.study.converged.onset_table`'s errors, the same onsets); the others
+    are solved at the published resolution here (:func:`refine_onset`,
+    :func:`onset_errors`) on the design's bearing (:func:`stack_case`).
     """
-    base = case.with_voltages(voltage)
+    from foilbearing.design.stack import stack_case
+
+    act = case.actuators
+    own = None if act is None else f"{act.preload_response}+{act.dynamics}"
     for row in table:
         coarse = row.get("onset_speed_rpm")
+        reading, factor = row.get("reading"), row.get("stiffness_factor")
         if coarse is None:
             continue
-        kind = _DESIGN_PUBLISHED.get(row["bearing"])
+        kind = "shimmed" if reading is None else None
+        if factor == 1.0:
+            kind = {own: "C-GFB", "lobe+held": "C-GFB, lobe+held"}.get(reading)
         known = dict(published.get(kind, {}).get(voltage, {})) if kind else {}
         if "onset_text_krpm" not in known:
-            m = re.fullmatch(r"(\w+)\+(\w+) at K_p × ([\d.e+-]+)", row["bearing"])
-            if m is None or base.actuators is None:
+            if reading is None or factor is None:
                 continue
-            stack = replace(
-                base.actuators, stack_stiffness=base.actuators.stack_stiffness * float(m[3])
-            )
-            variant = replace(base, actuators=stack).with_actuator_reading(m[1], m[2])
+            variant = stack_case(case, voltage, factor, tuple(reading.split("+")))
             known = refine_onset(variant, coarse * RPM, scan)
             if "onset_refined_rpm" not in known:
                 continue
