@@ -199,6 +199,7 @@ def test_the_0v_speed_ups_again_on_twice_the_theta_cells(tmp_path: Path, capsys)
     finer = zero["theta_refined"]
     assert finer["grid"] == [64, 4] and zero["grid"] == [32, 4]
     assert all("theta_refined" not in h for h in out["runs"][1:])  # 0 V runs only
+    assert all(h["grid_floor"]["source"] == "floor" for h in out["runs"][1:])  # the others
     coarse = load_orbit(Path(zero["netcdf"]))[0]
     fine = load_orbit(tmp_path / f"orbit_{zero['label']}_theta2x.nc")[0]
     assert np.array_equal(fine.time, coarse.time)
@@ -242,6 +243,33 @@ def test_a_readout_error_is_the_two_grid_difference_or_its_floor() -> None:
     assert readout_errors(coarse, fine | {"onset_speed_rpm": 48_670.0}, 4)["errors"][
         "onset_speed_rpm"
     ] == pytest.approx(max(400.0, READOUT_FLOOR["onset_speed_rpm"] * 47_470.0))
+
+
+def test_a_run_not_refined_carries_the_floor_of_the_refined_ones() -> None:
+    """A controlled speed-up (not run again on refined θ cells) states each readout with
+    the floor's error (:func:`floor_errors`), a readout it lacks without one; the report's
+    speed-up table and the paper comparison's row print them."""
+    from foilbearing.output.report.paper_stages import _orbits
+    from foilbearing.paper_dynamics import orbit_comparison
+    from foilbearing.study.orbits import READOUT_FLOOR, floor_errors
+
+    head = {"onset_speed_rpm": 59_870.0, "whip_frequency_Hz": 117.0,
+            "divergence_speed_rpm": 58_950.0, "voltage_V": 150.0}  # fmt: skip
+    got = floor_errors(head)
+    for key, floor in READOUT_FLOOR.items():
+        assert got["errors"][key] == pytest.approx(floor * head[key])
+    assert got["texts"]["divergence_speed_rpm"] == "59.0 ± 1.2"
+    assert got["text"] == (
+        "grid error, the floor of the refined runs: onset 60 ± 5 krpm, whip 117.0 ± 2.4 Hz, "
+        "divergence 59.0 ± 1.2 krpm"
+    )
+    assert floor_errors(head | {"divergence_speed_rpm": None})["errors"][
+        "divergence_speed_rpm"
+    ] is None  # fmt: skip
+    page = _orbits({"runs": [head | {"grid_floor": got}]}, {})
+    assert ">59.0 ± 1.2<" in page and ">117.0 ± 2.4<" in page
+    (row,) = orbit_comparison([head | {"grid_floor": got}])
+    assert got["text"] in row.ours
 
 
 def test_a_refined_run_stops_a_margin_after_the_coarse_divergence() -> None:

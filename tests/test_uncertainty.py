@@ -234,7 +234,7 @@ def test_the_study_s_quick_plan_gives_indices_in_the_unit_interval_and_names_its
     estimator and the sample size in the JSON, the dataset and the report."""
     from foilbearing.output.report import render_report
     from foilbearing.output.result import StudyResult
-    from foilbearing.study.paper import uncertainty_plan
+    from foilbearing.study.envelopes import uncertainty_plan
 
     spec = uncertainty_plan("quick")
     assert (spec.estimator, spec.n_points) == ("rbd_fast", 64)
@@ -271,7 +271,7 @@ def test_on_the_measured_outputs_the_quick_plan_agrees_with_the_full_run() -> No
     now not estimable. The quick plan's RBD-FAST on its own 64 points stays in
     [0, 1], ranks the full run's first input first and lies within 0.2 of the full
     run's first order (the largest difference measured over all 47 outputs is 0.17)."""
-    from foilbearing.study.paper import uncertainty_plan
+    from foilbearing.study.envelopes import uncertainty_plan
 
     data = json.loads((Path(__file__).parent / "data" / "uncertainty_issue33.json").read_text())
     names = list(data["quick"])
@@ -412,10 +412,13 @@ def test_command_on_its_own_cluster_persists_resumes_and_plots(
     assert ds["y"].shape == (24, 7)  # 4 readouts and 3 preloads
     assert main(argv) == 2  # the folder exists: --resume or another --out
     assert "--resume" in capsys.readouterr().err
-    assert main([*argv, "--resume"]) == 0
+    assert main([*argv, "--resume", "--grid-check"]) == 0
     again = json.loads(capsys.readouterr().out)
     assert (again["n_computed"], again["n_skipped"]) == (0, 24)
     assert again["outputs"] == summary["outputs"]
+    check = again["grid_check"]
+    assert (check["grid"], check["refined_grid"]) == ([48, 6], [96, 12])
+    assert set(check["outputs"]) == set(summary["outputs"])
 
 
 def test_a_stopped_run_keeps_what_it_computed(tmp_path: Path) -> None:
@@ -502,7 +505,7 @@ def test_the_study_s_stage_and_its_report_section(tmp_path: Path, monkeypatch) -
     import foilbearing.uncertainty.spec as uq_spec
     from foilbearing.output.report import render_report
     from foilbearing.output.result import StudyResult
-    from foilbearing.study.paper import _uncertainty_stage
+    from foilbearing.study.envelopes import uncertainty_stage
 
     small = _write(
         tmp_path,
@@ -511,12 +514,17 @@ def test_the_study_s_stage_and_its_report_section(tmp_path: Path, monkeypatch) -
         '[outputs.static]\nspeeds = ["60000 rpm", "90000 rpm"]\nvoltages = ["150 V"]\n',
     )
     monkeypatch.setattr(uq_spec, "default_uncertainty_path", lambda: small)
-    section = _uncertainty_stage(tmp_path, "full", lambda line: None)
+    section = uncertainty_stage(tmp_path, "full", lambda line: None, grid_check=2)
     assert section["n_ok"] == 24
     film = section["outputs"]["min_film_um[90 krpm, 150 V]"]
     html = render_report(StudyResult.from_summary({"uncertainty": section}, tmp_path))
     assert "What the unknowns allow" in html
     assert f"{film['p95']:.4g}" in html and "min_film_um[90 krpm, 150 V]" in html
+    # each output's grid error at the inputs' centre, 48 x 6 against 96 x 12
+    check = section["grid_check"]["outputs"]["min_film_um[90 krpm, 150 V]"]
+    assert check["error"] == pytest.approx(check["value"] - check["refined"])
+    assert f"{check['error']:+.2g}" in html and "grid error" in html
+    assert "--grid-check" in section["command"]
     assert html.count("data:image/png;base64,") == 2
 
 

@@ -197,8 +197,9 @@ def orbit_comparison(
             if div
             else f"no divergence up to {(run.get('end_speed_rpm') or 0) / 1e3:.0f} krpm"
         )
-        grid_error = (run.get("theta_refined") or {}).get("text")
-        if grid_error:  # the readouts with their grid error (study.orbits.readout_errors)
+        grid_error = (run.get("theta_refined") or run.get("grid_floor") or {}).get("text")
+        if grid_error:  # the readouts with their grid error (study.orbits.readout_errors,
+            # or floor_errors for a run that was not refined)
             parts.append(grid_error)
         lin = (linear_onsets_rpm or {}).get(v)
         if lin and div:

@@ -37,6 +37,12 @@ first zero of the scheduled log decrement along the grid speeds and the
 midpoints, by linear interpolation between the two around it (None when it
 stays ≥ 0 up to the top speed).
 
+**Grid error** (:func:`schedule_grid_check`). The schedule is searched on the case's grid;
+its points (the scheduled voltages at every grid speed and midpoint) are evaluated again on
+a grid with ``factor`` times the cells in θ and in Z, and each readout's error is the
+difference, as ``foilbearing check`` states it. Whether the margin holds is then read on
+both grids.
+
 All quantities in SI (rad/s, V, W) unless a name says otherwise.
 """
 
@@ -70,6 +76,7 @@ __all__ = [
     "SpeedSchedule",
     "check_speed_range",
     "evaluate_voltages",
+    "schedule_grid_check",
     "voltage_schedule",
 ]
 
@@ -316,3 +323,99 @@ def voltage_schedule(
         evaluations=total,
         source=case.source,
     )
+
+
+def schedule_grid_check(
+    case: Case,
+    schedule: SpeedSchedule,
+    factor: int = 2,
+    progress: Callable[[str], None] | None = None,
+) -> dict[str, Any]:
+    """The schedule's points evaluated again on ``factor`` times the cells in θ and in Z (the
+    axial order and the lift-off smoothing κ held, :func:`foilbearing.check.refined`): the
+    scheduled voltages at every grid speed and midpoint, as searched on ``case``'s grid.
+
+    Returns
+    -------
+    dict
+        ``grid`` and ``refined_grid`` ([n_θ, n_z]); per grid speed, on the refined grid,
+        ``log_decrement``, ``whirl_frequency_Hz`` and ``power_loss_W`` and their ``errors``
+        (the schedule's value less the refined one, None where either is missing);
+        ``midpoint_log_decrement``; ``limit_speed_rpm`` on the refined grid (None: stable to
+        the top speed) and its error (None unless both grids have one); ``below_margin``:
+        the speeds (rpm) whose refined log decrement misses the margin by more than 1e-3
+        where the schedule met it; ``wall_time_s``.
+    """
+    import time
+
+    from foilbearing.check import refined
+
+    if schedule.log_decrement is None:
+        raise InputError("the schedule has no log decrements to check: compute it first")
+    t0 = time.perf_counter()
+    fine = refined(case, factor)
+    w = np.asarray(schedule.speeds, dtype=float)
+    volts = np.asarray(schedule.voltages, dtype=float)
+    start: Any = None
+    points: list[SchedulePoint | None] = []
+    for k, speed in enumerate(w):
+        point, start = evaluate_voltages(fine, float(speed), tuple(volts[k]), start)
+        points.append(point)
+        if progress is not None:
+            shown = "no equilibrium" if point is None else f"log dec {point.log_decrement:+.3f}"
+            progress(f"{speed / RPM:8.0f} rpm on {fine.grid.n_theta} x {fine.grid.n_z}: {shown}")
+    mid = np.full(max(w.size - 1, 0), np.nan)
+    for k in range(mid.size):
+        wm, vm = 0.5 * (w[k] + w[k + 1]), tuple(0.5 * (volts[k] + volts[k + 1]))
+        point, start = evaluate_voltages(fine, float(wm), vm, start)
+        if point is not None:
+            mid[k] = point.log_decrement
+
+    def values(get: Callable[[SchedulePoint], float]) -> list[float | None]:
+        return [None if p is None else float(get(p)) for p in points]
+
+    fine_dec = values(lambda p: p.log_decrement)
+    fine_hz = values(lambda p: p.whirl_frequency / (2.0 * math.pi))
+    fine_power = values(lambda p: p.power_loss)
+    coarse = schedule.headline()
+
+    def errors(key: str, refined_values: list[float | None]) -> list[float | None]:
+        mine = coarse[key] or [None] * len(refined_values)  # None: not in the schedule file
+        return [
+            None if a is None or b is None else a - b
+            for a, b in zip(mine, refined_values, strict=True)
+        ]
+
+    both_w = np.empty(w.size + mid.size)
+    both_w[0::2], both_w[1::2] = w, 0.5 * (w[1:] + w[:-1])
+    both_dec = np.empty_like(both_w)
+    both_dec[0::2] = [math.nan if d is None else d for d in fine_dec]
+    both_dec[1::2] = mid
+    limit = _limit_speed(both_w, both_dec)
+    limit_rpm = None if limit is None else limit / RPM
+    coarse_limit = coarse["limit_speed_rpm"]
+    margin = schedule.margin if schedule.margin is not None else 0.0
+    below = [
+        float(speed / RPM)
+        for speed, a, b in zip(w, coarse["log_decrement"] or [None] * w.size, fine_dec, strict=True)
+        if a is not None and b is not None and a >= margin - 1e-12 and b < margin - 1e-3
+    ]
+    return {
+        "grid": [case.grid.n_theta, case.grid.n_z],
+        "refined_grid": [fine.grid.n_theta, fine.grid.n_z],
+        "log_decrement": fine_dec,
+        "whirl_frequency_Hz": fine_hz,
+        "power_loss_W": fine_power,
+        "errors": {
+            "log_decrement": errors("log_decrement", fine_dec),
+            "whirl_frequency_Hz": errors("whirl_frequency_Hz", fine_hz),
+            "power_loss_W": errors("power_loss_W", fine_power),
+        },
+        "midpoint_log_decrement": [float(d) if math.isfinite(d) else None for d in mid],
+        "limit_speed_rpm": limit_rpm,
+        "limit_speed_error_rpm": None
+        if limit_rpm is None or coarse_limit is None
+        else coarse_limit - limit_rpm,
+        "below_margin_rpm": below,
+        "wall_time_s": time.perf_counter() - t0,
+    }

@@ -21,17 +21,6 @@ if TYPE_CHECKING:
 __all__ = ["run_study", "run_study_result"]
 
 
-#: The study's uncertainty stage: (evaluations, estimator, sampler), None for the file's
-#: own. "quick" is RBD-FAST on a 64-point Latin hypercube: the Sobol' estimator on the
-#: 8 base rows such a budget allows gave first-order indices up to 2.07 (issue 33;
-#: docs/uncertainty.md measures both against the full plan). "full" is the file's own,
-#: 252 points with the Sobol' estimator (first-order and total indices).
-UNCERTAINTY_PLANS: dict[str, tuple[int | None, str | None, str | None]] = {
-    "quick": (64, "rbd_fast", "lhs"),
-    "full": (None, None, None),
-}
-
-
 def run_study(
     case: Case,
     out: Path,
@@ -218,7 +207,11 @@ def run_study_result(
             write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     if uncertainty != "none":
-        results["uncertainty"] = _uncertainty_stage(out, uncertainty, stage)
+        from foilbearing.study.envelopes import uncertainty_stage
+
+        results["uncertainty"] = uncertainty_stage(
+            out, uncertainty, stage, grid_check=2 if theta_refine > 1 else 1
+        )
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
     orbit_runs: dict[str, Any] = {}  # the runs by label, for the report's figures
@@ -269,7 +262,9 @@ def _speed_ups(
             "voltage schedule: least-drag voltages with log decrement >= 0.1, 10-90 krpm"
             + ("; verified in speed-ups" if orbits else "")
         )
-        summaries["schedule"] = queue_schedule(queue, case, out, stage)
+        summaries["schedule"] = queue_schedule(
+            queue, case, out, stage, grid_check=2 if theta_refine > 1 else 1
+        )
     if queue is not None:
         queue.drain()
     for key, summary in summaries.items():  # the stages' order
@@ -533,39 +528,6 @@ def _stability_stage(
         for kind, per_volt in onsets.items()
     } | {"figures": [str(fig)]}
     return onsets, errors
-
-
-def uncertainty_plan(plan: str) -> Any:
-    """The built-in uncertainty file's sample under the study's ``plan`` ("quick" or "full")."""
-    from foilbearing.uncertainty import load_uncertainty
-
-    samples, estimator, sampler = UNCERTAINTY_PLANS[plan]
-    return load_uncertainty(samples=samples, estimator=estimator, sampler=sampler)
-
-
-def _uncertainty_stage(out: Path, plan: str, stage: Any) -> dict[str, Any]:
-    """Envelopes and sensitivity indices of what the paper leaves open (issue 15)."""
-    from foilbearing.output.figures import write_uncertainty_figures
-    from foilbearing.uncertainty import run_uncertainty
-
-    samples, estimator, sampler = UNCERTAINTY_PLANS[plan]
-    spec = uncertainty_plan(plan)
-    stage(
-        f"uncertainty: {spec.n_points} evaluations of {len(spec.inputs)} uncertain inputs "
-        f"({spec.estimator} estimator) on a local Dask cluster"
-    )
-    tail = "" if estimator is None else f"_{estimator}_{sampler}"
-    folder = out / f"uncertainty_{spec.n_points}pts{tail}"  # a rerun of the same sample resumes it
-    ds, summary = run_uncertainty(spec, folder, resume=folder.exists())
-    summary["figures"] = [str(p) for p in write_uncertainty_figures(ds, out)]
-    summary["command"] = " ".join(
-        ["foilbearing uncertainty"]
-        + ([f"--estimator {estimator}"] if estimator is not None else [])
-        + ([f"--sampler {sampler}"] if sampler is not None else [])
-        + ([f"--samples {spec.samples}"] if samples is not None else [])
-        + [f"--out {folder}"]
-    )
-    return summary
 
 
 def _plain(x: Any) -> Any:

@@ -30,7 +30,7 @@ from typing import Any
 from foilbearing.case import Case
 from foilbearing.constants import RPM
 
-__all__ = ["SCHEDULE_SPEEDS_RPM", "schedule_stage"]
+__all__ = ["SCHEDULE_SPEEDS_RPM", "schedule_errors", "schedule_stage"]
 
 #: The study's schedule grid, rpm: 10 to 90 krpm in 5 krpm steps (17 speeds).
 SCHEDULE_SPEEDS_RPM = tuple(range(10_000, 90_001, 5_000))
@@ -58,12 +58,13 @@ def schedule_stage(
     verify: bool = True,
     workers: int | None = None,
     speeds: list[float] | None = None,
+    grid_check: int = 1,
 ) -> dict[str, Any]:
     """Compute, write and (with ``verify``) run the schedule; returns its summary."""
     from foilbearing.study.queue import OrbitQueue
 
     queue = OrbitQueue(workers) if verify else None
-    summary = queue_schedule(queue, case, out, stage, speeds=speeds)
+    summary = queue_schedule(queue, case, out, stage, speeds=speeds, grid_check=grid_check)
     if queue is not None:
         queue.drain()
     return summary()
@@ -76,11 +77,15 @@ def queue_schedule(
     stage: Callable[[str], None],
     *,
     speeds: list[float] | None = None,
+    grid_check: int = 1,
 ) -> Callable[[], dict[str, Any]]:
     """Compute and write the schedule, and put its speed-ups on ``queue`` (None: none).
 
     Returns the stage's summary, to call once the queue has drained. A run another stage
-    asked for on the same queue (the protocol's 1 g·mm runs) is run once and shared.
+    asked for on the same queue (the protocol's 1 g·mm runs) is run once and shared. With
+    ``grid_check`` ≥ 2 the schedule's points are evaluated again on that many times the
+    cells while the speed-ups run (:func:`schedule_errors`), the schedule's
+    ``grid_refined``.
     """
     from foilbearing.control.schedule_file import schedule_toml
     from foilbearing.design.schedule_search import voltage_schedule
@@ -100,6 +105,8 @@ def queue_schedule(
         "figures": figures,
     }
     if queue is None:
+        if grid_check > 1:
+            summary["schedule"]["grid_refined"] = schedule_errors(case, schedule, grid_check, stage)
         return lambda: summary
     plan = _runs(schedule)
     runs: dict[str, Any] = {}
@@ -114,12 +121,51 @@ def queue_schedule(
         # run decides the runs that follow it.
         if not queue.submit(case, r, out, ran, priority=0 if r.ramp is None else 1):
             stage(f"  {r.describe()}: shared with the orbit stage")
+    if grid_check > 1:  # on this process, while the queue's workers run the speed-ups
+        summary["schedule"]["grid_refined"] = schedule_errors(case, schedule, grid_check, stage)
 
     def verification() -> dict[str, Any]:
         summary["verification"] = _verification(runs, plan, out, figures)
         return summary
 
     return verification
+
+
+def schedule_errors(
+    case: Case, schedule: Any, factor: int, stage: Callable[[str], None]
+) -> dict[str, Any]:
+    """The schedule's points on ``factor`` times the cells
+    (:func:`foilbearing.design.schedule_search.schedule_grid_check`), with the texts the
+    report prints: each speed's log decrement, whirl frequency and power loss with its
+    error (the difference to the finer grid), and the limit speed's."""
+    from foilbearing.design.schedule_search import schedule_grid_check
+    from foilbearing.study.converged import with_error
+
+    check = schedule_grid_check(case, schedule, factor)
+    head = schedule.headline()
+    texts: dict[str, list[str | None]] = {}
+    for key in ("log_decrement", "whirl_frequency_Hz", "power_loss_W"):
+        texts[key] = [
+            None if v is None or e is None else with_error(v, e)
+            for v, e in zip(head[key], check["errors"][key], strict=True)
+        ]
+    limit, error = head["limit_speed_rpm"], check["limit_speed_error_rpm"]
+    check["texts"] = texts | {
+        "limit_speed_krpm": None if limit is None or error is None
+        else with_error(limit / 1e3, error / 1e3)
+    }  # fmt: skip
+    fine = check["refined_grid"]
+    worst = max((abs(e) for e in check["errors"]["log_decrement"] if e is not None), default=0.0)
+    stage(
+        f"  the schedule's points on {fine[0]} x {fine[1]}: log decrements within {worst:.3f}"
+        + (
+            f"; below the margin at {', '.join(f'{w / 1e3:.0f}' for w in check['below_margin_rpm'])} krpm"
+            if check["below_margin_rpm"]
+            else ""
+        )
+        + f" ({check['wall_time_s']:.0f} s)"
+    )
+    return check
 
 
 def _verification(
@@ -133,9 +179,13 @@ def _verification(
 
     common = min(float(runs[r.label]["result"].speed[-1]) for r in plan) / RPM
     rows, subs, onsets, power = [], {}, {}, {}
+    from foilbearing.study.orbits import floor_errors
+
     for r in plan:
         res, analysis = runs[r.label]["result"], runs[r.label]["analysis"]
         head = analysis.headline(res)
+        # a run the orbit stage refined keeps its two-grid error, the others the floor
+        refined = (runs[r.label].get("headline") or {}).get("theta_refined")
         if analysis.subsync is not None:
             subs[r.describe()] = analysis.subsync
         if analysis.onset is not None:
@@ -154,6 +204,7 @@ def _verification(
                 "mean_power_loss_W": head["mean_power_loss_W"],
                 "mean_power_loss_common_W": mean_power_loss(res, until_rpm=common),
             }
+            | ({"theta_refined": refined} if refined else {"grid_floor": floor_errors(head)})
         )
     if subs:
         figures.append(str(save_figure(plot_subsync(subs, onsets), out / "schedule_subsync.png")))

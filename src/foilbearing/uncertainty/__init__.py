@@ -17,6 +17,7 @@ module        responsibility
 ``design``    the sample design and the sensitivity estimators
 ``evaluate``  one sample point: every output for one case
 ``result``    percentiles and sensitivity indices of every output, as a Dataset and as JSON
+``grid``      the grid's error of the outputs, at the centre of the inputs
 ============  ==================================================================================
 """
 
@@ -69,6 +70,7 @@ def run_uncertainty(
     compute: bool = True,
     progress: bool = False,
     on_point: Callable[[dict[str, Any]], None] | None = None,
+    grid_check: int = 1,
 ) -> tuple[Any, dict[str, Any]]:
     """Evaluate the sample on Dask and summarise it.
 
@@ -82,12 +84,18 @@ def run_uncertainty(
         atomically when the sample is done, or stopped).
     client, scheduler, n_workers, dashboard, resume, compute, progress, on_point
         As :func:`foilbearing.sweep.runner.run_sweep`.
+    grid_check
+        With 2 or more, the static and stability outputs are solved again at the centre of
+        the inputs on the case's grid and on that many times its cells
+        (:func:`foilbearing.uncertainty.grid.grid_errors`), after the sample: the summary's
+        ``grid_check``, each output's discretisation error. 1: not checked.
 
     Returns
     -------
     (Dataset, dict)
         The summary Dataset and its JSON (:func:`summary_json`) with
-        ``n_computed``, ``n_skipped``, ``dataset``, ``wall_time_s`` added.
+        ``n_computed``, ``n_skipped``, ``dataset``, ``wall_time_s`` (and ``grid_check``)
+        added.
     """
     t0 = time.perf_counter()
     paths = result_paths(out)
@@ -110,11 +118,26 @@ def run_uncertainty(
     except BaseException:  # a stopped run keeps what it computed: the summary so far
         _write_summary(spec, paths, {}, t0)
         raise
-    return _write_summary(spec, paths, run, t0)
+    check = None
+    if grid_check > 1 and compute:
+        from foilbearing.uncertainty.grid import grid_errors
+
+        check = grid_errors(spec, grid_check, progress=_say if progress else None)
+    return _write_summary(spec, paths, run, t0, check)
+
+
+def _say(line: str) -> None:
+    import sys
+
+    print(line, file=sys.stderr)
 
 
 def _write_summary(
-    spec: UncertaintySpec, paths: dict[str, Path], run: dict[str, Any], t0: float
+    spec: UncertaintySpec,
+    paths: dict[str, Path],
+    run: dict[str, Any],
+    t0: float,
+    grid_check: dict[str, Any] | None = None,
 ) -> tuple[Any, dict[str, Any]]:
     records = done_points(paths["folder"], spec) if paths["points"].exists() else {}
     ds = summarise(spec, records)
@@ -126,5 +149,7 @@ def _write_summary(
         dataset=str(paths["dataset"]),
         wall_time_s=time.perf_counter() - t0,
     )
+    if grid_check is not None:
+        summary["grid_check"] = grid_check
     write_text(paths["json"], json.dumps(summary, indent=1))
     return ds, summary

@@ -488,6 +488,7 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
         "(<code>foilbearing study --theta-refine</code>), its onset, whip and divergence carry "
         "their grid error: the difference between the two grids, or at least the moves "
         "measured on the paper's case from 192 to 384 θ cells (onset 8 %, whip and "
-        "divergence 2 %), which two grids alone would miss.</p>"
+        "divergence 2 %), which two grids alone would miss; the runs that were not (the "
+        "controlled ones) carry that floor.</p>"
     )
     return note + _records([r for r in d.get("runs", []) if isinstance(r, dict)], cols)

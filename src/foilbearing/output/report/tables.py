@@ -79,11 +79,14 @@ def _with_grid_error(
 ) -> Callable[[dict[str, Any]], str | None]:
     """A readout with its grid error where the record was refined (its ``refined`` entry:
     :func:`foilbearing.study.orbits.readout_errors` for a speed-up, ``grid_refined`` of
-    :func:`foilbearing.study.static.static_errors` for a static point), to the digits the
-    error supports; otherwise its value times ``scale`` to ``spec``."""
+    :func:`foilbearing.study.static.static_errors` for a static point), or the floor stated
+    for a speed-up that was not refined (``grid_floor``,
+    :func:`foilbearing.study.orbits.floor_errors`), to the digits the error supports;
+    otherwise its value times ``scale`` to ``spec``."""
 
     def get(r: dict[str, Any]) -> str | None:
-        text = ((r.get(refined) or {}).get("texts") or {}).get(key)
+        errors = r.get(refined) or r.get("grid_floor") or {}
+        text = (errors.get("texts") or {}).get(key)
         if text:
             return str(text)
         value = r.get(key)
