@@ -446,6 +446,10 @@ def test_study_page_is_self_contained(study_out: Path) -> None:
     assert "schedule.png" in str(summary["schedule"])
     section = text[text.index('<section id="schedule"') :]
     assert all(f"<td class=num>{w / 1e3:.0f}</td>" in section for w in sched["speeds_rpm"])
+    # each log decrement with its grid error, the schedule's points on 192 x 24
+    check = sched["grid_refined"]
+    assert check["refined_grid"] == [192, 24]
+    assert all(f">{t}<" in section for t in check["texts"]["log_decrement"])
     assert [text.index(f'<section id="{k}"') for k in order] == sorted(
         text.index(f'<section id="{k}"') for k in order
     )

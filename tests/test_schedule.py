@@ -184,8 +184,13 @@ def test_cli_bad_input_before_any_work(coarse_path: Path, tmp_path: Path, capsys
 def test_cli_json_and_file(coarse_path: Path, tmp_path: Path, capsys) -> None:
     out = tmp_path / "schedule.toml"
     argv = ["schedule", str(coarse_path), "--speed-range", "30000rpm:50000rpm:20000rpm"]
-    assert main([*argv, "--out", str(out), "--plot", str(tmp_path), "--json"]) == 0
+    assert main([*argv, "--out", str(out), "--plot", str(tmp_path), "--json", "--grid-check"]) == 0
     head = json.loads(capsys.readouterr().out)
+    check = head["grid_refined"]  # the schedule's points again on 96 x 12
+    assert check["refined_grid"] == [96, 12]
+    assert [a - b for a, b in zip(head["log_decrement"], check["log_decrement"], strict=True)] == (
+        pytest.approx(check["errors"]["log_decrement"])
+    )
     for key in (
         "speeds_rpm",
         "voltages_V",
@@ -200,6 +205,11 @@ def test_cli_json_and_file(coarse_path: Path, tmp_path: Path, capsys) -> None:
     assert (tmp_path / "schedule.png").stat().st_size > 10_000
     back = load_schedule(out, load_case(coarse_path))
     assert back.voltages == pytest.approx(np.array(head["voltages_V"]), abs=0.005)
+    # the table prints each log decrement's grid error and what the finer grid says
+    one = ["schedule", str(coarse_path), "--speed-range", "30000rpm:40000rpm:20000rpm"]
+    assert main([*one, "--grid-check"]) == 0
+    text = capsys.readouterr().out
+    assert "± grid" in text and "grid check: the schedule's points on 96 x 12" in text
 
 
 def test_orbit_on_the_schedule_stays_stable_below_the_limit(coarse) -> None:

@@ -50,6 +50,7 @@ def test_the_centre_is_each_input_s_median_and_its_values_are_the_sample_s(
     check = grid_errors(spec)
     assert (check["grid"], check["refined_grid"]) == ([48, 6], [96, 12])
     assert check["centre"]["bearing.clearance"] == pytest.approx(100.0)
+    assert check["centre_unit"]["bearing.clearance"] == "μm"
     sample = evaluate_sample(case, spec.options)["outputs"]
     assert set(check["outputs"]) == set(sample)
     for name, value in sample.items():

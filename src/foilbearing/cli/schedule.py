@@ -60,6 +60,12 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("--out", default=None, help="write the schedule file (TOML) here")
     add_overwrite_arg(p)
     p.add_argument("--plot", default=None, metavar="DIR", help="write the figure (PNG) to DIR")
+    p.add_argument(
+        "--grid-check",
+        action="store_true",
+        help="solve the schedule's points again on twice the cells in θ and Z: each log "
+        "decrement's and power loss's grid error, and whether the margin still holds",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_schedule)
     return p
@@ -100,6 +106,7 @@ def cmd_schedule(args: argparse.Namespace) -> int:
     from foilbearing.design.schedule_search import (
         DEFAULT_MARGIN,
         check_speed_range,
+        schedule_grid_check,
         voltage_schedule,
     )
     from foilbearing.io import save_figure
@@ -127,6 +134,8 @@ def cmd_schedule(args: argparse.Namespace) -> int:
         case, speeds, margin=margin, slew_rate=slew, acceleration=accel, progress=progress
     )
     head: dict[str, Any] = schedule.headline()
+    if args.grid_check:
+        head["grid_refined"] = schedule_grid_check(case, schedule, 2, progress)
     if target is not None and target.write_text(schedule_toml(schedule, case.title)):
         head["schedule_file"] = str(target.path)
     if args.plot is not None:
@@ -136,13 +145,21 @@ def cmd_schedule(args: argparse.Namespace) -> int:
     if args.json:
         emit(head)
         return 0
-    print(" speed (rpm)  voltages (V)              log dec  power (W)  at 150 V (W)")
+    check = head.get("grid_refined")
+    errors = check["errors"] if check else {}
+    print(
+        " speed (rpm)  voltages (V)              log dec"
+        + ("  ± grid" if check else "")
+        + "  power (W)  at 150 V (W)"
+    )
     for k, w in enumerate(head["speeds_rpm"]):
         volts = "/".join(f"{v:6.1f}" for v in head["voltages_V"][k])
         dec, loss = head["log_decrement"][k], head["power_loss_W"][k]
         ref = head["power_loss_150V_W"][k]
+        err = errors["log_decrement"][k] if check else None
+        grid = "" if not check else f"  {'-' if err is None else format(abs(err), '.3f'):>6}"
         print(
-            f" {w:10.0f}  {volts:<24}  {dec:+7.3f}  {loss:9.3f}  "
+            f" {w:10.0f}  {volts:<24}  {dec:+7.3f}{grid}  {loss:9.3f}  "
             + (f"{ref:12.3f}" if ref is not None else f"{'-':>12}")
         )
     limit = head["limit_speed_rpm"]
@@ -151,6 +168,23 @@ def cmd_schedule(args: argparse.Namespace) -> int:
         if limit is None
         else f"limit speed {limit:.0f} rpm: above it no voltage keeps the rotor stable"
     )
+    if check:
+        g, f = check["grid"], check["refined_grid"]
+        below = check["below_margin_rpm"]
+        fine_limit = check["limit_speed_rpm"]
+        print(
+            f"grid check: the schedule's points on {f[0]} x {f[1]} (searched on {g[0]} x {g[1]}): "
+            + (
+                "the margin missed at " + ", ".join(f"{w:.0f}" for w in below) + " rpm"
+                if below
+                else "every speed that met the margin still meets it"
+            )
+            + (
+                ""
+                if fine_limit is None
+                else f"; limit speed {fine_limit:.0f} rpm on the finer grid"
+            )
+        )
     for key in ("schedule_file", "figures"):
         if key in head:
             print(f"  {key}: {head[key]}")

@@ -8,11 +8,8 @@ next. The queue takes every stage's runs at once instead:
 
 - a run is handed to a worker process as soon as one is free, the runs that others wait
   for (``priority`` 0) before the rest, and in the order they came within a priority;
-- when a run finishes, the next run waiting is handed to the freed worker at once, from the
-  pool's own thread, even while this process computes something else (the voltage
-  schedule's search, its grid check); the callbacks of whoever asked for the finished run
-  run in this process when it next waits on the queue (they write its figures, and may ask
-  for the runs it decides);
+- when a run finishes, the callbacks of whoever asked for it run in this process (they
+  write its figures, and may ask for the runs it decides), while the workers go on;
 - a run asked for twice (the same label in the same folder: the schedule's 0 V run is the
   protocol's 1 g·mm one) is run once, and each asker sees it under its own series.
 
@@ -28,7 +25,6 @@ from __future__ import annotations
 import heapq
 import multiprocessing
 import os
-import threading
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
@@ -84,13 +80,8 @@ class OrbitQueue:
         self._ready: list[tuple[int, int, str]] = []  # heap of (priority, order, label)
         self._tasks: dict[str, _Task] = {}  # asked for, not finished
         self._done: dict[str, dict[str, Any]] = {}  # finished, by label
-        self._running: dict[Future[dict[str, Any]], str] = {}  # not collected yet
-        self._busy: set[Future[dict[str, Any]]] = set()  # on a worker now
+        self._running: dict[Future[dict[str, Any]], str] = {}
         self._order = 0
-        # _ready, _tasks, _running and _busy are shared with the pool's thread, which hands
-        # a freed worker the next run (_freed); re-entrant: a future that is already done
-        # calls its callback at once, in the thread that adds it.
-        self._lock = threading.RLock()
 
     def submit(
         self,
@@ -112,19 +103,6 @@ class OrbitQueue:
         if label in self._done:
             then(_seen_as(self._done[label], run))
             return False
-        with self._lock:
-            return self._ask(case, run, out, then, priority, stop_time)
-
-    def _ask(
-        self,
-        case: Case,
-        run: Any,
-        out: Path,
-        then: Done,
-        priority: int,
-        stop_time: float | None,
-    ) -> bool:
-        label = run.label
         if label in self._tasks:
             task = self._tasks[label]
             if task.out != out or task.stop_time != stop_time:
@@ -148,22 +126,19 @@ class OrbitQueue:
         """Run until every run asked for, and every run their callbacks ask for, has ended."""
         try:
             while self._running:
-                finished, _ = wait(list(self._running), return_when=FIRST_COMPLETED)
+                finished, _ = wait(self._running, return_when=FIRST_COMPLETED)
                 ended = []
-                with self._lock:
-                    for fut in finished:
-                        label = self._running.pop(fut)
-                        ended.append((label, fut.result()))
-                    self._dispatch()  # (the pool's thread has done so already, as a rule)
+                for fut in finished:
+                    label = self._running.pop(fut)
+                    ended.append((label, fut.result()))
+                self._dispatch()  # the freed workers go on while the callbacks write figures
                 for label, result in ended:
-                    with self._lock:
-                        task = self._tasks.pop(label)
-                        self._done[label] = result
+                    task = self._tasks.pop(label)
+                    self._done[label] = result
                     for run, then in task.askers:
                         then(_seen_as(result, run))
         except BaseException:
-            with self._lock:
-                self._ready.clear()
+            self._ready.clear()
             if self._pool is not None:
                 self._pool.shutdown(wait=True, cancel_futures=True)
                 self._pool = None
@@ -173,8 +148,7 @@ class OrbitQueue:
             self._pool = None
 
     def _dispatch(self) -> None:
-        """Hand waiting runs to free workers, the lowest ``priority`` first (lock held)."""
-        while self._ready and len(self._busy) < self.workers:
+        while self._ready and len(self._running) < self.workers:
             if self._pool is None:
                 self._pool = worker_pool(self.workers)
             priority, _, label = heapq.heappop(self._ready)
@@ -183,15 +157,6 @@ class OrbitQueue:
                 continue  # an entry left by a raised priority
             fut = self._pool.submit(run_one, task.case, task.run, task.out, task.stop_time)
             self._running[fut] = label
-            self._busy.add(fut)
-            fut.add_done_callback(self._freed)
-
-    def _freed(self, fut: Future[dict[str, Any]]) -> None:
-        """A run ended (the pool's thread): its worker takes the next run waiting."""
-        with self._lock:
-            self._busy.discard(fut)
-            if fut.exception() is None and not fut.cancelled():
-                self._dispatch()
 
 
 def _seen_as(result: dict[str, Any], run: Any) -> dict[str, Any]:

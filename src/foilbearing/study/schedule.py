@@ -84,8 +84,9 @@ def queue_schedule(
     Returns the stage's summary, to call once the queue has drained. A run another stage
     asked for on the same queue (the protocol's 1 g·mm runs) is run once and shared. With
     ``grid_check`` ≥ 2 the schedule's points are evaluated again on that many times the
-    cells while the speed-ups run (:func:`schedule_errors`), the schedule's
-    ``grid_refined``.
+    cells (:func:`schedule_errors`), the schedule's ``grid_refined``: in a process of its
+    own while the speed-ups run, since the queue hands its workers new runs only when the
+    study waits on it.
     """
     from foilbearing.control.schedule_file import schedule_toml
     from foilbearing.design.schedule_search import voltage_schedule
@@ -121,10 +122,21 @@ def queue_schedule(
         # run decides the runs that follow it.
         if not queue.submit(case, r, out, ran, priority=0 if r.ramp is None else 1):
             stage(f"  {r.describe()}: shared with the orbit stage")
-    if grid_check > 1:  # on this process, while the queue's workers run the speed-ups
-        summary["schedule"]["grid_refined"] = schedule_errors(case, schedule, grid_check, stage)
+    checking = None
+    if grid_check > 1:  # in a process of its own, beside the queue's speed-ups
+        from foilbearing.design.schedule_search import schedule_grid_check
+        from foilbearing.study.queue import worker_pool
+
+        pool = worker_pool(1)
+        checking = pool.submit(schedule_grid_check, case, schedule, grid_check)
 
     def verification() -> dict[str, Any]:
+        if checking is not None:
+            check = checking.result()
+            pool.shutdown()
+            summary["schedule"]["grid_refined"] = schedule_errors(
+                case, schedule, grid_check, stage, check=check
+            )
         summary["verification"] = _verification(runs, plan, out, figures)
         return summary
 
@@ -132,16 +144,23 @@ def queue_schedule(
 
 
 def schedule_errors(
-    case: Case, schedule: Any, factor: int, stage: Callable[[str], None]
+    case: Case,
+    schedule: Any,
+    factor: int,
+    stage: Callable[[str], None],
+    *,
+    check: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """The schedule's points on ``factor`` times the cells
-    (:func:`foilbearing.design.schedule_search.schedule_grid_check`), with the texts the
-    report prints: each speed's log decrement, whirl frequency and power loss with its
-    error (the difference to the finer grid), and the limit speed's."""
+    (:func:`foilbearing.design.schedule_search.schedule_grid_check`, or its result
+    ``check`` where it ran elsewhere), with the texts the report prints: each speed's log
+    decrement, whirl frequency and power loss with its error (the difference to the finer
+    grid), and the limit speed's."""
     from foilbearing.design.schedule_search import schedule_grid_check
     from foilbearing.study.converged import with_error
 
-    check = schedule_grid_check(case, schedule, factor)
+    if check is None:
+        check = schedule_grid_check(case, schedule, factor)
     head = schedule.headline()
     texts: dict[str, list[str | None]] = {}
     for key in ("log_decrement", "whirl_frequency_Hz", "power_loss_W"):

@@ -99,8 +99,9 @@ def grid_errors(
     -------
     dict
         ``grid`` and ``refined_grid`` ([n_θ, n_z]), ``centre`` (input → median, in the unit
-        it was written in), ``outputs`` (name → ``value`` on the case's grid, ``refined``,
-        ``error`` (value − refined, None where either is None) and ``relative_error``),
+        it was written in: ``centre_unit``), ``outputs`` (name → ``value`` on the case's
+        grid, ``refined``, ``error`` (value − refined, None where either is None) and
+        ``relative_error``),
         ``not_checked`` (the speed-up outputs), ``message`` (why some are None) and
         ``wall_time_s``.
     """
@@ -125,10 +126,12 @@ def grid_errors(
             "relative_error": est["relative_error"],
         }
     orbit = spec.options.get("orbit")
+    centre = centre_values(spec)
     return {
         "grid": [g.n_theta, g.n_z],
         "refined_grid": [fine_case.grid.n_theta, fine_case.grid.n_z],
-        "centre": {i.name: centre_values(spec)[i.name] / i.scale for i in spec.inputs},
+        "centre": {i.name: centre[i.name] / i.scale for i in spec.inputs},
+        "centre_unit": {i.name: i.unit for i in spec.inputs},
         "outputs": outputs,
         "not_checked": ["speed-up readouts"] if orbit else [],
         "message": "; ".join(why + [f"refined: {w}" for w in why_fine]),

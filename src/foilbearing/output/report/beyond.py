@@ -42,7 +42,11 @@ def _uncertainty(d: dict[str, Any], case: dict[str, Any]) -> str:
     errors = check.get("outputs") or {}
     if check:
         g, f = check.get("grid") or ["?", "?"], check.get("refined_grid") or ["?", "?"]
-        centre = "; ".join(f"{k} {v:.4g}" for k, v in (check.get("centre") or {}).items())
+        units = check.get("centre_unit") or {}
+        centre = "; ".join(
+            f"{k} {v:.4g} {units.get(k, '')}".rstrip()
+            for k, v in (check.get("centre") or {}).items()
+        )
         intro += (
             f'<p class="note">Every sample point is solved on the case\'s {g[0]} × {g[1]} '
             "grid. The grid's error is nearly the same at every point, a shift of the whole "
