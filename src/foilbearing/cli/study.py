@@ -85,8 +85,9 @@ def register(sub: Any) -> argparse.ArgumentParser:
         "own speed-up, again on its orbit grid with N times the θ cells, so that its onset, "
         "whip and divergence carry their estimated grid error; every limit-cycle branch "
         "too, for its onset, whirl and largest stable cycle; above 1 also the static "
-        "table's shown speeds and the coefficients (or a bearing's case point and onset) on "
-        "twice the cells in θ and Z (default 2; 1: none; about twice the runs' CPU)",
+        "table's shown speeds, the coefficients, the voltage schedule's points and the "
+        "uncertainty outputs at the centre of their inputs (or a bearing's case point and "
+        "onset) on twice the cells in θ and Z (default 2; 1: none; about twice the runs' CPU)",
     )
     study.add_argument("--json", action="store_true", help="print one JSON object")
     study.set_defaults(func=cmd_study)

@@ -14,6 +14,7 @@ module           responsibility
 ``bifurcation``  the limit-cycle branches as a study stage
 ``converged``    the published onsets (×2 grid, κ 0.02) with their errors
 ``design``       what the stack's stiffness buys (150 V), its onsets with their errors
+``envelopes``    the uncertainty envelopes of what the paper leaves open, as a study stage
 ``rotor``        the study of a rotor on two foil bearings (``foilbearing study ROTOR.toml``)
 ===============  ===============================================================================
 """

@@ -18,7 +18,7 @@ from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 
-__all__ = ["evaluate_sample", "output_names"]
+__all__ = ["at_voltages", "evaluate_sample", "output_names", "static_outputs", "where_read"]
 
 #: Static readouts: (name with unit, function of the StaticResult's headline).
 STATIC_QUANTITIES = (
@@ -50,7 +50,9 @@ def _orbit_where(volt: float | None, ramp: list[float] | None) -> str:
     return f"{volt:g} V ramp {ramp[0]:g}-{ramp[1]:g} s"
 
 
-def _where(speed: float | None, volt: float | None, actuator: int | None = None) -> str:
+def where_read(speed: float | None, volt: float | None, actuator: int | None = None) -> str:
+    """Where an output is read, as its name says it: "90 krpm, 150 V, actuator 2" (speed in
+    rad/s, voltage in V or None for the case's own, actuator 0-based or None)."""
     parts = []
     if speed is not None:
         parts.append(f"{speed / RPM / 1e3:g} krpm")
@@ -79,12 +81,12 @@ def output_names(outputs: Mapping[str, Any], n_actuators: int) -> list[dict[str,
                 labels = {"speed_krpm": w / RPM / 1e3, "voltage_V": nan if v is None else v}
                 for q in STATIC_QUANTITIES:
                     out.append(
-                        {"name": f"{q}[{_where(w, v)}]", "quantity": q, **labels, "actuator": 0}
+                        {"name": f"{q}[{where_read(w, v)}]", "quantity": q, **labels, "actuator": 0}
                     )
                 for a in range(n_actuators):
                     out.append(
                         {
-                            "name": f"preload_um[{_where(w, v, a)}]",
+                            "name": f"preload_um[{where_read(w, v, a)}]",
                             "quantity": "preload_um",
                             **labels,
                             "actuator": a + 1,
@@ -96,7 +98,7 @@ def output_names(outputs: Mapping[str, Any], n_actuators: int) -> list[dict[str,
             for q in STABILITY_QUANTITIES:
                 out.append(
                     {
-                        "name": f"{q}[{_where(None, v)}]",
+                        "name": f"{q}[{where_read(None, v)}]",
                         "quantity": q,
                         "speed_krpm": nan,
                         "voltage_V": nan if v is None else v,
@@ -141,7 +143,7 @@ def evaluate_sample(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
     values: dict[str, float | None] = {}
     why: list[str] = []
     if options.get("static"):
-        _static(case, options["static"], values, why)
+        static_outputs(case, options["static"], values, why)
     if options.get("stability"):
         _stability(case, options["stability"], values, why)
     if options.get("orbit"):
@@ -150,29 +152,32 @@ def evaluate_sample(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
     return {"outputs": values, "message": "; ".join(why), "converged": ok}
 
 
-def _at(case: Case, volt: float | None) -> Case:
+def at_voltages(case: Case, volt: float | None) -> Case:
+    """``case`` with every actuator at ``volt`` (V); None: the case's own voltages."""
     return case if volt is None else case.with_voltages(volt)
 
 
-def _static(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
+def static_outputs(
+    case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]
+) -> None:
     from foilbearing.analysis.equilibrium import solve_equilibrium
     from foilbearing.film import film_model
 
     n_act = len(case.actuators.angles) if case.actuators is not None else 0
     for volt in opts["voltages_V"]:
-        c = _at(case, volt)
+        c = at_voltages(case, volt)
         model, start = film_model(c), None
         for w in opts["speeds_rad_s"]:  # increasing: each equilibrium starts from the last
             st = solve_equilibrium(c, speed=w, model=model, start=start)
             if not st.converged and start is not None:
                 st = solve_equilibrium(c, speed=w, model=model)
-            where = _where(w, volt)
+            where = where_read(w, volt)
             if not st.converged:
                 why.append(f"no equilibrium at {where}: {st.message}")
                 for q in STATIC_QUANTITIES:
                     values[f"{q}[{where}]"] = None
                 for a in range(n_act):
-                    values[f"preload_um[{_where(w, volt, a)}]"] = None
+                    values[f"preload_um[{where_read(w, volt, a)}]"] = None
                 continue
             start = (st.eps_x, st.eps_y, st.P)
             values[f"eccentricity_ratio[{where}]"] = st.eccentricity
@@ -180,7 +185,7 @@ def _static(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: li
             values[f"min_film_um[{where}]"] = st.min_film * 1e6
             values[f"power_loss_W[{where}]"] = st.power_loss
             for a in range(n_act):
-                values[f"preload_um[{_where(w, volt, a)}]"] = float(st.preload[a]) * 1e6
+                values[f"preload_um[{where_read(w, volt, a)}]"] = float(st.preload[a]) * 1e6
 
 
 def _stability(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
@@ -188,10 +193,10 @@ def _stability(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why:
 
     speeds = opts["speeds_rad_s"]
     for volt in opts["voltages_V"]:
-        where = _where(None, volt)
+        where = where_read(None, volt)
         onset = whirl = None
         try:
-            res = onset_speed(_at(case, volt), speeds, rel_tol=ONSET_REL_TOL)
+            res = onset_speed(at_voltages(case, volt), speeds, rel_tol=ONSET_REL_TOL)
         except (InputError, SolverError) as exc:
             why.append(f"no onset at {where}: {exc}")
         else:

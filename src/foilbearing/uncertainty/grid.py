@@ -27,7 +27,7 @@ from foilbearing.case import Case, case_from_dict
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 from foilbearing.sweep.spec import write_field
-from foilbearing.uncertainty.evaluate import _at, _static, _where
+from foilbearing.uncertainty.evaluate import at_voltages, static_outputs, where_read
 from foilbearing.uncertainty.spec import UncertaintySpec
 from foilbearing.units import si_text
 
@@ -65,15 +65,15 @@ def _outputs(
     values: dict[str, float | None] = {}
     why: list[str] = []
     if options.get("static"):
-        _static(case, options["static"], values, why)
+        static_outputs(case, options["static"], values, why)
     stab = options.get("stability") or {}
     for volt in stab.get("voltages_V", []):
-        where = _where(None, volt)
+        where = where_read(None, volt)
         onset = whirl = None
         coarse = near.get(f"onset_speed_krpm[{where}]")
         try:
             on = onset_near(
-                _at(case, volt), stab["speeds_rad_s"], None if coarse is None else coarse * 1e3 * RPM,
+                at_voltages(case, volt), stab["speeds_rad_s"], None if coarse is None else coarse * 1e3 * RPM,
                 rel_tol=CENTRE_ONSET_TOL,
             )  # fmt: skip
         except (InputError, SolverError) as exc:
