@@ -272,6 +272,26 @@ def test_a_run_not_refined_carries_the_floor_of_the_refined_ones() -> None:
     assert got["text"] in row.ours
 
 
+def test_a_run_two_stages_share_carries_its_refined_error_in_both() -> None:
+    """The schedule's verification shares its 0 V, 1 g·mm run with the protocol, whose
+    orbit stage ran it again on refined θ cells: the schedule's row then states that run's
+    two-grid error, not the floor; its other rows keep the floor."""
+    from foilbearing.study.paper import _share_refined
+
+    refined = {"texts": {"divergence_speed_rpm": "52.7 ± 1.1"}, "grid": [192, 4]}
+    results = {
+        "orbits": {"runs": [{"label": "0V_1gmm", "theta_refined": refined},
+                            {"label": "150V_ramp6.00s_1gmm", "grid_floor": {}}]},
+        "schedule": {"verification": {"runs": [{"label": "0V_1gmm", "grid_floor": {}},
+                                               {"label": "schedule_1gmm", "grid_floor": {}}]}},
+    }  # fmt: skip
+    assert _share_refined(results)
+    zero, scheduled = results["schedule"]["verification"]["runs"]
+    assert zero["theta_refined"] is refined and "grid_floor" not in zero
+    assert "theta_refined" not in scheduled and "grid_floor" in scheduled
+    assert not _share_refined({"schedule": {"verification": {"runs": [scheduled]}}})
+
+
 def test_a_refined_run_stops_a_margin_after_the_coarse_divergence() -> None:
     """The refined run reads the onset, whip and divergence, not the orbit of about 1.5 C a
     whirl can circle in for many seconds after it diverged: it stops REFINED_MARGIN_S after
