@@ -18,7 +18,14 @@ from foilbearing.case import Case
 from foilbearing.constants import RPM
 from foilbearing.errors import InputError, SolverError
 
-__all__ = ["at_voltages", "evaluate_sample", "output_names", "static_outputs", "where_read"]
+__all__ = [
+    "at_voltages",
+    "evaluate_sample",
+    "output_names",
+    "stability_outputs",
+    "static_outputs",
+    "where_read",
+]
 
 #: Static readouts: (name with unit, function of the StaticResult's headline).
 STATIC_QUANTITIES = (
@@ -145,7 +152,7 @@ def evaluate_sample(case: Case, options: Mapping[str, Any]) -> dict[str, Any]:
     if options.get("static"):
         static_outputs(case, options["static"], values, why)
     if options.get("stability"):
-        _stability(case, options["stability"], values, why)
+        stability_outputs(case, options["stability"], values, why)
     if options.get("orbit"):
         _orbit(case, options["orbit"], values, why)
     ok = any(v is not None for v in values.values())
@@ -188,15 +195,31 @@ def static_outputs(
                 values[f"preload_um[{where_read(w, volt, a)}]"] = float(st.preload[a]) * 1e6
 
 
-def _stability(case: Case, opts: Mapping[str, Any], values: dict[str, Any], why: list[str]) -> None:
-    from foilbearing.analysis.stability import onset_speed
+def stability_outputs(
+    case: Case,
+    opts: Mapping[str, Any],
+    values: dict[str, Any],
+    why: list[str],
+    *,
+    rel_tol: float = ONSET_REL_TOL,
+    near: Mapping[str, float | None] | None = None,
+) -> None:
+    """The linear onset (krpm) and whirl frequency (Hz) of ``case`` at each of ``opts``'
+    voltages over its scan (rad/s), found to Brent's ``rel_tol``, into ``values`` by name;
+    why any is None, into ``why``. ``near``: each onset's value on a coarser grid, krpm, by
+    name (:func:`foilbearing.check.onset_near` scans a bracket around it first)."""
+    from foilbearing.check import onset_near
 
     speeds = opts["speeds_rad_s"]
     for volt in opts["voltages_V"]:
         where = where_read(None, volt)
         onset = whirl = None
+        coarse = (near or {}).get(f"onset_speed_krpm[{where}]")
         try:
-            res = onset_speed(at_voltages(case, volt), speeds, rel_tol=ONSET_REL_TOL)
+            res = onset_near(
+                at_voltages(case, volt), speeds, None if coarse is None else coarse * 1e3 * RPM,
+                rel_tol=rel_tol,
+            )  # fmt: skip
         except (InputError, SolverError) as exc:
             why.append(f"no onset at {where}: {exc}")
         else:

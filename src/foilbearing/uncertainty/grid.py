@@ -18,16 +18,13 @@ minutes; the study states their error from refined runs (docs/guide/accuracy.md)
 from __future__ import annotations
 
 import copy
-import math
 import time
 from collections.abc import Callable
 from typing import Any
 
 from foilbearing.case import Case, case_from_dict
-from foilbearing.constants import RPM
-from foilbearing.errors import InputError, SolverError
 from foilbearing.sweep.spec import write_field
-from foilbearing.uncertainty.evaluate import at_voltages, static_outputs, where_read
+from foilbearing.uncertainty.evaluate import stability_outputs, static_outputs
 from foilbearing.uncertainty.spec import UncertaintySpec
 from foilbearing.units import si_text
 
@@ -60,32 +57,14 @@ def _outputs(
 ) -> tuple[dict[str, float | None], list[str]]:
     """The static and stability outputs of ``case`` (names as the sample's), and why some
     are None. ``near``: each onset's value on a coarser grid, krpm (its bracket)."""
-    from foilbearing.check import onset_near
-
     values: dict[str, float | None] = {}
     why: list[str] = []
     if options.get("static"):
         static_outputs(case, options["static"], values, why)
-    stab = options.get("stability") or {}
-    for volt in stab.get("voltages_V", []):
-        where = where_read(None, volt)
-        onset = whirl = None
-        coarse = near.get(f"onset_speed_krpm[{where}]")
-        try:
-            on = onset_near(
-                at_voltages(case, volt), stab["speeds_rad_s"], None if coarse is None else coarse * 1e3 * RPM,
-                rel_tol=CENTRE_ONSET_TOL,
-            )  # fmt: skip
-        except (InputError, SolverError) as exc:
-            why.append(f"no onset at {where}: {exc}")
-        else:
-            if on.onset_speed is not None and on.onset_speed > stab["speeds_rad_s"][0]:
-                onset = on.onset_speed / RPM / 1e3
-                whirl = (on.whirl_frequency or float("nan")) / (2.0 * math.pi)
-            else:
-                why.append(f"no onset inside the scan at {where}")
-        values[f"onset_speed_krpm[{where}]"] = onset
-        values[f"whirl_frequency_Hz[{where}]"] = whirl
+    if options.get("stability"):
+        stability_outputs(
+            case, options["stability"], values, why, rel_tol=CENTRE_ONSET_TOL, near=near
+        )
     return values, why
 
 
