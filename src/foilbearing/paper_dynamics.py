@@ -201,6 +201,9 @@ def orbit_comparison(
         if grid_error:  # the readouts with their grid error (study.orbits.readout_errors,
             # or floor_errors for a run that was not refined)
             parts.append(grid_error)
+        seed_floor = (run.get("seed_floor") or {}).get("text")
+        if seed_floor:  # a controlled run under one seed (study.orbits.seed_floor)
+            parts.append(seed_floor)
         lin = (linear_onsets_rpm or {}).get(v)
         if lin and div:
             lin_text = (onset_texts_krpm or {}).get(v) or f"{lin / 1e3:.1f}"

@@ -187,6 +187,12 @@ def schedule_errors(
     return check
 
 
+def _seeded(run: Any, result: Any) -> bool:
+    """A controlled run of a case with a random disturbance: its seed matters."""
+    controlled = run.ramp is not None or run.schedule is not None
+    return controlled and result.case.disturbance is not None
+
+
 def _verification(
     runs: dict[str, Any], plan: list[Any], out: Path, figures: list[str]
 ) -> dict[str, Any]:
@@ -198,7 +204,7 @@ def _verification(
 
     common = min(float(runs[r.label]["result"].speed[-1]) for r in plan) / RPM
     rows, subs, onsets, power = [], {}, {}, {}
-    from foilbearing.study.orbits import floor_errors
+    from foilbearing.study.orbits import floor_errors, seed_floor
 
     for r in plan:
         res, analysis = runs[r.label]["result"], runs[r.label]["analysis"]
@@ -224,6 +230,9 @@ def _verification(
             # the floor; a run an orbit stage refined gets its two-grid error from the
             # study (study.paper._share_refined)
             | {"grid_floor": floor_errors(head)}
+            # a controlled run under the case's seed alone (the shared 0 V run's seeds are
+            # the orbit stage's)
+            | ({"seed_floor": seed_floor(head)} if _seeded(r, res) else {})
         )
     if subs:
         figures.append(str(save_figure(plot_subsync(subs, onsets), out / "schedule_subsync.png")))

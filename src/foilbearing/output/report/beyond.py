@@ -156,13 +156,16 @@ def _schedule(d: dict[str, Any], case: dict[str, Any]) -> str:
             f"(3 to {_f(None if common is None else common / 1e3, '.1f')} krpm). Onset, "
             "whip and divergence carry their grid error as in the speed-ups' table: a run "
             "the orbit stage ran again on refined θ cells its own, the others the floor "
-            "measured on those (onset 8 %, whip and divergence 2 %).</p>"
+            "measured on those (onset 8 %, whip and divergence 2 %). Each ran under the case's "
+            "seed of the disturbance alone; over three seeds the paper's case's controlled "
+            "runs ranged by up to 6 % (onset), 1 % (whip) and 2 % (divergence).</p>"
         )
         cols: list[Column] = [
             ("run", _key("run"), ""),
             ("sub-sync onset (krpm)", _with_grid_error("onset_speed_rpm", 1e-3, ".1f"), ""),
             ("whip (Hz)", _with_grid_error("whip_frequency_Hz", 1.0, ".0f"), ""),
             ("divergence (krpm)", _with_grid_error("divergence_speed_rpm", 1e-3, ".1f"), ""),
+            ("over the seeds", lambda r: (r.get("seed_floor") or {}).get("text"), ""),
             ("end speed (krpm)", _krpm("end_speed_rpm"), ".1f"),
             ("mean power, run (W)", _key("mean_power_loss_W"), ".2f"),
             ("mean power, common speeds (W)", _key("mean_power_loss_common_W"), ".2f"),

@@ -421,13 +421,15 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
         return "; ".join(f"{a / 1e3:.1f}-{b / 1e3:.1f} krpm at {f:.0f} Hz" for a, b, f in ivs)
 
     def over_seeds(key: str) -> Callable[[dict[str, Any]], str | None]:
-        """A 0 V run's readout over the disturbance's seeds: "lo-hi (n seeds)"."""
+        """A 0 V run's readout over the disturbance's seeds: "lo-hi (n seeds)"; a controlled
+        run's, under one seed: "one seed (up to 2 % over seeds)"."""
 
         def get(r: dict[str, Any]) -> str | None:
             seeds = r.get("subsync_onset_seeds") or {}
             found = [x for x in seeds.get(key) or [] if x is not None]
             if len(seeds.get("seeds") or []) < 2 or not found:
-                return None
+                spread = ((r.get("seed_floor") or {}).get("texts") or {}).get(key)
+                return f"one seed ({spread} over seeds)" if spread else None
             return (
                 f"{min(found) / 1e3:.1f}-{max(found) / 1e3:.1f} "
                 f"({len(found)} of {len(seeds['seeds'])} seeds)"
@@ -489,6 +491,9 @@ def _orbits(d: dict[str, Any], case: dict[str, Any]) -> str:
         "their grid error: the difference between the two grids, or at least the moves "
         "measured on the paper's case from 192 to 384 θ cells (onset 8 %, whip and "
         "divergence 2 %), which two grids alone would miss; the runs that were not (the "
-        "controlled ones) carry that floor.</p>"
+        "controlled ones) carry that floor. A 0 V run run again under other seeds of the "
+        "disturbance (<code>--seeds</code>) shows its readouts' range over them; a controlled "
+        "run, run under the case's seed alone, the largest range measured over three seeds on "
+        "the paper's case's controlled runs (onset 6 %, whip 1 %, divergence 2 %).</p>"
     )
     return note + _records([r for r in d.get("runs", []) if isinstance(r, dict)], cols)
