@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -22,6 +23,22 @@ def test_help_lists_subcommands(capsys) -> None:
     text = capsys.readouterr().out
     for name in ("case", "structure", "identify", "study"):
         assert name in text
+
+
+def test_every_command_s_help_is_plain_text(capsys) -> None:
+    """Each subcommand's --help reads as text: no reST quotes (``x``) from the docstrings
+    a description is taken from."""
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    listing = capsys.readouterr().out
+    names = re.findall(r"^ {4}([a-z]+)\b", listing, flags=re.MULTILINE)  # the subcommands
+    assert {"sweep", "uncertainty", "optimize", "schedule", "study"} <= set(names)
+    for name in names:
+        with pytest.raises(SystemExit) as info:
+            main([name, "--help"])
+        assert info.value.code == 0
+        text = capsys.readouterr().out
+        assert "``" not in text, name
 
 
 def test_case_show_json(capsys) -> None:

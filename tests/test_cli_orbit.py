@@ -54,6 +54,10 @@ def test_orbit_json_netcdf_and_resume(coarse_case: Path, tmp_path: Path, capsys)
     ds = xr.load_dataset(out)
     assert ds.time.values[-1] == pytest.approx(0.06, abs=2e-4)
     assert ds.attrs["sample_rate_Hz"] == 10_000.0
+    # a completed run has nothing to resume: one line that says how to run on
+    assert main(["orbit", "--resume", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "nothing to resume" in err[0] and "longer --duration" in err[0]
 
 
 def test_orbit_order_and_step_are_stored_and_resumed(coarse_case: Path, tmp_path: Path) -> None:

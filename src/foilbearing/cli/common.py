@@ -45,6 +45,14 @@ __all__ = [
 _NEGATIVE_START = re.compile(r"-\.?\d")
 
 
+def command_help(doc: str | None) -> str | None:
+    """A command's description for ``--help`` from its module docstring's second paragraph,
+    without the docstring's reST literal quotes (``x`` → x)."""
+    if not doc:
+        return None
+    return doc.split("\n\n")[1].replace("``", "")
+
+
 def attach_negative_values(argv: Sequence[str]) -> list[str]:
     """``argv`` with ``--option -5rpm`` written ``--option=-5rpm``.
 

@@ -13,7 +13,7 @@ import argparse
 import sys
 from typing import Any
 
-from foilbearing.cli.common import add_case_arg, emit, positive_quantity
+from foilbearing.cli.common import add_case_arg, command_help, emit, positive_quantity
 from foilbearing.errors import InputError
 from foilbearing.units import speed_text
 
@@ -27,7 +27,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "optimize",
         help="voltages per actuator: maximise the onset speed or minimise the drag",
-        description=__doc__.split("\n\n")[1] if __doc__ else None,
+        description=command_help(__doc__),
     )
     add_case_arg(p)
     p.add_argument(

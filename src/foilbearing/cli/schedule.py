@@ -20,6 +20,7 @@ from foilbearing.cli.common import (
     add_case_arg,
     add_overwrite_arg,
     claim_output,
+    command_help,
     emit,
     guard_outputs,
 )
@@ -35,7 +36,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "schedule",
         help="voltage schedule: least-drag voltages per speed with a stability margin",
-        description=__doc__.split("\n\n")[1] if __doc__ else None,
+        description=command_help(__doc__),
     )
     add_case_arg(p)
     p.add_argument(

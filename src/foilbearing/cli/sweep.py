@@ -22,6 +22,7 @@ from foilbearing.cli.common import (
     add_dask_args,
     check_dask_args,
     claim_output,
+    command_help,
     emit,
     guard_outputs,
 )
@@ -35,7 +36,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "sweep",
         help="parameter sweep over case fields, speed and voltages on Dask",
-        description=__doc__.split("\n\n")[1] if __doc__ else None,
+        description=command_help(__doc__),
     )
     p.add_argument("sweep_file", type=Path, metavar="SWEEP.toml", help="sweep file (TOML)")
     p.add_argument(

@@ -23,6 +23,7 @@ from foilbearing.cli.common import (
     add_dask_args,
     check_dask_args,
     claim_output,
+    command_help,
     emit,
     guard_outputs,
 )
@@ -39,7 +40,7 @@ def register(subparsers: Any) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "uncertainty",
         help="uncertainty envelopes and sensitivity indices of the predictions (Dask)",
-        description=__doc__.split("\n\n")[1] if __doc__ else None,
+        description=command_help(__doc__),
     )
     p.add_argument(
         "uq_file",

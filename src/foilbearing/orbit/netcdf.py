@@ -110,7 +110,10 @@ def load_orbit(path: Path, notice: Callable[[str], None] = _notice) -> tuple[Any
         raise InputError(f"damaged orbit file: {what}", source=source) from None
     if not result.status.resumable:
         raise InputError(
-            f"the run already ended ({result.message}): nothing to resume", source=source
+            f"the run already ended ({result.message}): nothing to resume (a run stopped by "
+            "--stop-time or interrupted resumes); to run on, start it again with a longer "
+            "--duration or --speed-ramp",
+            source=source,
         )
     return result, spec
 
