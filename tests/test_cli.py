@@ -41,6 +41,25 @@ def test_every_command_s_help_is_plain_text(capsys) -> None:
         assert "``" not in text, name
 
 
+def test_a_command_s_text_output_shows_six_digits(capsys) -> None:
+    """The commands' text output (orbit, bifurcation, identify) prints numbers and lists of
+    numbers to six significant digits; --json keeps them whole."""
+    from foilbearing.cli.common import print_fields
+
+    print_fields({"hopf_speed_rpm": 64837.5299338583, "bifurcation_type": "supercritical",
+                  "amplitude_um": [0.06257075150328023, 8.063568675744774],
+                  "stable": [True, False], "message": None, "steps": 8})  # fmt: skip
+    lines = [line.split(None, 1) for line in capsys.readouterr().out.splitlines()]
+    assert dict(lines) == {
+        "hopf_speed_rpm": "64837.5",
+        "bifurcation_type": "supercritical",
+        "amplitude_um": "[0.0625708, 8.06357]",
+        "stable": "[True, False]",
+        "message": "None",
+        "steps": "8",
+    }
+
+
 def test_case_show_json(capsys) -> None:
     assert main(["case", "show", "--json"]) == 0
     out = _json(capsys)

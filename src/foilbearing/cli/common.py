@@ -372,9 +372,19 @@ def refuse_run_options(args: argparse.Namespace, options: Sequence[tuple[str, st
 
 
 def print_fields(obj: dict[str, Any]) -> None:
-    """Print ``obj`` as aligned ``key  value`` lines on stdout (the commands' text output)."""
+    """Print ``obj`` as aligned ``key  value`` lines on stdout (the commands' text output),
+    numbers and lists of numbers to six significant digits (``--json`` has them whole)."""
     for key, value in obj.items():
-        print(f"  {key:<28} {value}")
+        print(f"  {key:<28} {_shown(value)}")
+
+
+def _shown(value: Any) -> str:
+    """A field's value as :func:`print_fields` prints it."""
+    if isinstance(value, float):
+        return format(value, ".6g")
+    if isinstance(value, list | tuple) and any(isinstance(v, float) for v in value):
+        return "[" + ", ".join(_shown(v) for v in value) + "]"
+    return str(value)
 
 
 def emit(obj: dict[str, Any]) -> None:
