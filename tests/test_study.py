@@ -285,6 +285,7 @@ def test_a_controlled_run_under_one_seed_states_the_spread_measured_over_seeds(
     0.08-0.58 s, run by the study's own run_one under seeds 1, 2 and 3, diverges within
     SEED_SPREAD of itself (0.58 % measured against the 2 % stated; 1 s a run)."""
     from foilbearing.case import default_case
+    from foilbearing.output.report.beyond import _schedule
     from foilbearing.output.report.paper_stages import _orbits
     from foilbearing.paper_dynamics import orbit_comparison
     from foilbearing.study.orbits import SEED_SPREAD, seed_floor
@@ -307,8 +308,6 @@ def test_a_controlled_run_under_one_seed_states_the_spread_measured_over_seeds(
     assert ">44.5-48.0 (3 of 3 seeds)<" in page and ">one seed (up to 6 % over seeds)<" in page
     (row,) = orbit_comparison([head | {"seed_floor": got}])
     assert got["text"] in row.ours
-    from foilbearing.output.report.beyond import _schedule
-
     verified = {"runs": [{"run": "voltage schedule", "seed_floor": got}]}
     assert "controlled runs ranged by up to: onset 6 %, whip 1 %</td>" in _schedule(
         {"verification": verified}, {}

@@ -382,7 +382,7 @@ def _shown(value: Any) -> str:
     """A field's value as :func:`print_fields` prints it."""
     if isinstance(value, float):
         return format(value, ".6g")
-    if isinstance(value, list | tuple) and any(isinstance(v, float) for v in value):
+    if isinstance(value, list | tuple):  # nested too: the sub-synchronous intervals
         return "[" + ", ".join(_shown(v) for v in value) + "]"
     return str(value)
 

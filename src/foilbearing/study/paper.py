@@ -269,8 +269,7 @@ def _speed_ups(
         queue.drain()
     for key, summary in summaries.items():  # the stages' order
         results[key] = summary()
-        write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
-    if _share_refined(results):
+        _share_refined(results)  # once the schedule's verification is in
         write_text(out / "summary.json", json.dumps(results, indent=2, default=_plain))
 
 
